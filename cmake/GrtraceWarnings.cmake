@@ -1,0 +1,16 @@
+# grtrace_target_warnings(<target>): the project's strict warning set for a compiled target.
+# Third-party headers (Eigen, GLM, VTK, OpenEXR, GoogleTest) come in through imported targets, which CMake
+# marks SYSTEM, so only our own code is held to these.
+option(GRTRACE_WARNINGS_AS_ERRORS "Treat compiler warnings as errors (on in the ci preset)" OFF)
+
+function(grtrace_target_warnings target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE
+      -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Wold-style-cast
+      -Wnon-virtual-dtor -Woverloaded-virtual -Wcast-align -Wnull-dereference -Wdouble-promotion
+      -Wformat=2 -Wimplicit-fallthrough -Wmisleading-indentation)
+    if(GRTRACE_WARNINGS_AS_ERRORS)
+      target_compile_options(${target} PRIVATE -Werror)
+    endif()
+  endif()
+endfunction()

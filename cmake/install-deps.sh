@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages grtrace needs, skipping those already present.
+# Idempotent: a second run with everything installed does not touch apt.
+# Usage (as root): bash cmake/install-deps.sh
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libglm-dev libeigen3-dev            # core: numerics (Eigen) and graphics vectors (GLM)
+  libopenexr-dev libpng-dev           # renderer output
+  libvtk9-dev                         # viz frontend
+  libgtest-dev libbenchmark-dev       # tests and benchmarks
+  xvfb xauth                          # headless VTK rendering in tests
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps: missing packages: ${missing[*]}" >&2
+  echo "install-deps: run as root (or with sudo) to install them" >&2
+  exit 1
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -o DPkg::Lock::Timeout=900
+apt-get install -y --no-install-recommends -o DPkg::Lock::Timeout=900 "${missing[@]}"

@@ -1,0 +1,33 @@
+// grtrace/core/types.hpp
+// Fixed-size value types shared by every part of the library.
+//
+// Numerics use Eigen fixed-size vectors (stack allocated, no heap traffic in the hot loop).
+// A geodesic state packs position x^mu and tangent k^mu = dx^mu/dlambda into eight numbers.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+
+namespace grtrace {
+
+template <int N>
+using Vector = Eigen::Matrix<double, N, 1>;
+
+using Vec3 = Vector<3>;
+using Vec4 = Vector<4>;
+using Mat4 = Eigen::Matrix<double, 4, 4>;
+
+/// y = (x^0..x^3, k^0..k^3): position and tangent of a geodesic.
+using GeodesicState = Vector<8>;
+
+inline Vec4 position(const GeodesicState& y) { return y.head<4>(); }
+inline Vec4 momentum(const GeodesicState& y) { return y.tail<4>(); }
+
+inline GeodesicState make_state(const Vec4& x, const Vec4& k) {
+  GeodesicState y;
+  y << x, k;
+  return y;
+}
+
+}  // namespace grtrace

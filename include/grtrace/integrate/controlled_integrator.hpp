@@ -1,0 +1,194 @@
+// grtrace/integrate/controlled_integrator.hpp
+// The controlled, dense-output integrator: one tableau, one step controller, one error norm, fixed-size state.
+//
+// Takes:   an autonomous right-hand side f (State -> State) and an initial state.
+// Returns: one accepted step per advance() (rejected trials are retried inside), or a failure:
+//          step_underflow when the controller asks for h < h_min, non_finite when a fixed-step method
+//          produces NaN/Inf (adaptive methods shrink instead, until they underflow).
+// Assumes: the controller's error estimate is available for the tableau (an embedded pair for I/PI).
+// Dense output on the last accepted step: the tableau's own interpolant where it has one, cubic Hermite otherwise.
+// Counts right-hand-side evaluations exactly (FSAL stages are reused; stage 1 is always the stored f(y)).
+#pragma once
+
+#include "grtrace/core/types.hpp"
+#include "grtrace/integrate/dense_output.hpp"
+#include "grtrace/integrate/error_norm.hpp"
+#include "grtrace/integrate/runge_kutta_stepper.hpp"
+#include "grtrace/integrate/step_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace grtrace {
+
+struct IntegratorSettings {
+  Tolerance tolerance{};
+  double h_min = 1e-12;                                    ///< below this the integration fails (step_underflow)
+  double h_max = std::numeric_limits<double>::infinity();  ///< cap on any step
+};
+
+enum class StepOutcome { ok, step_underflow, non_finite };
+
+template <ExplicitTableau T, StepController Controller, int N, class Norm = RmsNorm>
+class ControlledIntegrator {
+  static_assert(Controller::estimate != ErrorEstimate::embedded || has_embedded_pair<T>,
+                "this controller needs an embedded error estimate, but the tableau has no embedded pair: "
+                "use StepDoubling or FixedStep with it");
+
+ public:
+  using State = Vector<N>;
+  using Tableau = T;
+  using ControllerType = Controller;
+
+  explicit ControlledIntegrator(IntegratorSettings settings = {}, Controller controller = {}, Norm norm = {})
+      : settings_(settings), controller_(controller), norm_(norm) {}
+
+  /// Exponent k of the controller law: (order of the local error estimate) + 1.
+  static constexpr int error_exponent() {
+    if constexpr (Controller::estimate == ErrorEstimate::embedded) return std::min(T::order, T::embedded_order) + 1;
+    else return T::order + 1;
+  }
+
+  /// Starts at y0 with step h0; h0 <= 0 picks one automatically (Hairer, Norsett & Wanner I, II.4, "hinit").
+  template <class Rhs>
+  void start(const Rhs& f, const State& y0, double h0) {
+    y_ = y0;
+    f_ = f(y0);
+    rhs_evals_ = 1;
+    accepted_ = rejected_ = 0;
+    lambda_ = 0.0;
+    h_last_ = 0.0;
+    controller_.reset();
+    h_ = h0 > 0.0 ? h0 : initial_step(f);
+    h_ = std::min(h_, settings_.h_max);
+  }
+
+  template <class Rhs>
+  StepOutcome advance(const Rhs& f) {
+    for (;;) {
+      const double h = std::min(h_, settings_.h_max);
+      if (!(h >= settings_.h_min)) return StepOutcome::step_underflow;
+
+      State y_new;
+      double err_norm = 0.0;
+      if constexpr (Controller::estimate == ErrorEstimate::none) {
+        stepper_.step(f, y_, f_, h, y_new);
+        rhs_evals_ += Stepper::evals_per_step;
+        if (!y_new.allFinite()) return StepOutcome::non_finite;
+      } else if constexpr (Controller::estimate == ErrorEstimate::embedded) {
+        State err;
+        stepper_.step(f, y_, f_, h, y_new, err);
+        rhs_evals_ += Stepper::evals_per_step;
+        err_norm = y_new.allFinite() ? norm_(err, y_, y_new, settings_.tolerance)
+                                     : std::numeric_limits<double>::infinity();
+      } else {
+        err_norm = doubling_step(f, h, y_new);
+      }
+
+      const StepDecision decision = controller_.decide(err_norm, h, error_exponent());
+      if (decision.accept) {
+        State f_new;
+        if constexpr (T::fsal && Controller::estimate != ErrorEstimate::step_doubling) {
+          f_new = stepper_.stage(T::stages - 1);
+        } else {
+          f_new = f(y_new);
+          ++rhs_evals_;
+        }
+        if (f_new.allFinite() && y_new.allFinite()) {
+          y_prev_ = y_;
+          f_prev_ = f_;
+          y_ = y_new;
+          f_ = f_new;
+          lambda_ += h;
+          h_last_ = h;
+          h_ = decision.h_next;
+          ++accepted_;
+          return StepOutcome::ok;
+        }
+        if constexpr (Controller::estimate == ErrorEstimate::none) {
+          return StepOutcome::non_finite;
+        } else {
+          ++rejected_;  // the new point itself is singular: shrink and retry
+          h_ = h * StepFactorLimits{}.min_factor;
+          continue;
+        }
+      }
+      ++rejected_;
+      h_ = decision.h_next;
+    }
+  }
+
+  /// State at lambda_prev + theta * h on the last accepted step, theta in [0, 1].
+  State dense(double theta) const {
+    if constexpr (TableauWithDenseOutput<T> && Controller::estimate != ErrorEstimate::step_doubling) {
+      return stepper_.interpolate(y_prev_, h_last_, theta);
+    } else {
+      return hermite_interpolate<N>(y_prev_, f_prev_, y_, f_, h_last_, theta);
+    }
+  }
+
+  const State& state() const { return y_; }
+  const State& derivative() const { return f_; }
+  const State& previous_state() const { return y_prev_; }
+  double lambda() const { return lambda_; }
+  double previous_lambda() const { return lambda_ - h_last_; }
+  double last_step() const { return h_last_; }
+  double next_step() const { return h_; }
+  int accepted() const { return accepted_; }
+  int rejected() const { return rejected_; }
+  long rhs_evals() const { return rhs_evals_; }
+  const IntegratorSettings& settings() const { return settings_; }
+  Controller& controller() { return controller_; }
+
+ private:
+  using Stepper = RungeKuttaStepper<T, N>;
+
+  // Two half steps against one full step; returns the scaled error norm and the value to propagate.
+  template <class Rhs>
+  double doubling_step(const Rhs& f, double h, State& y_new) {
+    State y_full, y_mid, y_two;
+    stepper_.step(f, y_, f_, h, y_full);
+    stepper_.step(f, y_, f_, 0.5 * h, y_mid);
+    const State f_mid = f(y_mid);
+    stepper_.step(f, y_mid, f_mid, 0.5 * h, y_two);
+    rhs_evals_ += 3 * Stepper::evals_per_step + 1;
+    const State err = (y_two - y_full) / (std::pow(2.0, T::order) - 1.0);
+    y_new = controller_.richardson ? State(y_two + err) : y_two;
+    if (!y_new.allFinite() || !y_full.allFinite()) return std::numeric_limits<double>::infinity();
+    return norm_(err, y_, y_new, settings_.tolerance);
+  }
+
+  template <class Rhs>
+  double initial_step(const Rhs& f) {
+    const Tolerance& tol = settings_.tolerance;
+    auto scaled = [&](const State& v) {
+      double s = 0.0;
+      for (int i = 0; i < N; ++i) {
+        const double sc = tol.atol + tol.rtol * std::abs(y_[i]);
+        s += (v[i] / sc) * (v[i] / sc);
+      }
+      return std::sqrt(s / N);
+    };
+    const double d0 = scaled(y_), d1 = scaled(f_);
+    double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+    const State f1 = f(State(y_ + h0 * f_));
+    ++rhs_evals_;
+    const double d2 = scaled(State(f1 - f_)) / h0;
+    const double dmax = std::max(d1, d2);
+    const double h1 = dmax <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dmax, 1.0 / (T::order + 1));
+    const double h = std::min(100.0 * h0, h1);
+    return std::isfinite(h) && h > 0.0 ? h : 1e-6;
+  }
+
+  IntegratorSettings settings_;
+  Controller controller_;
+  Norm norm_;
+  Stepper stepper_;
+  State y_ = State::Zero(), f_ = State::Zero(), y_prev_ = State::Zero(), f_prev_ = State::Zero();
+  double lambda_ = 0.0, h_ = 0.0, h_last_ = 0.0;
+  int accepted_ = 0, rejected_ = 0;
+  long rhs_evals_ = 0;
+};
+
+}  // namespace grtrace

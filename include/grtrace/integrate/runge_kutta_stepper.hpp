@@ -1,0 +1,103 @@
+// grtrace/integrate/runge_kutta_stepper.hpp
+// One generic explicit Runge-Kutta step for any tableau, unrolled at compile time.
+//
+// Takes:   an autonomous right-hand side f (State -> State), the state y, its derivative f0 = f(y)
+//          (kept from the previous step, so stage 1 is never re-evaluated), and a step h.
+// Returns: y_new = y + h sum_i b_i k_i and, for embedded pairs, err = h sum_i (b_i - b_hat_i) k_i.
+// Assumes: T passed GRTRACE_CHECK_TABLEAU (checked again here), N is the state dimension.
+// Zero entries of A, b and b - b_hat cost nothing: each term is guarded by `if constexpr`.
+// Stages are kept after the step so that dense output (dense_output.hpp) can reuse them.
+#pragma once
+
+#include "grtrace/core/types.hpp"
+#include "grtrace/tableau/butcher_tableau.hpp"
+
+#include <array>
+#include <utility>
+
+namespace grtrace {
+
+template <ExplicitTableau T, int N>
+class RungeKuttaStepper {
+  static_assert(tableau_is_valid<T>(), "tableau fails its compile-time checks (see GRTRACE_CHECK_TABLEAU)");
+
+ public:
+  using Tableau = T;
+  using State = Vector<N>;
+  static constexpr std::size_t S = T::stages;
+
+  /// Right-hand-side evaluations one call of step() costs (stage 1 reuses f0).
+  static constexpr int evals_per_step = static_cast<int>(S) - 1;
+
+  template <class Rhs>
+  void step(const Rhs& f, const State& y, const State& f0, double h, State& y_new) {
+    k_[0] = f0;
+    compute_stages(f, y, h, std::make_index_sequence<S - 1>{});
+    y_new = y + h * weighted_sum<Weights::b>(std::make_index_sequence<S>{});
+  }
+
+  template <class Rhs>
+  void step(const Rhs& f, const State& y, const State& f0, double h, State& y_new, State& err) {
+    step(f, y, f0, h, y_new);
+    if constexpr (has_embedded_pair<T>) err = h * weighted_sum<Weights::difference>(std::make_index_sequence<S>{});
+  }
+
+  /// k_i of the last step (k_0 = f0; for FSAL tableaux k_{S-1} = f(y_new)).
+  const State& stage(std::size_t i) const { return k_[i]; }
+
+  /// y(theta) on the last step, for tableaux that carry their own continuous extension.
+  State interpolate(const State& y, double h, double theta) const
+    requires TableauWithDenseOutput<T>
+  {
+    State acc = State::Zero();
+    for (std::size_t i = 0; i < S; ++i) {
+      double w = 0.0, power = theta;
+      for (int d = 0; d < T::dense_degree; ++d, power *= theta) w += T::dense[i][static_cast<std::size_t>(d)] * power;
+      acc.noalias() += w * k_[i];
+    }
+    return y + h * acc;
+  }
+
+ private:
+  enum class Weights { b, difference };
+
+  template <Weights W, std::size_t I>
+  static constexpr double weight() {
+    if constexpr (W == Weights::b) return T::b[I];
+    else return T::b[I] - T::b_hat[I];
+  }
+
+  template <class Rhs, std::size_t... I>
+  void compute_stages([[maybe_unused]] const Rhs& f, [[maybe_unused]] const State& y, [[maybe_unused]] double h,
+                      std::index_sequence<I...>) {
+    (compute_stage<I + 1>(f, y, h), ...);
+  }
+
+  template <std::size_t I, class Rhs>
+  void compute_stage(const Rhs& f, const State& y, double h) {
+    State acc = State::Zero();
+    add_row_terms<I>(acc, std::make_index_sequence<I>{});
+    k_[I] = f(State(y + h * acc));
+  }
+
+  template <std::size_t I, std::size_t... J>
+  void add_row_terms(State& acc, std::index_sequence<J...>) const {
+    (add_term<T::a[I][J], J>(acc), ...);
+  }
+
+  template <double Coefficient, std::size_t J>
+  void add_term(State& acc) const {
+    if constexpr (Coefficient != 0.0) acc.noalias() += Coefficient * k_[J];
+  }
+
+  template <Weights W, std::size_t... J>
+  State weighted_sum(std::index_sequence<J...>) const {
+    State acc = State::Zero();
+    (add_term<weight<W, J>(), J>(acc), ...);
+    return acc;
+  }
+
+  std::array<State, S> k_;
+};
+
+}  // namespace grtrace

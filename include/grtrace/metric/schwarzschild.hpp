@@ -1,0 +1,87 @@
+// grtrace/metric/schwarzschild.hpp
+// Schwarzschild spacetime in Schwarzschild coordinates x = (t, r, theta, phi), G = c = 1 (seed eq. 3-4).
+//   ds^2 = (1 - 2M/r) dt^2 - dr^2 / (1 - 2M/r) - r^2 dtheta^2 - r^2 sin^2(theta) dphi^2
+// Chart singularities: the horizon r = 2M (g_rr blows up; steps must shrink to zero there) and the polar
+// axis sin(theta) = 0 (cot theta). Conserved along geodesics: E = (1 - 2M/r) k^t and L_z = r^2 sin^2 theta k^phi.
+// With mass 0 this is flat space in spherical coordinates (MinkowskiSpherical).
+#pragma once
+
+#include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
+
+#include <cmath>
+
+namespace grtrace {
+
+struct SchwarzschildMetric {
+  static constexpr std::string_view name = "schwarzschild";
+  static constexpr Chart chart = Chart::spherical;
+  double mass = 1.0;
+
+  Mat4 metric(const Vec4& x) const {
+    const double r = x[1], f = 1.0 - 2.0 * mass / r, st = std::sin(x[2]);
+    Mat4 g = Mat4::Zero();
+    g(0, 0) = f;
+    g(1, 1) = -1.0 / f;
+    g(2, 2) = -r * r;
+    g(3, 3) = -r * r * st * st;
+    return g;
+  }
+
+  Christoffel christoffel(const Vec4& x) const {
+    const double r = x[1], m = mass, st = std::sin(x[2]), ct = std::cos(x[2]);
+    Christoffel G;
+    for (auto& gm : G) gm.setZero();
+    G[0](0, 1) = G[0](1, 0) = m / (r * (r - 2 * m));
+    G[1](0, 0) = m * (r - 2 * m) / (r * r * r);
+    G[1](1, 1) = -m / (r * (r - 2 * m));
+    G[1](2, 2) = -(r - 2 * m);
+    G[1](3, 3) = -(r - 2 * m) * st * st;
+    G[2](1, 2) = G[2](2, 1) = 1.0 / r;
+    G[2](3, 3) = -st * ct;
+    G[3](1, 3) = G[3](3, 1) = 1.0 / r;
+    G[3](2, 3) = G[3](3, 2) = ct / st;
+    return G;
+  }
+
+  /// -Gamma^mu_{ab} k^a k^b, written out (14 multiplies, one division by r, one by sin theta).
+  Vec4 acceleration(const Vec4& x, const Vec4& k) const {
+    const double r = x[1], m = mass, inv_r = 1.0 / r, st = std::sin(x[2]), ct = std::cos(x[2]);
+    const double r2m = r - 2.0 * m;
+    const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];
+    const double a_trt = m / (r * r2m);  // Gamma^t_rt = -Gamma^r_rr
+    Vec4 a;
+    a[0] = -2.0 * a_trt * kt * kr;
+    a[1] = -m * r2m * inv_r * inv_r * inv_r * kt * kt + a_trt * kr * kr + r2m * (kth * kth + st * st * kph * kph);
+    a[2] = -2.0 * inv_r * kr * kth + st * ct * kph * kph;
+    a[3] = -2.0 * inv_r * kr * kph - 2.0 * (ct / st) * kth * kph;
+    return a;
+  }
+
+  double radius(const Vec4& x) const { return x[1]; }
+  double horizon_radius() const { return 2.0 * mass; }
+  Vec3 to_cartesian(const Vec4& x) const { return spherical_to_cartesian(x); }
+
+  /// Killing energy E = g_tt k^t and axial angular momentum L_z = -g_phiphi k^phi.
+  double energy(const GeodesicState& y) const { return (1.0 - 2.0 * mass / y[1]) * y[4]; }
+  double angular_momentum(const GeodesicState& y) const {
+    const double st = std::sin(y[2]);
+    return y[1] * y[1] * st * st * y[7];
+  }
+  /// Total angular momentum |L| (conserved in every plane through the centre, not only the equator).
+  double total_angular_momentum(const GeodesicState& y) const {
+    const double r2 = y[1] * y[1], st = std::sin(y[2]);
+    return r2 * std::sqrt(y[6] * y[6] + st * st * st * st * y[7] * y[7]);
+  }
+};
+
+/// Flat space in spherical coordinates: Schwarzschild with M = 0, under its own name.
+struct MinkowskiSpherical : SchwarzschildMetric {
+  static constexpr std::string_view name = "minkowski-spherical";
+  MinkowskiSpherical() : SchwarzschildMetric{0.0} {}
+};
+
+static_assert(MetricPolicy<SchwarzschildMetric>);
+static_assert(MetricPolicy<MinkowskiSpherical>);
+
+}  // namespace grtrace

@@ -19,12 +19,6 @@
 // Every header runs GRTRACE_CHECK_TABLEAU on its tableau, so including this file re-verifies all of them.
 #pragma once
 
-#include <array>
-#include <cstddef>
-#include <string_view>
-#include <type_traits>
-#include <vector>
-
 #include "grtrace/tableau/bogacki_shampine32.hpp"
 #include "grtrace/tableau/butcher_tableau.hpp"
 #include "grtrace/tableau/cash_karp54.hpp"
@@ -39,14 +33,20 @@
 #include "grtrace/tableau/tsitouras54.hpp"
 #include "grtrace/tableau/verner65.hpp"
 
+#include <array>
+#include <cstddef>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
 namespace grtrace {
 
 template <class... T>
 struct TypeList {};
 
 /// All tableaux, roughly by increasing order; tableau_names() lists them in this order.
-using AllTableaux = TypeList<ExplicitEuler, ExplicitMidpoint, Heun, ClassicRK4, Rule38, BogackiShampine32,
-                             Fehlberg45, CashKarp54, DormandPrince54, Tsitouras54, Verner65, Fehlberg78>;
+using AllTableaux = TypeList<ExplicitEuler, ExplicitMidpoint, Heun, ClassicRK4, Rule38, BogackiShampine32, Fehlberg45,
+                             CashKarp54, DormandPrince54, Tsitouras54, Verner65, Fehlberg78>;
 
 /// Calls f(std::type_identity<T>{}) for every tableau T in AllTableaux, in order.
 /// Inside f, `using T = typename decltype(tag)::type;` recovers the tableau.

@@ -18,6 +18,7 @@
 #include <array>
 #include <concepts>
 #include <cstddef>
+#include <stdexcept>
 #include <string_view>
 
 namespace grtrace {
@@ -54,6 +55,7 @@ struct OrderConditionChecker {
   std::array<Tree<S>, kMaxTrees> trees{};
   std::size_t count = 0;
   double worst = 0.0;
+  int top_order = 0;  // trees of this order are never children, so their A g is not needed
 
   constexpr void add_tree(int n, const TableauRow<S>& g, double gamma_children) {
     Tree<S> t;
@@ -62,10 +64,12 @@ struct OrderConditionChecker {
     double phi = 0.0;
     for (std::size_t i = 0; i < S; ++i) phi += b[i] * g[i];
     worst = max(worst, abs(t.gamma * phi - 1.0));
-    for (std::size_t i = 0; i < S; ++i) {
-      double s = 0.0;
-      for (std::size_t j = 0; j < S; ++j) s += a[i][j] * g[j];
-      t.Ag[i] = s;
+    if (n < top_order) {
+      for (std::size_t i = 0; i < S; ++i) {
+        double s = 0.0;
+        for (std::size_t j = 0; j < i; ++j) s += a[i][j] * g[j];  // A is strictly lower triangular
+        t.Ag[i] = s;
+      }
     }
     trees[count++] = t;
   }
@@ -85,6 +89,7 @@ struct OrderConditionChecker {
   }
 
   constexpr double run(int max_order) {
+    top_order = max_order;
     TableauRow<S> ones{};
     for (auto& v : ones) v = 1.0;
     for (int n = 1; n <= max_order; ++n) choose_children(n, n - 1, count, ones, 1.0);
@@ -96,8 +101,12 @@ struct OrderConditionChecker {
 
 /// Largest residual |gamma(t) Phi(t) - 1| over all rooted trees t with |t| <= order, for weights b.
 /// Zero (to round-off) exactly when (A, b) has at least that order.
+/// Assumes order <= kMaxCheckedOrder (throws otherwise; at compile time that is an error).
+/// Only meaningful for explicit tableaux (the A g products skip the upper triangle).
 template <std::size_t S>
 constexpr double order_condition_residual(const TableauMatrix<S>& a, const TableauRow<S>& b, int order) {
+  if (order < 1 || order > tableau_detail::kMaxCheckedOrder)
+    throw std::out_of_range("order_condition_residual: order must be in 1..8 (rooted trees enumerated)");
   tableau_detail::OrderConditionChecker<S> checker{a, b};
   return checker.run(order);
 }
@@ -164,6 +173,7 @@ constexpr bool is_explicit() {
   return true;
 }
 
+// is_explicit is checked first in tableau_is_valid (the residual below assumes a strictly lower A).
 template <ExplicitTableau T>
 constexpr bool has_stated_order() {
   return T::order <= tableau_detail::kMaxCheckedOrder &&

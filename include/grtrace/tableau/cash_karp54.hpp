@@ -24,8 +24,8 @@ struct CashKarp54 {
   }};
   static constexpr TableauRow<6> b = {37.0 / 378.0, 0.0, 250.0 / 621.0, 125.0 / 594.0, 0.0, 512.0 / 1771.0};
   static constexpr TableauRow<6> c = {0.0, 1.0 / 5.0, 3.0 / 10.0, 3.0 / 5.0, 1.0, 7.0 / 8.0};
-  static constexpr TableauRow<6> b_hat = {2825.0 / 27648.0, 0.0, 18575.0 / 48384.0, 13525.0 / 55296.0,
-                                          277.0 / 14336.0, 1.0 / 4.0};
+  static constexpr TableauRow<6> b_hat = {2825.0 / 27648.0, 0.0,      18575.0 / 48384.0, 13525.0 / 55296.0,
+                                          277.0 / 14336.0,  1.0 / 4.0};
 };
 GRTRACE_CHECK_TABLEAU(CashKarp54);
 

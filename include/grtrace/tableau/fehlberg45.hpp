@@ -25,8 +25,8 @@ struct Fehlberg45 {
   }};
   static constexpr TableauRow<6> b = {25.0 / 216.0, 0.0, 1408.0 / 2565.0, 2197.0 / 4104.0, -1.0 / 5.0, 0.0};
   static constexpr TableauRow<6> c = {0.0, 1.0 / 4.0, 3.0 / 8.0, 12.0 / 13.0, 1.0, 1.0 / 2.0};
-  static constexpr TableauRow<6> b_hat = {16.0 / 135.0, 0.0, 6656.0 / 12825.0, 28561.0 / 56430.0, -9.0 / 50.0,
-                                          2.0 / 55.0};
+  static constexpr TableauRow<6> b_hat = {16.0 / 135.0,      0.0,         6656.0 / 12825.0,
+                                          28561.0 / 56430.0, -9.0 / 50.0, 2.0 / 55.0};
 };
 GRTRACE_CHECK_TABLEAU(Fehlberg45);
 

@@ -119,7 +119,8 @@ constexpr std::size_t rooted_tree_count(int order) {
   tableau_detail::OrderConditionChecker<S> checker{a, b};
   checker.run(order);
   std::size_t n = 0;
-  for (std::size_t i = 0; i < checker.count; ++i) n += checker.trees[i].order == order ? 1 : 0;
+  for (std::size_t i = 0; i < checker.count; ++i)
+    if (checker.trees[i].order == order) ++n;
   return n;
 }
 

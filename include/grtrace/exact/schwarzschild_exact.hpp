@@ -17,6 +17,8 @@
 
 #include "grtrace/core/types.hpp"
 
+#include <Eigen/Geometry>  // cross product in angular_distance
+
 #include <cmath>
 #include <algorithm>
 #include <limits>

@@ -9,9 +9,10 @@
 // table of delta values with the general tracer and interpolate; a pixel then costs a few flops.
 //
 // Accuracy: near the critical angle delta_c (impact parameter b = b_c = 3 sqrt(3) M) sweep diverges like
-// -ln|delta - delta_c|, so each side of delta_c is tabulated uniformly in s = ln|delta - delta_c| over the
-// range of angles the frame needs, where sweep is smooth (it tends to a linear function of s), and read
-// with four-point Lagrange (cubic) interpolation. Escaped rays also get the exact bending beyond the sky
+// -ln g, g = |delta - delta_c|, so each side of delta_c is tabulated uniformly in s = ln g + g / kappa over
+// the range of angles the frame needs: logarithmic spacing close to delta_c, where sweep is a smooth
+// function of ln g (it tends to a linear one), and even spacing in delta far from it (kappa puts about half
+// the nodes in each regime). Values are read with four-point Lagrange (cubic) interpolation. Escaped rays also get the exact bending beyond the sky
 // sphere (exact/schwarzschild_exact.hpp) folded into a second tabulated value, so the asymptotic direction
 // costs no elliptic integral per pixel. tests/symmetric_sky_test.cpp proves it equal to the general tracer.
 //
@@ -108,7 +109,7 @@ class SymmetricSkyTable {
     const Side& side = escaped ? escaped_side_ : captured_side_;
     if (side.values.empty()) throw std::out_of_range("SymmetricSkyTable: delta outside the tabulated range");
     const double gap = std::max(std::abs(delta - delta_c_), 1e-300);
-    return side.interpolate(std::log(gap), escaped ? RayStatus::escaped : RayStatus::captured);
+    return side.interpolate(side.coordinate(gap), escaped ? RayStatus::escaped : RayStatus::captured);
   }
 
   const SchwarzschildMetric& metric() const { return metric_; }
@@ -117,9 +118,21 @@ class SymmetricSkyTable {
 
  private:
   struct Side {
-    double s0 = 0.0, ds = 1.0;  // node i sits at s = s0 + i ds, s = ln|delta - delta_c|
+    double s0 = 0.0, ds = 1.0;  // node i sits at s = s0 + i ds
+    double kappa = 1.0;         // s(g) = ln g + g / kappa, g = |delta - delta_c|
     std::vector<Entry> values;
-    bool any_failed = false;
+
+    double coordinate(double gap) const { return std::log(gap) + gap / kappa; }
+    // Inverse of coordinate(): Newton in x = ln g on x + e^x / kappa = s (increasing and convex in x).
+    double gap_at(double s) const {
+      double x = std::min(s, std::log(kappa * std::max(s, 1.0)));
+      for (int it = 0; it < 60; ++it) {
+        const double e = std::exp(x) / kappa, dx = (x + e - s) / (1.0 + e);
+        x -= dx;
+        if (std::abs(dx) < 1e-15 * (1.0 + std::abs(x))) break;
+      }
+      return std::exp(x);
+    }
 
     Entry interpolate(double s, RayStatus status) const {
       const int n = static_cast<int>(values.size());
@@ -146,15 +159,16 @@ class SymmetricSkyTable {
   Side build(int sign, double gap_min, double gap_max, int nodes) {
     Side side;
     const int n = gap_max > gap_min * (1.0 + 1e-12) ? std::max(nodes, 4) : 1;
-    side.s0 = std::log(gap_min);
-    side.ds = n > 1 ? (std::log(gap_max) - side.s0) / (n - 1) : 1.0;
+    side.kappa = gap_max / std::max(1.0, std::log(gap_max / gap_min));
+    side.s0 = side.coordinate(gap_min);
+    side.ds = n > 1 ? (side.coordinate(gap_max) - side.s0) / (n - 1) : 1.0;
     side.values.resize(static_cast<std::size_t>(n));
     long steps = 0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 8) reduction(+ : steps)
 #endif
     for (int i = 0; i < n; ++i) {
-      const double delta = delta_c_ - sign * std::exp(side.s0 + i * side.ds);
+      const double delta = delta_c_ - sign * side.gap_at(side.s0 + i * side.ds);
       const Entry e = trace_one(delta);
       side.values[static_cast<std::size_t>(i)] = e;
       steps += static_cast<long>(e.steps);

@@ -11,16 +11,28 @@
 //   sky_phi
 //   steps       accepted integration steps
 // Extra channels (e.g. "error") can be added by name.
+//
+// Threads: writing distinct pixels from several threads is safe through set(), a PixelWriter or raw channel
+// pointers taken before the parallel loop; adding channels or metadata while other threads work is not.
+//
+// Also here (no third-party dependency): write_file_atomically(), which every image writer uses so that an
+// output file is written whole or not at all.
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
 
+#include <unistd.h>
+
 #include <array>
+#include <atomic>
 #include <cstddef>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 namespace grtrace {
@@ -41,12 +53,21 @@ struct PixelSample {
 /// Planar float image with named channels, in a fixed channel order for the standard ones.
 class Image {
  public:
-  static constexpr std::array<const char*, 9> kStandardChannels = {"R",        "G",         "B",       "object", "status",
-                                                                    "redshift", "sky_theta", "sky_phi", "steps"};
+  static constexpr std::array<const char*, 9> kStandardChannels = {
+      "R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"};
 
-  Image(int width, int height) : width_(width), height_(height) {
-    if (width <= 0 || height <= 0) throw std::invalid_argument("image size must be positive");
+  /// An image with the nine standard channels, all zero until set().
+  Image(int width, int height) : Image(width, height, NoChannels{}) {
     for (const char* name : kStandardChannels) add_channel(name);
+  }
+
+  /// An image with exactly the named channels, in that order (duplicates ignored), each filled with `fill`.
+  /// Used by read_exr() for files that are not grtrace renders (textures); set()/sample() need the standard
+  /// channels and throw std::out_of_range without them.
+  static Image with_channels(int width, int height, const std::vector<std::string>& names, float fill = 0.0f) {
+    Image image(width, height, NoChannels{});
+    for (const auto& name : names) image.add_channel(name, fill);
+    return image;
   }
 
   int width() const { return width_; }
@@ -70,26 +91,115 @@ class Image {
   const std::vector<float>& channel(const std::string& name) const { return channels_.at(name); }
   const std::vector<std::string>& channel_names() const { return order_; }
 
-  void set(int x, int y, const PixelSample& s) {
+  /// Raw pointers into the nine standard channels: writes a PixelSample by linear index without map look-ups.
+  /// Take it before a parallel loop; it stays valid while the image lives (adding other channels does not move
+  /// these). Distinct pixels may be written concurrently.
+  class PixelWriter {
+   public:
+    void set(std::size_t i, const PixelSample& s) const {
+      p_[0][i] = s.rgb[0];
+      p_[1][i] = s.rgb[1];
+      p_[2][i] = s.rgb[2];
+      p_[3][i] = static_cast<float>(static_cast<int>(s.object));
+      p_[4][i] = static_cast<float>(static_cast<int>(s.status));
+      p_[5][i] = s.redshift;
+      p_[6][i] = s.sky_theta;
+      p_[7][i] = s.sky_phi;
+      p_[8][i] = static_cast<float>(s.steps);
+    }
+
+   private:
+    friend class Image;
+    std::array<float*, kStandardChannels.size()> p_{};
+  };
+
+  /// Throws std::out_of_range if a standard channel is missing (only possible for with_channels() images).
+  PixelWriter pixel_writer() {
+    PixelWriter w;
+    for (std::size_t c = 0; c < kStandardChannels.size(); ++c) w.p_[c] = channels_.at(kStandardChannels[c]).data();
+    return w;
+  }
+
+  /// Safe to call concurrently for distinct pixels (no map insertion; at() only).
+  void set(int x, int y, const PixelSample& s) { pixel_writer().set(index(x, y), s); }
+
+  /// The sample stored at (x, y) (the inverse of set(): object, status and steps are rounded back to integers).
+  PixelSample sample(int x, int y) const {
     const std::size_t i = index(x, y);
-    channels_["R"][i] = s.rgb[0];
-    channels_["G"][i] = s.rgb[1];
-    channels_["B"][i] = s.rgb[2];
-    channels_["object"][i] = static_cast<float>(static_cast<int>(s.object));
-    channels_["status"][i] = static_cast<float>(static_cast<int>(s.status));
-    channels_["redshift"][i] = s.redshift;
-    channels_["sky_theta"][i] = s.sky_theta;
-    channels_["sky_phi"][i] = s.sky_phi;
-    channels_["steps"][i] = static_cast<float>(s.steps);
+    auto at = [&](const char* name) { return channels_.at(name)[i]; };
+    PixelSample s;
+    s.rgb = {at("R"), at("G"), at("B")};
+    s.object = static_cast<SceneObjectId>(static_cast<int>(at("object")));
+    s.status = static_cast<RayStatus>(static_cast<int>(at("status")));
+    s.redshift = at("redshift");
+    s.sky_theta = at("sky_theta");
+    s.sky_phi = at("sky_phi");
+    s.steps = static_cast<int>(at("steps"));
+    return s;
   }
 
   /// Free-form metadata (camera, metric, tableau, tolerances, render time): written as EXR header attributes.
   std::map<std::string, std::string> metadata;
 
  private:
+  struct NoChannels {};
+  Image(int width, int height, NoChannels) : width_(width), height_(height) {
+    if (width <= 0 || height <= 0) throw std::invalid_argument("image size must be positive");
+  }
+
   int width_, height_;
   std::map<std::string, std::vector<float>> channels_;
   std::vector<std::string> order_;
 };
+
+// ---- whole-or-nothing output files --------------------------------------------------------------------
+
+/// "<target>.tmp-<pid>-<n>": a sibling of `target` (same directory, so the final rename is atomic), unique per
+/// process and call.
+inline std::filesystem::path temporary_output_path(const std::filesystem::path& target) {
+  static std::atomic<unsigned long> counter{0};
+  return std::filesystem::path(target.string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                               std::to_string(counter.fetch_add(1)));
+}
+
+/// Throws std::runtime_error with a message naming the path when `target` cannot be created: its directory
+/// is missing, is not a directory, or is not writable, or `target` itself is a directory. Creates nothing.
+inline void check_output_path(const std::filesystem::path& target) {
+  namespace fs = std::filesystem;
+  if (target.empty() || !target.has_filename())
+    throw std::runtime_error("cannot write '" + target.string() + "': not a file name");
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::exists(dir, ec))
+    throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() + "' does not exist");
+  if (!fs::is_directory(dir, ec))
+    throw std::runtime_error("cannot write '" + target.string() + "': '" + dir.string() + "' is not a directory");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() +
+                             "' is not writable");
+  if (fs::is_directory(target, ec))
+    throw std::runtime_error("cannot write '" + target.string() + "': it is a directory");
+}
+
+/// Writes `target` whole or not at all: checks the target (check_output_path), calls write(temporary path),
+/// then renames the temporary over `target`. On any failure (an exception from `write` or the rename) the
+/// temporary is removed, `target` is left as it was, and the exception propagates (a failed rename becomes a
+/// std::runtime_error naming both paths). `write` must throw if it could not write the whole file.
+template <class WriteFn>
+void write_file_atomically(const std::filesystem::path& target, WriteFn&& write) {
+  check_output_path(target);
+  const std::filesystem::path tmp = temporary_output_path(target);
+  try {
+    std::forward<WriteFn>(write)(tmp);
+    std::error_code ec;
+    std::filesystem::rename(tmp, target, ec);
+    if (ec)
+      throw std::runtime_error("cannot rename '" + tmp.string() + "' to '" + target.string() + "': " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+}
 
 }  // namespace grtrace

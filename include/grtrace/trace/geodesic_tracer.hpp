@@ -36,6 +36,7 @@ struct TraceSettings {
 struct TraceResult {
   RayStatus status = RayStatus::max_steps;
   GeodesicState final_state = GeodesicState::Zero();
+  GeodesicState step_end_state = GeodesicState::Zero();  ///< end of the last accepted step (y0 if none)
   double lambda = 0.0;           ///< affine parameter at the end
   int accepted = 0;
   int rejected = 0;
@@ -67,6 +68,7 @@ class GeodesicTracer {
 
   const Metric& metric() const { return metric_; }
   const TraceSettings& settings() const { return settings_; }
+  const Controller& controller() const { return controller_; }
 
   template <class... Events>
   TraceResult trace(const GeodesicState& y0, const Events&... events) const {
@@ -89,6 +91,7 @@ class GeodesicTracer {
     auto finish = [&](RayStatus status, const GeodesicState& y, double lambda, const Integrator& integ) {
       result.status = status;
       result.final_state = y;
+      result.step_end_state = integ.accepted() > 0 ? integ.state() : y;
       result.lambda = lambda;
       result.accepted = integ.accepted();
       result.rejected = integ.rejected();

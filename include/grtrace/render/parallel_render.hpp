@@ -1,0 +1,280 @@
+// grtrace/render/parallel_render.hpp
+// The OpenMP image loop: calls a pixel function once per pixel, stores the PixelSample, counts statuses.
+//
+//   // one tracer per thread (its buffers are scratch), no sharing:
+//   grtrace::RenderStats stats = grtrace::render_image(
+//       image,
+//       [&] { return MyTracer(config); },                       // factory: called once per thread, serially
+//       [&](int x, int y, MyTracer& tracer) { return tracer.trace_pixel(x, y); },
+//       {.threads = 0});
+//
+//   // or, when the pixel function needs no per-thread state:
+//   grtrace::render_image(image, [&](int x, int y) { return shade(x, y); });
+//
+// Guarantees
+// - Work: the image is cut into tiles (tile_width x tile_height, row-major order) handed out with OpenMP
+//   schedule(dynamic, 1), so uneven rays (the shadow edge, the photon ring) balance across threads.
+// - Determinism: every pixel is computed by exactly one call pixel(x, y, scratch) and written to its own place,
+//   and the statistics are integer sums, so the image and the counts are identical for any thread count and
+//   tiling, provided the pixel function's result depends only on (x, y) (not on what the scratch object did
+//   before: reset any state you keep in it).
+// - Threads: the pixel function is called concurrently from several threads through a const reference; keep
+//   per-thread mutable state in the scratch object, never in captured variables. Extra channels can be written
+//   from the pixel function through a pointer taken before the call, e.g.
+//   `float* err = image.add_channel("error").data();` then `err[image.index(x, y)] = ...` (distinct pixels).
+// - No NaN in R, G, B: a pixel whose colour has a non-finite component gets RenderOptions::error_rgb (magenta)
+//   instead, and, unless its status already reports a failed integration (max_steps, step_underflow,
+//   non_finite), its status becomes RayStatus::non_finite, in the image's "status" channel and in the counts.
+//   RenderStats::bad_colour counts these pixels. A status outside the RayStatus range is also stored and
+//   counted as non_finite (and counted in bad_status). Other channels (redshift, sky_theta, ...) may hold NaN
+//   by contract and are stored as given.
+// - Exceptions: an exception thrown by the factory propagates before any pixel is traced. One thrown by the
+//   pixel function does not terminate the program: the first one is captured, the remaining tiles are skipped,
+//   the progress line is finished, and it is rethrown from render_image(); the image is then incomplete.
+// - Progress: a ProgressBar on stderr (only when it is a terminal, unless RenderOptions::progress says otherwise).
+// Without OpenMP (_OPENMP undefined) the same code runs on one thread.
+#pragma once
+
+#include "grtrace/core/ray_status.hpp"
+#include "grtrace/render/image.hpp"
+#include "grtrace/render/progress_bar.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+namespace grtrace {
+
+struct RenderOptions {
+  int threads = 0;       ///< number of threads; 0 = the OpenMP default (OMP_NUM_THREADS or all cores)
+  int tile_width = 16;   ///< pixels per tile along x; 0 = whole rows
+  int tile_height = 16;  ///< pixels per tile along y (>= 1)
+  ProgressMode progress = ProgressMode::automatic;   ///< bar on stderr only if it is a terminal
+  std::string progress_label = "render";             ///< first word of the progress line
+  std::array<float, 3> error_rgb{1.0f, 0.0f, 1.0f};  ///< linear colour written where a pixel's colour was not finite
+};
+
+struct RenderStats {
+  int width = 0;
+  int height = 0;
+  int threads = 0;                                    ///< threads that actually ran the loop
+  long rays = 0;                                      ///< pixels traced (= width * height)
+  std::array<long, kRayStatusCount> status_counts{};  ///< indexed by RayStatus; sums to `rays`
+  long total_steps = 0;                               ///< sum of PixelSample::steps
+  long bad_colour = 0;                                ///< pixels whose R,G,B were non-finite and got error_rgb
+  long bad_status = 0;                                ///< pixels whose status was outside the RayStatus range
+  double seconds = 0.0;                               ///< wall time of the whole call
+  double rays_per_second = 0.0;
+  double mean_steps = 0.0;  ///< total_steps / rays
+
+  long count(RayStatus s) const { return status_counts[static_cast<std::size_t>(s)]; }
+  /// Rays whose integration failed (max_steps + step_underflow + non_finite).
+  long failures() const {
+    return count(RayStatus::max_steps) + count(RayStatus::step_underflow) + count(RayStatus::non_finite);
+  }
+};
+
+namespace detail {
+
+/// Holds one thread's scratch object, built in place from the factory's result (no copy or move needed).
+template <class Scratch>
+struct ScratchSlot {
+  template <class Factory>
+  explicit ScratchSlot(Factory& make) : value(make()) {}
+  Scratch value;
+};
+
+/// One thread's counters, on their own cache line.
+struct alignas(64) RenderTally {
+  std::array<long, kRayStatusCount> status_counts{};
+  long steps = 0;
+  long bad_colour = 0;
+  long bad_status = 0;
+};
+
+/// Applies the no-NaN-colour and valid-status rules (see the top of this file) and counts the sample.
+inline void sanitize_and_count(PixelSample& s, const RenderOptions& options, RenderTally& tally) {
+  auto status_index = static_cast<std::size_t>(s.status);
+  if (status_index >= kRayStatusCount) {
+    s.status = RayStatus::non_finite;
+    status_index = static_cast<std::size_t>(RayStatus::non_finite);
+    ++tally.bad_status;
+  }
+  if (!std::isfinite(s.rgb[0]) || !std::isfinite(s.rgb[1]) || !std::isfinite(s.rgb[2])) {
+    s.rgb = options.error_rgb;
+    ++tally.bad_colour;
+    if (!is_failure(s.status)) {
+      s.status = RayStatus::non_finite;
+      status_index = static_cast<std::size_t>(RayStatus::non_finite);
+    }
+  }
+  ++tally.status_counts[status_index];
+  tally.steps += s.steps;
+}
+
+inline int max_threads() {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+}  // namespace detail
+
+/// Renders every pixel of `image` (its nine standard channels) with `pixel(x, y, scratch) -> PixelSample`,
+/// where each thread owns the object `make_scratch()` returned (called serially, once per thread, before the
+/// loop). See the top of this file for the guarantees. Throws std::invalid_argument for bad options (negative
+/// threads, tile sizes out of range, a non-finite error colour) and whatever the factory or pixel function threw.
+template <class ScratchFactory, class PixelFn>
+requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int, int,
+    std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>
+& > &&std::convertible_to<
+        std::invoke_result_t<const PixelFn&, int, int, std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>&>,
+        PixelSample>
+        RenderStats render_image(Image& image, ScratchFactory&& make_scratch, const PixelFn& pixel,
+                                 const RenderOptions& options = {}) {
+  using Scratch = std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>;
+  using Slot = detail::ScratchSlot<Scratch>;
+
+  if (options.threads < 0) throw std::invalid_argument("render_image: threads must be >= 0 (0 = OpenMP default)");
+  if (options.tile_width < 0) throw std::invalid_argument("render_image: tile_width must be >= 0 (0 = whole rows)");
+  if (options.tile_height < 1) throw std::invalid_argument("render_image: tile_height must be >= 1");
+  for (float c : options.error_rgb)
+    if (!std::isfinite(c)) throw std::invalid_argument("render_image: error_rgb must be finite");
+
+  const auto start = std::chrono::steady_clock::now();
+  const int width = image.width();
+  const int height = image.height();
+  const Image::PixelWriter writer = image.pixel_writer();
+
+  const int tile_w = options.tile_width == 0 ? width : std::min(options.tile_width, width);
+  const int tile_h = std::min(options.tile_height, height);
+  const long tiles_x = (width + tile_w - 1) / tile_w;
+  const long tiles_y = (height + tile_h - 1) / tile_h;
+  const long tile_count = tiles_x * tiles_y;
+
+  const int requested = options.threads > 0 ? options.threads : std::max(detail::max_threads(), 1);
+  std::vector<std::unique_ptr<Slot>> slots;
+  slots.reserve(static_cast<std::size_t>(requested));
+  for (int t = 0; t < requested; ++t) slots.push_back(std::make_unique<Slot>(make_scratch));
+  std::vector<detail::RenderTally> tallies(static_cast<std::size_t>(requested));
+
+  ProgressBar progress(static_cast<long>(image.pixel_count()), options.progress_label, options.progress);
+  std::atomic<bool> failed{false};
+  std::exception_ptr first_error;
+  std::mutex error_mutex;
+  int team_size = 1;
+
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(requested)
+#endif
+  {
+#if defined(_OPENMP)
+    const int thread = omp_get_thread_num();
+    if (thread == 0) team_size = omp_get_num_threads();
+#else
+    const int thread = 0;
+#endif
+    Scratch& scratch = slots[static_cast<std::size_t>(thread)]->value;
+    detail::RenderTally& tally = tallies[static_cast<std::size_t>(thread)];
+
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic, 1)
+#endif
+    for (long tile = 0; tile < tile_count; ++tile) {
+      if (failed.load(std::memory_order_relaxed)) continue;
+      try {
+        const int x0 = static_cast<int>(tile % tiles_x) * tile_w;
+        const int y0 = static_cast<int>(tile / tiles_x) * tile_h;
+        const int x1 = std::min(x0 + tile_w, width);
+        const int y1 = std::min(y0 + tile_h, height);
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            PixelSample s = pixel(x, y, scratch);
+            detail::sanitize_and_count(s, options, tally);
+            writer.set(image.index(x, y), s);
+          }
+        }
+        progress.advance(static_cast<long>(x1 - x0) * static_cast<long>(y1 - y0));
+      } catch (...) {
+        std::lock_guard lock(error_mutex);
+        if (!first_error) first_error = std::current_exception();
+        failed.store(true, std::memory_order_relaxed);
+      }
+    }
+  }
+
+  progress.finish();
+  if (first_error) std::rethrow_exception(first_error);
+
+  RenderStats stats;
+  stats.width = width;
+  stats.height = height;
+  stats.threads = team_size;
+  stats.rays = static_cast<long>(image.pixel_count());
+  for (const auto& tally : tallies) {
+    for (std::size_t i = 0; i < kRayStatusCount; ++i) stats.status_counts[i] += tally.status_counts[i];
+    stats.total_steps += tally.steps;
+    stats.bad_colour += tally.bad_colour;
+    stats.bad_status += tally.bad_status;
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.rays_per_second = stats.seconds > 0.0 ? static_cast<double>(stats.rays) / stats.seconds : 0.0;
+  stats.mean_steps = stats.rays > 0 ? static_cast<double>(stats.total_steps) / static_cast<double>(stats.rays) : 0.0;
+  return stats;
+}
+
+/// The same loop for a pixel function without per-thread state: pixel(x, y) -> PixelSample, called
+/// concurrently (it must be safe to call from several threads at once).
+template <class PixelFn>
+requires std::invocable<const PixelFn&, int, int> &&
+    std::convertible_to<std::invoke_result_t<const PixelFn&, int, int>, PixelSample>
+        RenderStats render_image(Image& image, const PixelFn& pixel, const RenderOptions& options = {}) {
+  struct NoScratch {};
+  return render_image(
+      image, [] { return NoScratch{}; }, [&pixel](int x, int y, NoScratch&) -> PixelSample { return pixel(x, y); },
+      options);
+}
+
+/// Records the statistics of a render in the image's metadata (written as EXR header attributes):
+/// render_seconds, rays_per_second, mean_steps, render_threads, and status_counts as a JSON object
+/// {"escaped":N,...} with every status name. Existing keys are overwritten.
+inline void record_render_stats(Image& image, const RenderStats& stats) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6f", stats.seconds);
+  image.metadata["render_seconds"] = buffer;
+  std::snprintf(buffer, sizeof buffer, "%.6g", stats.rays_per_second);
+  image.metadata["rays_per_second"] = buffer;
+  std::snprintf(buffer, sizeof buffer, "%.6g", stats.mean_steps);
+  image.metadata["mean_steps"] = buffer;
+  image.metadata["render_threads"] = std::to_string(stats.threads);
+  std::string counts = "{";
+  for (std::size_t i = 0; i < kRayStatusCount; ++i) {
+    if (i > 0) counts.push_back(',');
+    counts.push_back('"');
+    counts.append(kRayStatusNames[i]);
+    counts.append("\":");
+    counts.append(std::to_string(stats.status_counts[i]));
+  }
+  counts.push_back('}');
+  image.metadata["status_counts"] = counts;
+}
+
+}  // namespace grtrace

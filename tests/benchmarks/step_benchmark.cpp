@@ -1,0 +1,175 @@
+// tests/benchmarks/step_benchmark.cpp
+// The cost of the pieces of a ray, smallest first, so they can be compared with GPU codes' ~1 ns per photon
+// per step:
+//   rhs/acceleration      SchwarzschildMetric::acceleration (-Gamma k k in closed form)
+//   rhs/geodesic          the whole right-hand side d(x, k)/dlambda = (k, -Gamma k k)
+//   step/<tableau>        one explicit Runge-Kutta step of every tableau (with the embedded error where there is
+//                         one), state size 8; counters ns_per_step and ns_per_eval
+//   ray/<method>/<kind>   one whole ray of the seed's main frame (static camera at r = 200 M, sky sphere at 400 M,
+//                         exact continuation to infinity), for the candidate default methods; counters
+//                         ns_per_step (wall time / accepted steps), steps, rejected, rhs_evals, error (rad,
+//                         against exact::asymptotic_direction at the camera)
+// Run: build-*/tests/benchmarks/step_benchmark --benchmark_min_time=0.2
+#include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/integrate/runge_kutta_stepper.hpp"
+#include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/tableau/all_tableaux.hpp"
+#include "grtrace/trace/geodesic_tracer.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace {
+
+using namespace grtrace;
+using Clock = std::chrono::steady_clock;
+
+/// A photon state in the strong field (r = 10 M, off the equator), as stages see it mid-ray.
+GeodesicState strong_field_state() {
+  const double r = 10.0, f = 1.0 - 2.0 / r;
+  const Vec4 x(0.0, r, 1.1, 0.3);
+  const Vec4 k(1.0 / f, -0.6, 0.03, 0.05);
+  return make_state(x, k);
+}
+
+/// Wall-clock nanoseconds per unit of work, measured around the whole benchmark loop.
+class PerUnitTimer {
+ public:
+  PerUnitTimer() : start_(Clock::now()) {}
+  double ns_per(double units_per_iteration, benchmark::IterationCount iterations) const {
+    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - start_).count();
+    return ns / (units_per_iteration * static_cast<double>(iterations));
+  }
+
+ private:
+  Clock::time_point start_;
+};
+
+// ---- right-hand side --------------------------------------------------------------------------------------
+
+void rhs_acceleration(benchmark::State& state) {
+  const SchwarzschildMetric metric{1.0};
+  GeodesicState y = strong_field_state();
+  Vec4 x = y.head<4>(), k = y.tail<4>();
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(k);
+    Vec4 a = metric.acceleration(x, k);
+    benchmark::DoNotOptimize(a);
+  }
+  state.counters["ns_per_eval"] = timer.ns_per(1.0, state.iterations());
+}
+BENCHMARK(rhs_acceleration);
+
+void rhs_geodesic(benchmark::State& state) {
+  const SchwarzschildMetric metric{1.0};
+  const GeodesicEquation<SchwarzschildMetric> f{&metric};
+  GeodesicState y = strong_field_state();
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(y);
+    GeodesicState dy = f(y);
+    benchmark::DoNotOptimize(dy);
+  }
+  state.counters["ns_per_eval"] = timer.ns_per(1.0, state.iterations());
+}
+BENCHMARK(rhs_geodesic);
+
+// ---- one step of each tableau -----------------------------------------------------------------------------
+
+template <class T>
+void one_step(benchmark::State& state) {
+  const SchwarzschildMetric metric{1.0};
+  const GeodesicEquation<SchwarzschildMetric> f{&metric};
+  RungeKuttaStepper<T, 8> stepper;
+  GeodesicState y = strong_field_state();
+  const GeodesicState f0 = f(y);
+  GeodesicState y_new, err;
+  double h = 0.05;
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(y);
+    benchmark::DoNotOptimize(h);
+    stepper.step(f, y, f0, h, y_new, err);
+    benchmark::DoNotOptimize(y_new);
+    benchmark::DoNotOptimize(err);
+  }
+  const double ns = timer.ns_per(1.0, state.iterations());
+  state.counters["ns_per_step"] = ns;
+  state.counters["ns_per_eval"] = ns / RungeKuttaStepper<T, 8>::evals_per_step;
+  state.counters["evals"] = RungeKuttaStepper<T, 8>::evals_per_step;
+}
+
+// ---- one typical ray --------------------------------------------------------------------------------------
+
+/// Pixel (px, py) of the seed's main frame: 1024 x 1024, fov 90, static camera at r = 200 M looking at the
+/// hole (DESIGN.md pixel formula; same layout as grtrace-work-precision).
+GeodesicState seed_frame_pixel(int px, int py) {
+  const double r = 200.0, f = 1.0 - 2.0 / r, sf = std::sqrt(f), n_side = 1024.0;
+  const double s = 2.0 * px / (n_side - 1.0) - 1.0, u = 2.0 * py / (n_side - 1.0) - 1.0;  // tan(45 deg) = 1
+  const double n = std::sqrt(1.0 + u * u + s * s);
+  return make_state(Vec4(0.0, r, std::numbers::pi / 2.0, 0.0), Vec4(-1.0 / sf, -sf / n, -u / (r * n), s / (r * n)));
+}
+
+template <class T, class C>
+void one_ray(benchmark::State& state, double rtol, int px, int py) {
+  TraceSettings settings;
+  settings.integrator.tolerance = {rtol, 1e-2 * rtol};
+  settings.escape_radius = 400.0;
+  const GeodesicTracer<SchwarzschildMetric, T, C> tracer(SchwarzschildMetric{1.0}, settings);
+  const GeodesicState y0 = seed_frame_pixel(px, py);
+  const auto exact_dir = exact::asymptotic_direction(y0);
+  TraceResult r;
+  std::optional<exact::SkyDirection> dir;
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    r = tracer.trace(y0);
+    dir = r.status == RayStatus::escaped ? exact::asymptotic_direction(r.final_state) : std::nullopt;
+    benchmark::DoNotOptimize(dir);
+  }
+  if (r.status != RayStatus::escaped || !dir || !exact_dir) {
+    state.SkipWithError("the benchmark ray did not escape");
+    return;
+  }
+  state.counters["ns_per_step"] = timer.ns_per(static_cast<double>(r.accepted), state.iterations());
+  state.counters["steps"] = r.accepted;
+  state.counters["rejected"] = r.rejected;
+  state.counters["rhs_evals"] = static_cast<double>(r.rhs_evals);
+  state.counters["error"] = exact::angular_distance(*dir, *exact_dir);
+}
+
+template <class T, class C>
+void register_ray(const std::string& name, double rtol) {
+  // typical: 30 degrees off the axis, weakly bent; near_ring: just outside the shadow edge (b ~ 5.2 M),
+  // where the photon ring is and rays wind around the hole.
+  benchmark::RegisterBenchmark(("ray/" + name + "/typical").c_str(),
+                               [rtol](benchmark::State& s) { one_ray<T, C>(s, rtol, 768, 640); })
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark(("ray/" + name + "/near_ring").c_str(),
+                               [rtol](benchmark::State& s) { one_ray<T, C>(s, rtol, 525, 512); })
+      ->Unit(benchmark::kMicrosecond);
+}
+
+const bool registered = [] {
+  for_each_tableau([](auto tag) {
+    using T = typename decltype(tag)::type;
+    benchmark::RegisterBenchmark(("step/" + std::string(T::name)).c_str(), one_step<T>);
+  });
+  // The candidate defaults from the work-precision chart (docs/benchmarks.md) and the seed's RK4 + doubling.
+  register_ray<DormandPrince54, PIController>("dopri5/pi/1e-8", 1e-8);
+  register_ray<DormandPrince54, PIController>("dopri5/pi/1e-10", 1e-10);
+  register_ray<Tsitouras54, PIController>("tsit5/pi/1e-8", 1e-8);
+  register_ray<Verner65, PIController>("vern6/pi/1e-9", 1e-9);
+  register_ray<Fehlberg78, PIController>("rkf78/pi/1e-9", 1e-9);
+  register_ray<ClassicRK4, StepDoubling>("rk4/doubling/1e-8", 1e-8);
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();

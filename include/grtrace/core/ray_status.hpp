@@ -16,7 +16,8 @@ enum class RayStatus : std::uint8_t {
   hit = 2,             ///< reached a scene object (or a user event)
   max_steps = 3,       ///< the step budget ran out
   step_underflow = 4,  ///< the controller asked for a step below the floor
-  non_finite = 5,      ///< a stage produced NaN or Inf that no step shrink could cure
+  non_finite = 5,      ///< NaN/Inf that no step shrink could cure, or the constraint g(k,k) blown (the numbers
+                       ///< no longer describe a geodesic; TraceSettings::constraint_tolerance)
 };
 
 inline constexpr std::size_t kRayStatusCount = 6;

@@ -119,6 +119,18 @@ class ControlledIntegrator {
     }
   }
 
+  /// Replaces the current point by an equivalent one (e.g. the same event in another chart) and goes on from it
+  /// with the same step size and controller state. The last step's dense output is no longer available.
+  template <class Rhs>
+  void reseat(const Rhs& f, const State& y) {
+    y_ = y;
+    f_ = f(y);
+    ++rhs_evals_;
+    y_prev_ = y_;
+    f_prev_ = f_;
+    h_last_ = 0.0;
+  }
+
   /// State at lambda_prev + theta * h on the last accepted step, theta in [0, 1].
   State dense(double theta) const {
     if constexpr (TableauWithDenseOutput<T> && Controller::estimate != ErrorEstimate::step_doubling) {

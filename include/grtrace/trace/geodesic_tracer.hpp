@@ -19,6 +19,7 @@
 #include "grtrace/metric/metric_concept.hpp"
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <tuple>
 #include <utility>
@@ -31,6 +32,10 @@ struct TraceSettings {
   int max_steps = 100000;         ///< accepted steps before the ray ends as max_steps
   double escape_radius = 1000.0;  ///< the ray has escaped when radius(x) >= this
   double horizon_epsilon = 1e-3;  ///< captured when r <= (1 + eps) r_h (Schwarzschild coordinates never cross r_h)
+  /// Constraint guard: the ray ends as non_finite when |g(k,k) - g(k0,k0)| exceeds this fraction of the size of
+  /// g(k,k)'s terms (sum |g_mn k^m k^n|). The numbers then no longer describe a geodesic (typically a fixed step
+  /// too large near the horizon, where k^t grows without bound). <= 0 switches the guard off.
+  double constraint_tolerance = 1e-2;
 };
 
 struct TraceResult {
@@ -43,7 +48,30 @@ struct TraceResult {
   long rhs_evals = 0;
   double constraint_drift = 0;   ///< g(k,k) at the end minus g(k,k) at the start
   int hit_event = -1;            ///< index of the user event that ended the ray (status hit)
+  int chart_wraps = 0;           ///< times the ray crossed the polar axis of a spherical chart (see wrap_polar_axis)
 };
+
+/// Relative violation of the geodesic's constraint g(k,k) = const: |g(k,k) - norm0| / sum |g_mn k^m k^n|.
+template <MetricPolicy Metric>
+double constraint_violation(const Metric& metric, const GeodesicState& y, double norm0) {
+  const Vec4 x = y.head<4>(), k = y.tail<4>();
+  const Mat4 g = metric.metric(x);
+  const double size = k.cwiseAbs().dot(g.cwiseAbs() * k.cwiseAbs());
+  const double v = std::abs(k.dot(g * k) - norm0) / size;
+  return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
+}
+
+/// Spherical charts cover the sphere once with theta in [0, pi]. A ray through (or numerically across) the axis
+/// comes out with theta < 0 or > pi; the same event and direction are theta' = -theta (or 2 pi - theta),
+/// phi' = phi + pi, k^theta' = -k^theta. Returns true when it changed y.
+inline bool wrap_polar_axis(GeodesicState& y) {
+  constexpr double pi = 3.14159265358979323846;
+  if (y[2] >= 0.0 && y[2] <= pi) return false;
+  y[2] = y[2] < 0.0 ? -y[2] : 2.0 * pi - y[2];
+  y[3] += pi;
+  y[6] = -y[6];
+  return true;
+}
 
 /// Optional: how many interior points of each step an event samples (to catch a surface entered and left
 /// within one step). Events declare `static constexpr int interior_samples = n;`; default 0.
@@ -99,6 +127,8 @@ class GeodesicTracer {
       result.constraint_drift = inner_product(metric_, y.head<4>(), y.tail<4>(), y.tail<4>()) - norm0;
       return result;
     };
+    const double guard = settings_.constraint_tolerance;
+    auto violated = [&](const GeodesicState& y) { return guard > 0.0 && constraint_violation(metric_, y, norm0) > guard; };
 
     std::array<double, K> g_prev{};
     for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = e(y0); });
@@ -134,10 +164,20 @@ class GeodesicTracer {
       if (first < K) {
         const GeodesicState y_hit = integ.dense(theta_first);
         observer(integ, theta_first);
-        return finish(status_of(first, result), y_hit, integ.previous_lambda() + theta_first * integ.last_step(),
-                      integ);
+        const double lambda_hit = integ.previous_lambda() + theta_first * integ.last_step();
+        if (violated(y_hit)) return finish(RayStatus::non_finite, y_hit, lambda_hit, integ);
+        return finish(status_of(first, result), y_hit, lambda_hit, integ);
       }
+      if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
       observer(integ, 1.0);
+      if constexpr (Metric::chart == Chart::spherical) {
+        GeodesicState y = integ.state();
+        if (wrap_polar_axis(y)) {
+          ++result.chart_wraps;
+          integ.reseat(rhs, y);
+          for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = e(y); });
+        }
+      }
     }
     return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ);
   }

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -144,5 +145,22 @@ class CommandLine {
   std::vector<Spec> specs_;
   std::map<std::string, std::string> values_;
 };
+
+/// Runs a tool's body with the exit-code convention every grtrace tool shares: 0 when done (or after --help),
+/// 2 for bad input (UsageError, before any work), 1 for any other failure; errors go to stderr as
+/// "<program>: error: <what to change>". The body returns the exit code.
+template <class Body>
+int run_tool(CommandLine& cli, int argc, char** argv, Body&& body) {
+  try {
+    if (!cli.parse(argc, argv)) return 0;
+    return body();
+  } catch (const UsageError& e) {
+    std::cerr << cli.program() << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << cli.program() << ": error: " << e.what() << "\n";
+    return 1;
+  }
+}
 
 }  // namespace grtrace::tools

@@ -200,8 +200,7 @@ JsonObject run(const Request& q, const std::string& path_file) {
 
 int main(int argc, char** argv) {
   CommandLine cli = make_command_line();
-  try {
-    if (!cli.parse(argc, argv)) return 0;
+  return tools::run_tool(cli, argc, argv, [&] {
     const Request q = read_request(cli);
     const std::string path_file = cli.text("path");
     if (!path_file.empty()) tools::check_writable_target(path_file);
@@ -211,11 +210,5 @@ int main(int argc, char** argv) {
     if (error != DispatchError::none) throw UsageError(describe(error, cli.text("tableau"), cli.text("control")));
     std::cout << json.str() << std::endl;
     return 0;
-  } catch (const UsageError& e) {
-    std::cerr << cli.program() << ": error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << cli.program() << ": error: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }

@@ -478,8 +478,7 @@ int main(int argc, char** argv) {
       .option("csv", "orbit_drift.csv", "per-orbit drifts of every method")
       .option("png", "orbit_drift.png", "log-scale chart of both drifts against orbit number")
       .flag("no-png", "skip the chart (no display needed)");
-  try {
-    if (!cli.parse(argc, argv)) return 0;
+  return tools::run_tool(cli, argc, argv, [&] {
     const Setup s = read_setup(cli);
     const std::filesystem::path csv = cli.text("csv"), png = cli.text("png");
     const bool draw = !cli.flag_set("no-png");
@@ -525,11 +524,5 @@ int main(int argc, char** argv) {
     json.add("seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     std::cout << json.str() << std::endl;
     return 0;
-  } catch (const UsageError& e) {
-    std::cerr << cli.program() << ": error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << cli.program() << ": error: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }

@@ -296,8 +296,7 @@ int main(int argc, char** argv) {
       .option("out-dir", "stability", "directory for <tableau>.png and overview.png (created if missing)")
       .option("grid", "321", "marching-squares grid points per axis for each boundary (21 .. 2001)")
       .option("size", "1000", "width in pixels of overview.png (400 .. 4000); per-tableau PNGs are 900 wide");
-  try {
-    if (!cli.parse(argc, argv)) return 0;
+  return tools::run_tool(cli, argc, argv, [&] {
     const bool json_only = cli.flag_set("json");
     const long grid = cli.integer("grid");
     if (grid < 21 || grid > 2001) throw UsageError("--grid must be in 21 .. 2001, got " + cli.text("grid"));
@@ -330,11 +329,5 @@ int main(int argc, char** argv) {
     if (!json_only) write_pngs(methods, dir, static_cast<int>(size));
     std::cout << intervals_json(methods) << std::endl;
     return 0;
-  } catch (const UsageError& e) {
-    std::cerr << cli.program() << ": error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << cli.program() << ": error: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }

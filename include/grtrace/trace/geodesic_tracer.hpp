@@ -81,6 +81,22 @@ constexpr int event_interior_samples() {
   else return 0;
 }
 
+/// Optional: `static constexpr bool two_sided = true;` makes any sign change of g a crossing (a surface with no
+/// inside, such as a thin disk: g = cos theta); the ray may start on either side.
+template <class E>
+constexpr bool event_is_two_sided() {
+  if constexpr (requires { E::two_sided; }) return E::two_sided;
+  else return false;
+}
+
+/// Optional: `bool accepts(const GeodesicState&) const` filters located crossings (e.g. the disk's plane is
+/// crossed but outside its radii); a refused crossing does not end the ray.
+template <class E>
+bool event_accepts(const E& e, const GeodesicState& y) {
+  if constexpr (requires { { e.accepts(y) } -> std::convertible_to<bool>; }) return e.accepts(y);
+  else return true;
+}
+
 struct NullObserver {
   template <class Integrator>
   void operator()(const Integrator&, double /*theta_end*/) const {}
@@ -113,6 +129,7 @@ class GeodesicTracer {
     const auto all = std::tie(horizon, escape, events...);
     constexpr std::size_t K = 2 + sizeof...(Events);
     constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};
+    constexpr std::array<bool, K> two_sided = {false, false, event_is_two_sided<Events>()...};
 
     TraceResult result;
     const double norm0 = inner_product(metric_, y0.head<4>(), y0.tail<4>(), y0.tail<4>());
@@ -136,7 +153,7 @@ class GeodesicTracer {
     Integrator integ(settings_.integrator, controller_);
     if (!y0.allFinite()) return finish(RayStatus::non_finite, y0, 0.0, integ);
     for (std::size_t i = 0; i < K; ++i)
-      if (!(g_prev[i] > 0.0)) return finish(status_of(i, result), y0, 0.0, integ);
+      if (!two_sided[i] && !(g_prev[i] > 0.0)) return finish(status_of(i, result), y0, 0.0, integ);
 
     integ.start(rhs, y0, settings_.initial_step);
     for (int step = 0; step < settings_.max_steps; ++step) {
@@ -150,12 +167,15 @@ class GeodesicTracer {
       std::size_t first = K;
       for_each_event(all, [&](std::size_t i, const auto& e) {
         const double g1 = e(integ.state());
-        if (g1 > 0.0 && samples[i] == 0) {
+        // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
+        const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
+        if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {
           g_prev[i] = g1;
           return;
         }
-        auto g_of_theta = [&](double t) { return e(integ.dense(t)); };
-        if (auto c = locate_first_crossing(g_of_theta, g_prev[i], g1, samples[i]); c && c->theta < theta_first) {
+        auto g_of_theta = [&](double t) { return side * e(integ.dense(t)); };
+        if (auto c = locate_first_crossing(g_of_theta, side * g_prev[i], side * g1, samples[i]);
+            c && c->theta < theta_first && event_accepts(e, integ.dense(c->theta))) {
           theta_first = c->theta;
           first = i;
         }

@@ -1,0 +1,284 @@
+// grtrace-render: renders what a camera near a Schwarzschild black hole (or in flat space) sees, to an OpenEXR
+// file with data channels and an 8-bit PNG preview beside it, with a progress bar on a terminal, and ends with
+// ONE line of JSON (contract in shared/DESIGN.md):
+//   {"width","height","seconds","rays_per_second","mean_steps","status_counts":{...},"tracer","tableau","rtol",
+//    "atol","out", ...}
+// All input is checked before any ray is traced; bad input exits with code 2 and leaves no file behind.
+#include "command_line.hpp"
+#include "json_writer.hpp"
+
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/observer/static_frame.hpp"
+#include "grtrace/render/exr_io.hpp"
+#include "grtrace/render/parallel_render.hpp"
+#include "grtrace/render/png_preview.hpp"
+#include "grtrace/scene/shading.hpp"
+#include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
+#include "grtrace/trace/straight_line.hpp"
+#include "grtrace/trace/symmetric_scene_tracer.hpp"
+
+#include <chrono>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+
+namespace {
+
+using namespace grtrace;
+using tools::CommandLine;
+using tools::JsonObject;
+using tools::UsageError;
+
+struct Request {
+  SceneKind scene = SceneKind::checker;
+  std::string scene_name, metric_name, tableau, control, tracer, correction_name, out;
+  SchwarzschildMetric metric;  // mass 0 for flat space
+  TraceSettings settings;
+  AngleCorrection correction = AngleCorrection::exact;
+  std::optional<Camera> camera;
+  Shading shading;
+  int threads = 0;
+  int table_nodes = 1024;
+};
+
+CommandLine make_command_line() {
+  CommandLine cli("grtrace-render",
+                  "Render a camera's view of a Schwarzschild black hole (or flat space) to OpenEXR + PNG preview;\n"
+                  "prints one line of JSON. Defaults: the seed report's main frame (static camera at r = 200 M,\n"
+                  "fov 90, 1024x1024, sky sphere at 400 M).");
+  cli.option("scene", "checker", "checker | sky | redshift | disk")
+      .option("metric", "schwarzschild", "schwarzschild | minkowski (flat: straight lines, never integrated)")
+      .option("mass", "1", "black-hole mass M (G = c = 1)")
+      .option("camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)")
+      .option("camera-theta", "90", "camera polar angle, degrees, strictly between 0 and 180")
+      .option("camera-phi", "0", "camera azimuth, degrees")
+      .option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, static frame)")
+      .option("look", "-1,0,0", "look direction r,theta,phi in the static frame (default: at the hole)")
+      .option("up", "0,-1,0", "up direction r,theta,phi in the static frame (default: the north pole)")
+      .option("fov", "90", "horizontal field of view, degrees, in (0, 180)")
+      .option("width", "1024", "image width in pixels")
+      .option("height", "1024", "image height in pixels")
+      .option("tableau", "dopri5", "Runge-Kutta tableau: " + tools::join(tableau_names(), "|"))
+      .option("control", "pi", "step control: fixed | doubling | i | pi")
+      .option("step", "0", "initial step (0 = automatic), or the step of --control fixed")
+      .option("rtol", "1e-10", "relative tolerance")
+      .option("atol", "1e-12", "absolute tolerance")
+      .option("sky-radius", "400", "radius of the sky sphere where rays are taken as escaped")
+      .option("angle-correction", "exact", "escaped rays: none | flat (seed eq. 7-8) | exact (bending to infinity)")
+      .option("max-steps", "100000", "step budget per ray")
+      .option("tracer", "auto", "auto | general | symmetric (symmetric: one table of rays for the frame; sky and "
+                                "horizon scenes only)")
+      .option("table-rays", "1024", "symmetric tracer: table rays on each side of the critical angle")
+      .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
+      .option("disk-inner", "6", "disk inner radius (disk scene)")
+      .option("disk-outer", "20", "disk outer radius (disk scene)")
+      .option("threads", "0", "OpenMP threads (0 = all cores)")
+      .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png");
+  return cli;
+}
+
+Vec3 triple(const CommandLine& cli, const std::string& name) {
+  const auto v = cli.numbers(name, 3);
+  return Vec3(v[0], v[1], v[2]);
+}
+
+Request read_request(const CommandLine& cli) {
+  Request q;
+  q.scene_name = cli.text("scene");
+  const auto scene = scene_kind_from_string(q.scene_name);
+  if (!scene) throw UsageError("unknown scene '" + q.scene_name + "'; choose checker, sky, redshift or disk");
+  q.scene = *scene;
+  q.metric_name = cli.text("metric");
+  if (q.metric_name != "schwarzschild" && q.metric_name != "minkowski")
+    throw UsageError("unknown metric '" + q.metric_name + "'; choose schwarzschild or minkowski");
+  const double mass = cli.number("mass");
+  if (!(mass > 0.0)) throw UsageError("--mass must be > 0");
+  q.metric.mass = q.metric_name == "minkowski" ? 0.0 : mass;
+  if (q.metric_name == "minkowski" && q.scene == SceneKind::disk)
+    throw UsageError("--scene disk needs --metric schwarzschild (the disk orbits the mass)");
+
+  q.tableau = cli.text("tableau");
+  q.control = cli.text("control");
+  {  // validate the method name pair now, before any work
+    const auto err = dispatch_method(q.tableau, q.control, []<class T, class C>() {});
+    if (err != DispatchError::none) throw UsageError(describe(err, q.tableau, q.control));
+  }
+  TraceSettings& s = q.settings;
+  s.integrator.tolerance = {cli.number("rtol"), cli.number("atol")};
+  if (!(s.integrator.tolerance.rtol > 0.0) || s.integrator.tolerance.atol < 0.0)
+    throw UsageError("tolerances must be --rtol > 0 and --atol >= 0");
+  s.initial_step = cli.number("step");
+  if (s.initial_step < 0.0) throw UsageError("--step must be >= 0");
+  if (q.control == "fixed" && s.initial_step <= 0.0) throw UsageError("--control fixed needs --step H > 0");
+  const long max_steps = cli.integer("max-steps");
+  if (max_steps < 1 || max_steps > 100'000'000) throw UsageError("--max-steps must be in 1 .. 1e8");
+  s.max_steps = static_cast<int>(max_steps);
+  s.escape_radius = cli.number("sky-radius");
+
+  q.correction_name = cli.text("angle-correction");
+  if (q.correction_name == "none") q.correction = AngleCorrection::none;
+  else if (q.correction_name == "flat") q.correction = AngleCorrection::flat;
+  else if (q.correction_name == "exact") q.correction = AngleCorrection::exact;
+  else throw UsageError("unknown --angle-correction '" + q.correction_name + "'; choose none, flat or exact");
+
+  const double r = cli.number("camera-r"), theta = cli.number("camera-theta"), phi = cli.number("camera-phi");
+  const double guard = (1.0 + s.horizon_epsilon) * q.metric.horizon_radius();
+  if (!(r > guard))
+    throw UsageError("--camera-r " + cli.text("camera-r") + " is at or inside the horizon (guard r = " +
+                     std::to_string(guard) + "); move the camera out");
+  if (!(r < s.escape_radius)) throw UsageError("--camera-r must be inside --sky-radius");
+  if (!(theta > 0.0 && theta < 180.0))
+    throw UsageError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+  const long width = cli.integer("width"), height = cli.integer("height");
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw UsageError("--width and --height must be between 1 and 16384 pixels");
+  const long threads = cli.integer("threads");
+  if (threads < 0 || threads > 1024) throw UsageError("--threads must be 0 (all cores) .. 1024");
+  q.threads = static_cast<int>(threads);
+  const long nodes = cli.integer("table-rays");
+  if (nodes < 8 || nodes > 1'000'000) throw UsageError("--table-rays must be in 8 .. 1e6");
+  q.table_nodes = static_cast<int>(nodes);
+
+  const Vec4 x(0.0, r, theta * std::numbers::pi / 180.0, phi * std::numbers::pi / 180.0);
+  const StaticFrame frame(q.metric.metric(x));
+  try {
+    const Tetrad tetrad = make_tetrad(q.metric.metric(x), frame.velocity(triple(cli, "velocity")),
+                                      frame.spatial(triple(cli, "look")), frame.spatial(triple(cli, "up")));
+    q.camera.emplace(x, tetrad, static_cast<int>(width), static_cast<int>(height), cli.number("fov"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+
+  q.tracer = cli.text("tracer");
+  if (q.tracer != "auto" && q.tracer != "general" && q.tracer != "symmetric")
+    throw UsageError("unknown --tracer '" + q.tracer + "'; choose auto, general or symmetric");
+  if (q.tracer == "symmetric" && q.scene == SceneKind::disk)
+    throw UsageError("--tracer symmetric cannot draw a disk (it breaks the spherical symmetry); use general");
+  if (q.metric_name == "minkowski") q.tracer = "straight-line";
+  else if (q.tracer == "auto") q.tracer = q.scene == SceneKind::disk ? "general" : "symmetric";
+
+  q.shading.kind = q.scene;
+  q.shading.sky = q.scene == SceneKind::checker ? decltype(q.shading.sky){CheckerSky{}} : StarFieldSky{};
+  if (const std::string tex = cli.text("sky-texture"); !tex.empty()) {
+    try {
+      const Image img = read_exr(tex);
+      if (!img.has_channel("R") || !img.has_channel("G") || !img.has_channel("B"))
+        throw UsageError("--sky-texture '" + tex + "' has no R, G, B channels");
+      q.shading.sky = TextureSky{img.width(), img.height(), img.channel("R"), img.channel("G"), img.channel("B")};
+    } catch (const UsageError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw UsageError("--sky-texture: " + std::string(e.what()));
+    }
+  }
+  q.shading.disk.mass = q.metric.mass;
+  q.shading.disk.r_in = cli.number("disk-inner");
+  q.shading.disk.r_out = cli.number("disk-outer");
+  if (!(q.shading.disk.r_in > 3.0 * q.metric.mass && q.shading.disk.r_out > q.shading.disk.r_in))
+    throw UsageError("disk radii must satisfy 3M < --disk-inner < --disk-outer (circular orbits exist beyond 3M)");
+
+  q.out = cli.text("out");
+  if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
+    throw UsageError("--out must name an .exr file, got '" + q.out + "'");
+  try {
+    check_output_path(q.out);
+  } catch (const std::exception& e) {
+    throw UsageError(e.what());
+  }
+  return q;
+}
+
+std::string png_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + ".png"; }
+
+template <class Tracer>
+RenderStats render_with(const Tracer& tracer, const Request& q, Image& image) {
+  RenderOptions options;
+  options.threads = q.threads;
+  const Camera& cam = *q.camera;
+  return render_image(image, [&](int col, int row) { return shade(tracer.trace(cam.pixel_state(col, row)), q.shading); },
+                      options);
+}
+
+struct RenderRun {
+  RenderStats stats;
+  long table_rays = 0, table_steps = 0;
+};
+
+template <ExplicitTableau T, StepController C>
+RenderRun run(const Request& q, Image& image) {
+  RenderRun run;
+  if (q.tracer == "straight-line") {
+    run.stats = render_with(StraightLineTracer(q.settings.escape_radius, q.correction), q, image);
+  } else if (q.tracer == "symmetric") {
+    const SymmetricSceneTracer<T, C> tracer(q.metric, q.settings, *q.camera, q.correction, q.table_nodes);
+    run.table_rays = tracer.table().table_rays();
+    run.table_steps = tracer.table().table_steps();
+    run.stats = render_with(tracer, q, image);
+  } else if (q.scene == SceneKind::disk) {
+    run.stats = render_with(GeneralSceneTracer<T, C, ThinDisk>(q.metric, q.settings, C{}, q.correction, q.shading.disk),
+                            q, image);
+  } else {
+    run.stats = render_with(GeneralSceneTracer<T, C>(q.metric, q.settings, C{}, q.correction), q, image);
+  }
+  return run;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine cli = make_command_line();
+  return tools::run_tool(cli, argc, argv, [&] {
+    const Request q = read_request(cli);
+    Image image(q.camera->width(), q.camera->height());
+    const auto t0 = std::chrono::steady_clock::now();
+    RenderRun result;
+    dispatch_method(q.tableau, q.control, [&]<class T, class C>() { result = run<T, C>(q, image); });
+    // The table (symmetric tracer) is part of the frame's cost: time the whole thing.
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    RenderStats& st = result.stats;
+    st.seconds = seconds;
+    st.rays_per_second = static_cast<double>(st.rays) / seconds;
+
+    for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
+    const Vec4& x = q.camera->position();
+    auto num = [](double v) { return JsonObject::number(v); };
+    image.metadata["scene"] = q.scene_name;
+    image.metadata["metric"] = q.metric_name;
+    image.metadata["mass"] = num(q.metric.mass);
+    image.metadata["camera_position"] = num(x[0]) + "," + num(x[1]) + "," + num(x[2]) + "," + num(x[3]);
+    for (int a = 0; a < 4; ++a) {
+      const Vec4& e = q.camera->tetrad().e[static_cast<std::size_t>(a)];
+      image.metadata["tetrad_e" + std::to_string(a)] = num(e[0]) + "," + num(e[1]) + "," + num(e[2]) + "," + num(e[3]);
+    }
+    image.metadata["fov_degrees"] = cli.text("fov");
+    image.metadata["tracer"] = q.tracer;
+    image.metadata["tableau"] = q.tableau;
+    image.metadata["control"] = q.control;
+    image.metadata["rtol"] = num(q.settings.integrator.tolerance.rtol);
+    image.metadata["atol"] = num(q.settings.integrator.tolerance.atol);
+    image.metadata["max_steps"] = std::to_string(q.settings.max_steps);
+    image.metadata["sky_radius"] = num(q.settings.escape_radius);
+    image.metadata["angle_correction"] = q.correction_name;
+    record_render_stats(image, st);
+    write_exr(q.out, image);
+    const std::string png = png_path(q.out);
+    write_png_preview(png, image);
+
+    JsonObject counts;
+    for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.add(kRayStatusNames[i], st.status_counts[i]);
+    JsonObject json;
+    json.add("width", st.width).add("height", st.height).add("seconds", seconds);
+    json.add("rays_per_second", st.rays_per_second);
+    const double mean_steps = q.tracer == "symmetric"
+                                  ? static_cast<double>(result.table_steps) / static_cast<double>(st.rays)
+                                  : st.mean_steps;
+    json.add("mean_steps", mean_steps).add("status_counts", counts);
+    json.add("tracer", q.tracer).add("tableau", q.tableau).add("control", q.control);
+    json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
+    json.add("out", q.out).add("png", png).add("threads", st.threads);
+    if (q.tracer == "symmetric") json.add("table_rays", result.table_rays).add("table_steps", result.table_steps);
+    std::cout << json.str() << std::endl;
+    return 0;
+  });
+}

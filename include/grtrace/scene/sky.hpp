@@ -1,0 +1,71 @@
+// grtrace/scene/sky.hpp
+// The celestial sphere: what an escaped ray sees in its asymptotic direction (theta, phi).
+// Three kinds: a theta-phi checkerboard (seed Fig. 4), a procedural star field (the default), and an
+// equirectangular texture (R, G, B channels of an image: theta down the rows, phi across the columns).
+// Shading runs once per pixel, after the integration, so a runtime choice costs nothing in the hot loop.
+#pragma once
+
+#include "grtrace/scene/colour_maps.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+namespace grtrace {
+
+struct CheckerSky {
+  int squares = 18;  ///< squares along theta (2x along phi)
+  Rgb light{1.0f, 0.62f, 0.15f}, dark{0.08f, 0.22f, 0.55f};
+  Rgb operator()(double theta, double phi) const { return checker_parity(theta, phi, squares) ? light : dark; }
+};
+
+/// Stars on a dark sky with a faint band along the equator; deterministic (a hash of the sky cell).
+struct StarFieldSky {
+  int cells_theta = 1024;  ///< star density grid
+  Rgb operator()(double theta, double phi) const {
+    const double band = std::exp(-std::pow((theta - std::numbers::pi / 2) / 0.18, 2));
+    Rgb c{static_cast<float>(0.01 + 0.05 * band), static_cast<float>(0.012 + 0.045 * band),
+          static_cast<float>(0.03 + 0.06 * band)};
+    const double cell = std::numbers::pi / cells_theta;
+    const auto i = static_cast<std::uint64_t>(std::floor(theta / cell));
+    const auto j = static_cast<std::uint64_t>(std::floor((phi + std::numbers::pi) / cell));
+    std::uint64_t h = (i * 0x9E3779B97F4A7C15ULL) ^ (j * 0xC2B2AE3D27D4EB4FULL);
+    h ^= h >> 31;
+    h *= 0xBF58476D1CE4E5B9ULL;
+    h ^= h >> 29;
+    const double u = static_cast<double>(h % 100000) / 100000.0;
+    // About 1 cell in 60 holds a star, a little denser in the band; brightness from the same hash.
+    if (u < 0.016 * (1.0 + 2.0 * band)) {
+      const double b = 0.35 + 0.65 * std::pow(static_cast<double>((h >> 20) % 1000) / 1000.0, 3.0);
+      const double warm = static_cast<double>((h >> 40) % 100) / 100.0;
+      c = {static_cast<float>(b * (0.85 + 0.15 * warm)), static_cast<float>(b * 0.9),
+           static_cast<float>(b * (1.0 - 0.2 * warm))};
+    }
+    return c;
+  }
+};
+
+/// Equirectangular RGB texture (row 0 = theta 0, column 0 = phi -pi), bilinear, wrapping in phi.
+struct TextureSky {
+  int width = 0, height = 0;
+  std::vector<float> r, g, b;  ///< row-major planes
+  Rgb operator()(double theta, double phi) const {
+    const double x = (phi + std::numbers::pi) / (2 * std::numbers::pi) * width - 0.5;
+    const double y = std::clamp(theta / std::numbers::pi * height - 0.5, 0.0, height - 1.0);
+    const long x0 = static_cast<long>(std::floor(x)), y0 = static_cast<long>(std::floor(y));
+    const double fx = x - static_cast<double>(x0), fy = y - static_cast<double>(y0);
+    auto at = [&](const std::vector<float>& p, long xi, long yi) {
+      xi = ((xi % width) + width) % width;
+      yi = std::clamp(yi, 0L, static_cast<long>(height) - 1);
+      return static_cast<double>(p[static_cast<std::size_t>(yi * width + xi)]);
+    };
+    auto sample = [&](const std::vector<float>& p) {
+      return static_cast<float>((1 - fy) * ((1 - fx) * at(p, x0, y0) + fx * at(p, x0 + 1, y0)) +
+                                fy * ((1 - fx) * at(p, x0, y0 + 1) + fx * at(p, x0 + 1, y0 + 1)));
+    };
+    return {sample(r), sample(g), sample(b)};
+  }
+};
+
+}  // namespace grtrace

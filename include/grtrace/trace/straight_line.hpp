@@ -1,0 +1,46 @@
+// grtrace/trace/straight_line.hpp
+// Flat spacetime is never integrated: a light ray is a straight line, and where it meets the sky sphere is a
+// quadratic equation. Works in the spherical chart (t, r, theta, phi) the cameras use (MinkowskiSpherical).
+#pragma once
+
+#include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/trace/ray_outcome.hpp"
+
+#include <cmath>
+
+namespace grtrace {
+
+class StraightLineTracer {
+ public:
+  static constexpr const char* name = "straight-line";
+
+  StraightLineTracer(double sky_radius, AngleCorrection correction)
+      : sky_radius_(sky_radius), correction_(correction) {}
+
+  /// Takes a state in flat spherical coordinates; the ray leaves the sky sphere (radius > camera radius).
+  RayOutcome trace(const GeodesicState& y) const {
+    const double r = y[1], th = y[2], ph = y[3];
+    const double st = std::sin(th), ct = std::cos(th), sp = std::sin(ph), cp = std::cos(ph);
+    const Vec3 e_r(st * cp, st * sp, ct), e_th(ct * cp, ct * sp, -st), e_ph(-sp, cp, 0.0);
+    const Vec3 p = r * e_r;
+    const Vec3 v = y[5] * e_r + r * y[6] * e_th + r * st * y[7] * e_ph;
+    // |p + s v| = R for the positive root s.
+    const double a = v.squaredNorm(), b = p.dot(v), c = p.squaredNorm() - sky_radius_ * sky_radius_;
+    const double s = (-b + std::sqrt(b * b - a * c)) / a;
+    const Vec3 hit = p + s * v;
+    RayOutcome out;
+    out.status = RayStatus::escaped;
+    out.object = SceneObjectId::sky;
+    const Vec3 d = correction_ == AngleCorrection::none ? Vec3(hit.normalized()) : Vec3(v.normalized());
+    out.where = {std::acos(std::clamp(d.z(), -1.0, 1.0)), std::atan2(d.y(), d.x())};
+    out.radius = sky_radius_;
+    out.redshift = -1.0 / y[4];  // static source in flat space: g(u, k) = k^t, and g(e_0, k_cam) = -1
+    return out;
+  }
+
+ private:
+  double sky_radius_;
+  AngleCorrection correction_;
+};
+
+}  // namespace grtrace

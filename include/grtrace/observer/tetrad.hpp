@@ -30,7 +30,8 @@ inline Tetrad make_tetrad(const Mat4& g, const Vec4& velocity, const Vec4& look,
     throw std::invalid_argument("observer: position, velocity, look and up must be finite numbers");
   auto dot = [&](const Vec4& a, const Vec4& b) { return a.dot(g * b); };
   const double uu = dot(velocity, velocity);
-  if (!(uu > 0.0) || !(velocity[0] > 0.0))
+  const double size = velocity.cwiseAbs().dot(g.cwiseAbs() * velocity.cwiseAbs());
+  if (!(uu > 1e-10 * size) || !(velocity[0] > 0.0))  // null within round-off counts as null
     throw std::invalid_argument("observer: the 4-velocity must be future-directed and timelike (|v| < c)");
   Tetrad t;
   t.e[0] = velocity / std::sqrt(uu);

@@ -74,7 +74,8 @@ CommandLine make_command_line() {
       .option("disk-inner", "6", "disk inner radius (disk scene)")
       .option("disk-outer", "20", "disk outer radius (disk scene)")
       .option("threads", "0", "OpenMP threads (0 = all cores)")
-      .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png");
+      .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
+      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
   return cli;
 }
 
@@ -190,6 +191,22 @@ Request read_request(const CommandLine& cli) {
 }
 
 std::string png_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + ".png"; }
+std::string status_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-status.png"; }
+
+/// Status colours of the failure map: escaped light grey, captured black, hit blue, max_steps orange,
+/// step_underflow red, non_finite magenta.
+constexpr std::array<std::array<std::uint8_t, 3>, kRayStatusCount> kStatusColours = {
+    {{200, 200, 200}, {0, 0, 0}, {40, 90, 220}, {255, 150, 0}, {220, 20, 20}, {230, 0, 230}}};
+
+void write_status_map(const std::string& path, const Image& image) {
+  const auto& status = image.channel("status");
+  std::vector<std::uint8_t> rgb(status.size() * 3);
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    const auto s = static_cast<std::size_t>(std::clamp(static_cast<int>(status[i]), 0, static_cast<int>(kRayStatusCount) - 1));
+    for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = kStatusColours[s][c];
+  }
+  write_png_rgb8(path, image.width(), image.height(), rgb);
+}
 
 template <class Tracer>
 RenderStats render_with(const Tracer& tracer, const Request& q, Image& image) {
@@ -264,6 +281,8 @@ int main(int argc, char** argv) {
     write_exr(q.out, image);
     const std::string png = png_path(q.out);
     write_png_preview(png, image);
+    const bool status_map = cli.flag_set("status-map");
+    if (status_map) write_status_map(status_map_path(q.out), image);
 
     JsonObject counts;
     for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.add(kRayStatusNames[i], st.status_counts[i]);
@@ -277,6 +296,7 @@ int main(int argc, char** argv) {
     json.add("tracer", q.tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
     json.add("out", q.out).add("png", png).add("threads", st.threads);
+    if (status_map) json.add("status_map", status_map_path(q.out));
     if (q.tracer == "symmetric") json.add("table_rays", result.table_rays).add("table_steps", result.table_steps);
     std::cout << json.str() << std::endl;
     return 0;

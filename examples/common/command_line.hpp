@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace grtrace::tools {
@@ -120,6 +121,14 @@ class CommandLine {
   }
 
   const std::string& program() const { return program_; }
+
+  /// (name, effective value) of every option that takes a value, given or defaulted, in declaration order.
+  std::vector<std::pair<std::string, std::string>> values() const {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& s : specs_)
+      if (s.takes_value) out.emplace_back(s.name, text(s.name));
+    return out;
+  }
 
  private:
   struct Spec {

@@ -71,6 +71,7 @@ CommandLine make_command_line() {
                                 "horizon scenes only)")
       .option("table-rays", "1024", "symmetric tracer: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
+      .option("checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)")
       .option("disk-inner", "6", "disk inner radius (disk scene)")
       .option("disk-outer", "20", "disk outer radius (disk scene)")
       .option("threads", "0", "OpenMP threads (0 = all cores)")
@@ -160,7 +161,11 @@ Request read_request(const CommandLine& cli) {
   else if (q.tracer == "auto") q.tracer = q.scene == SceneKind::disk ? "general" : "symmetric";
 
   q.shading.kind = q.scene;
-  q.shading.sky = q.scene == SceneKind::checker ? decltype(q.shading.sky){CheckerSky{}} : StarFieldSky{};
+  const long squares = cli.integer("checker-squares");
+  if (squares < 1 || squares > 10000) throw UsageError("--checker-squares must be in 1 .. 10000");
+  q.shading.horizon_squares = static_cast<int>(squares);
+  q.shading.sky = q.scene == SceneKind::checker ? decltype(q.shading.sky){CheckerSky{static_cast<int>(squares)}}
+                                                : StarFieldSky{};
   if (const std::string tex = cli.text("sky-texture"); !tex.empty()) {
     try {
       const Image img = read_exr(tex);
@@ -258,6 +263,8 @@ int main(int argc, char** argv) {
     st.rays_per_second = static_cast<double>(st.rays) / seconds;
 
     for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
+    // Every option's effective value (given or default), so the frame can be reproduced from its header alone.
+    for (const auto& [name, value] : cli.values()) image.metadata["option_" + name] = value;
     const Vec4& x = q.camera->position();
     auto num = [](double v) { return JsonObject::number(v); };
     image.metadata["scene"] = q.scene_name;

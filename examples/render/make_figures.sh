@@ -20,11 +20,16 @@ frame() {  # frame NAME ARGS...: render to scratch, keep the PNG
 
 # The seed's main frame: static camera at r = 200 M, fov 90, 1024x1024, sky sphere at 400 M.
 frame main-frame
-# Fig. 4: checkerboard seen from r = 20 M, 1024x512, fov 90; (a) with the seed's (flat) angle correction,
-# (b) without, and our default, the exact bending beyond the sky sphere.
-frame fig4a-flat-correction --camera-r 20 --width 1024 --height 512 --angle-correction flat
-frame fig4b-no-correction --camera-r 20 --width 1024 --height 512 --angle-correction none
-frame fig4-exact-correction --camera-r 20 --width 1024 --height 512 --angle-correction exact
+# Fig. 4: checkerboard seen from r = 20 M, 1024x512, fov 90, sky sphere at 40 M with 20 divisions of 2 pi
+# (10 squares along theta), as in the seed; (a) with the seed's (flat) angle correction, (b) without, and our
+# default, the exact bending beyond the sky sphere.
+fig4="--camera-r 20 --width 1024 --height 512 --sky-radius 40 --checker-squares 10"
+# shellcheck disable=SC2086
+frame fig4a-flat-correction ${fig4} --angle-correction flat
+# shellcheck disable=SC2086
+frame fig4b-no-correction ${fig4} --angle-correction none
+# shellcheck disable=SC2086
+frame fig4-exact-correction ${fig4} --angle-correction exact
 # Fig. 5: a camera on the photon sphere (r = 3M) moving tangentially with 4-velocity proportional to
 # (1, 0, 0, 0.15): beta_phi = r u^phi / (sqrt(1 - 2M/r) u^t) = 0.45 sqrt(3) = 0.7794; colour by redshift.
 beta="0,0,0.7794228634059948"

@@ -29,8 +29,8 @@ inline Tetrad make_tetrad(const Mat4& g, const Vec4& velocity, const Vec4& look,
   if (!g.allFinite() || !velocity.allFinite() || !look.allFinite() || !up.allFinite())
     throw std::invalid_argument("observer: position, velocity, look and up must be finite numbers");
   auto dot = [&](const Vec4& a, const Vec4& b) { return a.dot(g * b); };
-  if (look.isZero(0.0)) throw std::invalid_argument("observer: the look direction is zero; give a direction");
-  if (up.isZero(0.0)) throw std::invalid_argument("observer: the up direction is zero; give a direction");
+  if (look.isZero(0.0)) throw std::invalid_argument("observer: the look direction is zero; give a nonzero --look");
+  if (up.isZero(0.0)) throw std::invalid_argument("observer: the up direction is zero; give a nonzero --up");
   const double uu = dot(velocity, velocity);
   const double size = velocity.cwiseAbs().dot(g.cwiseAbs() * velocity.cwiseAbs());
   if (!(uu > 1e-10 * size) || !(velocity[0] > 0.0))  // null within round-off counts as null

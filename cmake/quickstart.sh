@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The two README commands (Debian 12, as root, from a fresh clone):
-#   bash cmake/quickstart.sh render   install what is missing, build (release preset), run the main job
+#   bash cmake/quickstart.sh render   install what is missing, build grtrace-render, render the default scene
 #   bash cmake/quickstart.sh test     install what is missing, build (ci preset), run the whole test suite
 #                                     under Xvfb so the VTK tests have a display
 # Exits non-zero on any failure.
@@ -15,8 +15,7 @@ die() { printf 'quickstart: %s\n' "$*" >&2; exit 1; }
 usage() {
   cat >&2 <<'EOF'
 usage: bash cmake/quickstart.sh render|test
-  render  install missing packages, build the release preset, render the default scene
-          (until the renderer exists: trace one geodesic with grtrace-geodesic)
+  render  install missing packages, build grtrace-render (release preset), render the default scene
   test    install missing packages, build the ci preset, run every test (VTK tests under Xvfb)
 EOF
 }
@@ -36,27 +35,19 @@ configure_and_build() {
 
 cmd_render() {
   install_deps
-  configure_and_build release
-  local bin="build/release/examples"
-  if [ -x "${bin}/render/grtrace-render" ]; then
-    mkdir -p out
-    say "Rendering the default scene (grtrace-render --out out/default.exr)"
-    "${bin}/render/grtrace-render" --out out/default.exr
-    [ -f out/default.exr ] || die "grtrace-render finished but out/default.exr is missing"
-    say "Done"
-    echo "EXR: ${root}/out/default.exr"
-    if [ -f out/default.png ]; then
-      echo "PNG: ${root}/out/default.png"
-    else
-      echo "PNG: (no preview written next to the EXR)"
-    fi
-  elif [ -x "${bin}/geodesic/grtrace-geodesic" ]; then
-    say "The renderer is not built yet; tracing one photon instead (grtrace-geodesic --impact 7)"
-    "${bin}/geodesic/grtrace-geodesic" --impact 7
-    say "Done: the JSON line above is the traced geodesic (see ${bin}/geodesic/grtrace-geodesic --help)"
-  else
-    die "neither ${bin}/render/grtrace-render nor ${bin}/geodesic/grtrace-geodesic was built"
-  fi
+  say "Configuring (cmake --preset release)"
+  cmake --preset release
+  say "Building grtrace-render (cmake --build --preset release --target grtrace-render)"
+  cmake --build --preset release --target grtrace-render
+  local bin="build/release/examples/render/grtrace-render"
+  [ -x "${bin}" ] || die "${bin} was not built (OpenMP, OpenEXR and libpng are needed: cmake/install-deps.sh)"
+  mkdir -p out
+  say "Rendering the default scene (grtrace-render --out out/default.exr)"
+  "${bin}" --out out/default.exr
+  [ -f out/default.exr ] && [ -f out/default.png ] || die "grtrace-render finished but its outputs are missing"
+  say "Done"
+  echo "EXR: ${root}/out/default.exr"
+  echo "PNG: ${root}/out/default.png"
 }
 
 cmd_test() {

@@ -1,0 +1,544 @@
+// grtrace-view: the VTK frontend.
+//   * 3D view (left): the reference surfaces of the Schwarzschild scene (horizon r = 2M, photon sphere 3M, ISCO 6M,
+//     disk, sky sphere), the camera as a frustum with its tetrad axes, a bundle of traced rays (a subsampled grid of
+//     the camera's pixels, a fan along its middle row or column, or a parallel beam in the equatorial plane), and
+//     optionally the seed report's precessing timelike orbit as a tube.
+//   * Frame (right): the picture the camera sees, from an EXR written by grtrace-render (--frame FILE.exr) or
+//     rendered here; the bundle's pixels are marked, and each bundle ray keeps its pixel's colour.
+//   * --chart orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts).
+// Interactive when a display exists; --screenshot FILE.png --size WxH renders offscreen and exits.
+// Rendering needs X: headless, run under  xvfb-run -a -s "-screen 0 1280x1024x24" grtrace-view ...
+// With --frame, the camera (event and tetrad), the scene, mass, sky radius, angle correction and integration
+// method are read from the EXR's header (as grtrace-render writes it), so the bundle is traced through the frame's
+// own camera; options given on the command line override the method and scene settings, never the camera.
+// Bad input: a message on stderr and exit status 2. Other failures: exit status 1.
+#include "command_line.hpp"
+#include "json_writer.hpp"
+#include "view_request.hpp"
+
+#include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/observer/static_frame.hpp"
+#include "grtrace/observer/tetrad.hpp"
+#include "grtrace/render/exr_io.hpp"
+#include "grtrace/render/parallel_render.hpp"
+#include "grtrace/render/png_preview.hpp"
+#include "grtrace/scene/shading.hpp"
+#include "grtrace/scene/thin_disk.hpp"
+#include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
+#include "grtrace/trace/symmetric_scene_tracer.hpp"
+#include "grtrace/viz/bundles.hpp"
+#include "grtrace/viz/camera_glyph.hpp"
+#include "grtrace/viz/charts.hpp"
+#include "grtrace/viz/frame_from_image.hpp"
+#include "grtrace/viz/frame_view.hpp"
+#include "grtrace/viz/geodesic_data.hpp"
+#include "grtrace/viz/orbits.hpp"
+#include "grtrace/viz/scene_view.hpp"
+#include "grtrace/viz/viewer_window.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace grtrace;
+using tools::CommandLine;
+using tools::UsageError;
+using view::MethodChoice;
+using view::Request;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+CommandLine make_command_line() {
+  CommandLine cli("grtrace-view",
+                  "The VTK frontend: traced rays in 3D beside the frame they make, and the seed's orbit charts.\n"
+                  "Interactive when a display exists; --screenshot renders offscreen and exits.\n"
+                  "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png");
+  cli.option("screenshot", "", "render offscreen to this PNG and exit")
+      .option("size", "", "window / screenshot size WxH (default 1600x800; charts 900x800)")
+      .option("chart", "", "draw a chart of the orbit instead of the 3D view: orbit | norm | step")
+      // scene (as grtrace-render)
+      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)")
+      .option("mass", "1", "black-hole mass M (G = c = 1)")
+      .option("camera-r", "35", "camera radius r (Schwarzschild coordinates, units of M)")
+      .option("camera-theta", "84", "camera polar angle theta in degrees (90 = equatorial plane)")
+      .option("camera-phi", "0", "camera azimuth phi in degrees")
+      .option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, static frame)")
+      .option("look", "-1,0,0", "look direction r,theta,phi in the static frame (-1,0,0: at the hole)")
+      .option("up", "0,-1,0", "up direction r,theta,phi in the static frame (0,-1,0: the north pole)")
+      .option("fov", "55", "horizontal field of view in degrees, in (0, 180)")
+      .option("width", "320", "frame width in pixels (with --frame: the EXR's)")
+      .option("height", "240", "frame height in pixels (with --frame: the EXR's)")
+      .option("sky-radius", "400", "radius of the sky sphere where rays escape")
+      .option("disk-inner", "6", "inner radius of the disk (scene disk)")
+      .option("disk-outer", "20", "outer radius of the disk (scene disk)")
+      .option("angle-correction", "exact", "sky direction of escaped rays: none | flat | exact")
+      .option("tableau", "dopri5", "Runge-Kutta tableau: " + tools::join(tableau_names(), "|"))
+      .option("control", "pi", "step control: fixed | doubling | i | pi")
+      .option("step", "0", "initial step (0 = automatic), or the step of --control fixed")
+      .option("rtol", "1e-8", "relative tolerance")
+      .option("atol", "1e-10", "absolute tolerance")
+      .option("max-steps", "100000", "accepted steps before a ray ends as max_steps")
+      .option("threads", "0", "threads for the in-process frame (0: OpenMP default)")
+      // frame / bundle
+      .option("frame", "", "EXR written by grtrace-render to show on the right (default: render it here); its "
+                           "camera, scene, mass, sky radius and method are read from its header")
+      .option("exposure", "1", "linear exposure of the shown frame (as grtrace-render's PNG preview)")
+      .option("bundle", "grid", "rays to draw: grid | row | column (camera pixels) | beam (parallel, equatorial) | none")
+      .option("bundle-size", "9x7", "grid: COLSxROWS pixels; row, column, beam: a count")
+      .option("beam-width", "", "beam: largest impact parameter (default 3 x the critical 3 sqrt(3) M)")
+      .option("samples-per-step", "8", "points drawn per accepted step (dense output)")
+      .option("color-by", "pixel", "ray colouring: pixel | redshift | h | lambda | status | none")
+      // orbit
+      .flag("orbit", "show the timelike orbit (a tube) in the 3D view")
+      .option("orbit-r", "100", "orbit: start radius (equatorial plane, phi = 0, no radial velocity)")
+      .option("orbit-dphi", "0.00075", "orbit: initial dphi/dtau")
+      .option("orbit-revolutions", "12", "orbit: turns in phi to trace")
+      .option("orbit-tableau", "rk4", "orbit: tableau (the seed used classic RK4 with step doubling)")
+      .option("orbit-control", "doubling", "orbit: step control: fixed | doubling | i | pi")
+      .option("orbit-rtol", "1e-7", "orbit: relative tolerance")
+      .option("orbit-atol", "1e-10", "orbit: absolute tolerance")
+      .option("orbit-step", "0", "orbit: initial step (0 = automatic; the step of --orbit-control fixed)")
+      // 3D view
+      .option("hide", "", "comma-separated layers to hide: horizon,photon-sphere,isco,disk,sky,camera,rays,orbit,"
+                          "colorbar")
+      .flag("checkerboard", "draw the horizon with the renderer's theta-phi checkerboard")
+      .option("view-from", "", "3D view: eye position x,y,z (default: framing the hole and the camera)")
+      .option("view-at", "0,0,0", "3D view: focal point x,y,z")
+      .option("view-angle", "30", "3D view: vertical view angle in degrees");
+  return cli;
+}
+
+/// Option values, with a frame's header attributes standing in for options not given on the command line.
+class Params {
+ public:
+  Params(const CommandLine& cli, const std::map<std::string, std::string>* metadata) : cli_(cli), meta_(metadata) {}
+
+  bool from_frame(const std::string& name) const { return !cli_.given(name) && attribute(name).has_value(); }
+  std::string text(const std::string& name) const {
+    if (!cli_.given(name))
+      if (auto a = attribute(name)) return *a;
+    return cli_.text(name);
+  }
+  double number(const std::string& name) const {
+    const std::string t = text(name);
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end != '\0' || !std::isfinite(v))
+      throw UsageError("--" + name + " expects a finite number, got '" + t + "'" +
+                       (from_frame(name) ? " (from the frame's header)" : ""));
+    return v;
+  }
+  long integer(const std::string& name) const {
+    const std::string t = text(name);
+    char* end = nullptr;
+    const long v = std::strtol(t.c_str(), &end, 10);
+    if (t.empty() || *end != '\0') throw UsageError("--" + name + " expects a whole number, got '" + t + "'");
+    return v;
+  }
+
+ private:
+  std::optional<std::string> attribute(const std::string& name) const {
+    if (!meta_) return std::nullopt;
+    std::string underscored = name;
+    std::replace(underscored.begin(), underscored.end(), '-', '_');
+    if (name == "fov") underscored = "fov_degrees";
+    for (const std::string& key : {name, underscored})
+      if (auto it = meta_->find(key); it != meta_->end()) return it->second;
+    return std::nullopt;
+  }
+  const CommandLine& cli_;
+  const std::map<std::string, std::string>* meta_;
+};
+
+std::array<int, 2> parse_size(const std::string& name, const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw UsageError("--" + name + " expects WxH with positive whole numbers (e.g. 1600x800), got '" + text + "'");
+  return {w, h};
+}
+
+double positive(const Params& p, const std::string& name) {
+  const double v = p.number(name);
+  if (!(v > 0.0)) throw UsageError("--" + name + " must be > 0, got " + p.text(name));
+  return v;
+}
+
+MethodChoice read_method(const Params& p, const std::string& prefix, double escape_radius) {
+  MethodChoice m{p.text(prefix + "tableau"), p.text(prefix + "control"), {}};
+  m.settings.integrator.tolerance.rtol = positive(p, prefix + "rtol");
+  m.settings.integrator.tolerance.atol = p.number(prefix + "atol");
+  if (m.settings.integrator.tolerance.atol < 0.0) throw UsageError("--" + prefix + "atol must be >= 0");
+  m.settings.escape_radius = escape_radius;
+  const auto error = dispatch_method(m.tableau, m.control, []<class T, class C>() {});
+  if (error != DispatchError::none)
+    throw UsageError("--" + prefix + "tableau / --" + prefix + "control: " + describe(error, m.tableau, m.control));
+  return m;
+}
+
+Vec3 triple(const Params& p, const std::string& name) {
+  std::stringstream ss(p.text(name));
+  std::vector<double> v;
+  for (std::string item; std::getline(ss, item, ',');) {
+    char* end = nullptr;
+    const double d = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(d)) v.clear(), v.push_back(NAN);
+    else v.push_back(d);
+  }
+  if (v.size() != 3 || !std::isfinite(v[0]))
+    throw UsageError("--" + name + " expects 3 comma-separated numbers, got '" + p.text(name) + "'");
+  return {v[0], v[1], v[2]};
+}
+
+/// The camera of grtrace-render's options: event (r, theta, phi in degrees), static-frame velocity, look, up.
+/// width/height < 0: from --width/--height.
+Camera camera_from_options(const Params& p, double mass, double sky_radius, int width, int height) {
+  const double r = p.number("camera-r"), theta = p.number("camera-theta"), phi = p.number("camera-phi");
+  const double guard = 2.0 * mass * (1.0 + TraceSettings{}.horizon_epsilon);
+  if (!(r > guard))
+    throw UsageError("--camera-r " + p.text("camera-r") + " is at or inside the horizon (guard r = " +
+                     tools::JsonObject::number(guard) + "); move the camera out");
+  if (!(r < sky_radius)) throw UsageError("--camera-r must be inside --sky-radius");
+  if (!(theta > 0.0 && theta < 180.0))
+    throw UsageError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+  if (width < 0) {
+    const long w = p.integer("width"), h = p.integer("height");
+    if (w < 2 || h < 2 || w > 8192 || h > 8192) throw UsageError("--width and --height must be 2 .. 8192 pixels");
+    width = static_cast<int>(w);
+    height = static_cast<int>(h);
+  }
+  const double fov = p.number("fov");
+  if (!(fov > 0.0 && fov < 180.0)) throw UsageError("--fov must lie in (0, 180) degrees, got " + p.text("fov"));
+  const SchwarzschildMetric metric{mass};
+  const Vec4 x(0.0, r, theta * kDeg, phi * kDeg);
+  const Mat4 g = metric.metric(x);
+  const StaticFrame frame(g);
+  try {
+    return Camera(x, make_tetrad(g, frame.velocity(triple(p, "velocity")), frame.spatial(triple(p, "look")),
+                                 frame.spatial(triple(p, "up"))),
+                  width, height, fov);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+Vec4 header_vec4(const std::map<std::string, std::string>& meta, const std::string& key) {
+  const auto it = meta.find(key);
+  if (it == meta.end()) throw UsageError("--frame: the header has no '" + key + "' (not written by grtrace-render?)");
+  std::stringstream ss(it->second);
+  Vec4 v;
+  int n = 0;
+  for (std::string item; std::getline(ss, item, ',') && n < 4; ++n) v[n] = std::strtod(item.c_str(), nullptr);
+  if (n != 4 || !v.allFinite()) throw UsageError("--frame: header '" + key + "' is not 4 numbers: " + it->second);
+  return v;
+}
+
+/// The camera grtrace-render recorded: camera_position (t, r, theta, phi), tetrad_e0..3, fov_degrees.
+Camera camera_from_header(const std::map<std::string, std::string>& meta, int width, int height) {
+  Tetrad t;
+  for (int a = 0; a < 4; ++a) t.e[static_cast<std::size_t>(a)] = header_vec4(meta, "tetrad_e" + std::to_string(a));
+  const auto fov = meta.find("fov_degrees");
+  if (fov == meta.end()) throw UsageError("--frame: the header has no 'fov_degrees'");
+  try {
+    return Camera(header_vec4(meta, "camera_position"), t, width, height, std::stod(fov->second));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--frame: ") + e.what());
+  }
+}
+
+Request read_request(const CommandLine& cli) {
+  Request q;
+  q.screenshot = cli.text("screenshot");
+  if (!q.screenshot.empty()) {
+    const std::filesystem::path p(q.screenshot);
+    const auto dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    if (!std::filesystem::is_directory(dir))
+      throw UsageError("--screenshot: directory '" + dir.string() + "' does not exist");
+  }
+  q.chart = cli.text("chart");
+  if (!q.chart.empty() && q.chart != "orbit" && q.chart != "norm" && q.chart != "step")
+    throw UsageError("--chart must be orbit, norm or step, got '" + q.chart + "'");
+  q.size = cli.given("size") ? parse_size("size", cli.text("size"))
+                             : (q.chart.empty() ? std::array<int, 2>{1600, 800} : std::array<int, 2>{900, 800});
+  if (!q.chart.empty() && (q.size[0] < 200 || q.size[1] < 200)) throw UsageError("--size: charts need at least 200x200");
+  if (q.chart.empty() && (q.size[0] < 64 || q.size[1] < 64)) throw UsageError("--size: at least 64x64");
+
+  q.frame_file = cli.text("frame");
+  if (!q.frame_file.empty()) {
+    if (!std::filesystem::is_regular_file(q.frame_file)) throw UsageError("--frame: no such file '" + q.frame_file + "'");
+    try {
+      q.frame = read_exr(q.frame_file);
+    } catch (const std::exception& e) {
+      throw UsageError(std::string("--frame: ") + e.what());
+    }
+    for (const char* c : {"R", "G", "B"})
+      if (!q.frame->has_channel(c)) throw UsageError("--frame: '" + q.frame_file + "' has no '" + c + "' channel");
+  }
+  const Params p(cli, q.frame ? &q.frame->metadata : nullptr);
+  if (q.frame && q.frame->metadata.count("metric") && q.frame->metadata.at("metric") != "schwarzschild")
+    throw UsageError("--frame: the frame was rendered with --metric " + q.frame->metadata.at("metric") +
+                     "; the viewer draws Schwarzschild scenes only");
+
+  const auto kind = scene_kind_from_string(p.text("scene"));
+  if (!kind) throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");
+  q.scene = *kind;
+  q.mass = positive(p, "mass");
+  q.sky_radius = positive(p, "sky-radius");
+  if (q.frame && q.frame->metadata.count("camera_position")) {
+    for (const char* o : {"camera-r", "camera-theta", "camera-phi", "velocity", "look", "up", "fov", "width", "height"})
+      if (cli.given(o))
+        throw UsageError(std::string("--") + o + " conflicts with --frame: the bundle is traced through the frame's "
+                         "own camera (read from its header)");
+    q.camera = camera_from_header(q.frame->metadata, q.frame->width(), q.frame->height());
+    q.fov = p.number("fov");
+  } else {
+    q.camera = camera_from_options(p, q.mass, q.sky_radius, q.frame ? q.frame->width() : -1,
+                                   q.frame ? q.frame->height() : -1);
+    q.fov = p.number("fov");
+  }
+  q.width = q.camera->width();
+  q.height = q.camera->height();
+  q.disk = {p.number("disk-inner"), p.number("disk-outer")};
+  if (q.scene == SceneKind::disk && !(q.disk[0] > 3.0 * q.mass && q.disk[1] > q.disk[0]))
+    throw UsageError("disk radii must satisfy 3M < --disk-inner < --disk-outer (circular orbits exist beyond 3M)");
+  const std::string corr = p.text("angle-correction");
+  if (corr == "none") q.correction = AngleCorrection::none;
+  else if (corr == "flat") q.correction = AngleCorrection::flat;
+  else if (corr == "exact") q.correction = AngleCorrection::exact;
+  else throw UsageError("--angle-correction must be none, flat or exact, got '" + corr + "'");
+  q.rays = read_method(p, "", q.sky_radius);
+  q.rays.settings.initial_step = p.number("step");
+  if (q.rays.settings.initial_step < 0.0) throw UsageError("--step must be >= 0");
+  if (q.rays.control == "fixed" && q.rays.settings.initial_step <= 0.0)
+    throw UsageError("--control fixed needs --step H > 0");
+  const long max_steps = p.integer("max-steps");
+  if (max_steps < 1 || max_steps > 100'000'000) throw UsageError("--max-steps must be in 1 .. 1e8");
+  q.rays.settings.max_steps = static_cast<int>(max_steps);
+  const long threads = cli.integer("threads");
+  if (threads < 0 || threads > 4096) throw UsageError("--threads must be 0 .. 4096");
+  q.threads = static_cast<int>(threads);
+
+  const double exposure = cli.number("exposure");
+  if (!(exposure >= 0.0)) throw UsageError("--exposure must be >= 0");
+  q.exposure = static_cast<float>(exposure);
+
+  q.bundle = cli.text("bundle");
+  if (q.bundle != "grid" && q.bundle != "row" && q.bundle != "column" && q.bundle != "beam" && q.bundle != "none")
+    throw UsageError("--bundle must be grid, row, column, beam or none, got '" + q.bundle + "'");
+  const std::string bs = cli.text("bundle-size");
+  if (bs.find_first_of("xX") == std::string::npos) {
+    const long n = cli.integer("bundle-size");
+    if (n < 1 || n > 10000) throw UsageError("--bundle-size must be 1 .. 10000 rays, got '" + bs + "'");
+    q.bundle_size = {static_cast<int>(n), 1};
+  } else {
+    q.bundle_size = parse_size("bundle-size", bs);
+    if (q.bundle_size[0] * q.bundle_size[1] > 10000) throw UsageError("--bundle-size: at most 10000 rays");
+  }
+  q.beam_width = cli.given("beam-width") ? positive(p, "beam-width") : 9.0 * std::sqrt(3.0) * q.mass;
+  if (q.bundle == "beam" && !(view::beam_start_radius(q) < q.sky_radius))
+    throw UsageError("--bundle beam starts at r = " + tools::JsonObject::number(view::beam_start_radius(q)) +
+                     ", outside --sky-radius; make the beam narrower or the sky sphere larger");
+  const long sps = cli.integer("samples-per-step");
+  if (sps < 1 || sps > 1000) throw UsageError("--samples-per-step must be 1 .. 1000");
+  q.samples_per_step = static_cast<int>(sps);
+  const auto field = viz::scalar_field_from_string(cli.text("color-by"));
+  if (!field)
+    throw UsageError("--color-by must be pixel, redshift, h, lambda, status or none, got '" + cli.text("color-by") + "'");
+  q.color_by = *field;
+  if (q.color_by == viz::ScalarField::redshift && q.bundle == "beam")
+    throw UsageError("--color-by redshift needs camera rays (a beam has no observer); use --bundle grid, row or column");
+
+  q.show_orbit = cli.flag_set("orbit");
+  q.orbit.mass = q.mass;
+  q.orbit.r0 = cli.number("orbit-r");
+  q.orbit.dphi_dtau = cli.number("orbit-dphi");
+  q.orbit.revolutions = positive(p, "orbit-revolutions");
+  if (q.orbit.revolutions > 1000) throw UsageError("--orbit-revolutions: at most 1000");
+  if (!(q.orbit.r0 > 2.0 * q.mass * 1.01)) throw UsageError("--orbit-r must lie outside the horizon r = 2M");
+  q.orbit_method = read_method(p, "orbit-", 1e6 * q.orbit.r0);
+  q.orbit_method.settings.max_steps = 2'000'000;
+  q.orbit_method.settings.initial_step = cli.number("orbit-step");
+  if (q.orbit_method.settings.initial_step < 0.0) throw UsageError("--orbit-step must be >= 0");
+  if (q.orbit_method.control == "fixed" && q.orbit_method.settings.initial_step <= 0.0)
+    throw UsageError("--orbit-control fixed needs a step: add --orbit-step H (e.g. --orbit-step 50)");
+
+  std::stringstream hide(cli.text("hide"));
+  for (std::string item; std::getline(hide, item, ',');) {
+    if (item.empty()) continue;
+    const auto l = viz::layer_from_string(item);
+    if (!l)
+      throw UsageError("--hide: unknown layer '" + item +
+                       "' (horizon, photon-sphere, isco, disk, sky, camera, rays, orbit, colorbar)");
+    q.hidden.push_back(*l);
+  }
+  q.checkerboard = cli.flag_set("checkerboard");
+  if (cli.given("view-from")) {
+    const auto v = cli.numbers("view-from", 3);
+    q.view_from = Vec3(v[0], v[1], v[2]);
+  }
+  const auto at = cli.numbers("view-at", 3);
+  q.view_at = Vec3(at[0], at[1], at[2]);
+  q.view_angle = cli.number("view-angle");
+  if (!(q.view_angle > 0.0 && q.view_angle < 180.0)) throw UsageError("--view-angle must lie in (0, 180) degrees");
+  if (q.view_from && !((*q.view_from - q.view_at).norm() > 0.0))
+    throw UsageError("--view-from and --view-at must differ");
+  return q;
+}
+
+// ---- orbit and charts --------------------------------------------------------------------------------------
+
+std::string orbit_note(const Request& q, const viz::TracedPath& path) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "r0 = %g M, dphi/dtau = %g, %g turns; %s + %s control, rtol %g, atol %g: %zu steps",
+                q.orbit.r0, q.orbit.dphi_dtau, q.orbit.revolutions, q.orbit_method.tableau.c_str(),
+                q.orbit_method.control.c_str(), q.orbit_method.settings.integrator.tolerance.rtol,
+                q.orbit_method.settings.integrator.tolerance.atol, path.steps.empty() ? 0 : path.steps.size() - 1);
+  return buf;
+}
+
+int run_chart(const Request& q) {
+  const viz::TracedPath path = view::trace_orbit(q);
+  const std::string note = orbit_note(q, path);
+  const viz::ChartSpec spec = q.chart == "orbit"  ? viz::orbit_chart(path, q.mass, note)
+                              : q.chart == "norm" ? viz::norm_chart(path, note)
+                                                  : viz::step_chart(path, note);
+  if (!q.screenshot.empty()) {
+    viz::save_chart_png(spec, q.size[0], q.size[1], q.screenshot);
+    std::cout << "wrote " << q.screenshot << " (" << q.size[0] << "x" << q.size[1] << ", " << note << ")\n";
+  } else {
+    viz::show_chart(spec, q.size[0], q.size[1]);
+  }
+  return 0;
+}
+
+// ---- the camera, the frame and the bundle ------------------------------------------------------------------
+
+std::vector<std::array<int, 2>> bundle_pixels(const Request& q) {
+  if (q.bundle == "grid") return viz::pixel_grid(q.width, q.height, q.bundle_size[0], q.bundle_size[1]);
+  if (q.bundle == "row") return viz::pixel_row(q.width, q.height, q.bundle_size[0]);
+  if (q.bundle == "column") return viz::pixel_column(q.width, q.height, q.bundle_size[0]);
+  return {};
+}
+
+/// 8-bit sRGB of a linear colour, as the PNG preview encodes it.
+viz::Rgb8 encode(const Rgb& c) { return {srgb_encode8(c[0]), srgb_encode8(c[1]), srgb_encode8(c[2])}; }
+
+int run_view(const Request& q) {
+  const Camera& camera = *q.camera;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Image frame_image = q.frame ? *q.frame : view::render_frame(q);
+  const double frame_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const viz::Rgb8Image frame_rgb = viz::frame_from_image(frame_image, q.exposure);
+
+  viz::SceneLayout layout;
+  layout.mass = q.mass;
+  if (q.scene == SceneKind::disk) layout.disk = q.disk;
+  layout.sky_radius = q.sky_radius;
+  const Shading shading = view::make_shading(q);
+  layout.horizon_checkerboard = q.checkerboard;
+  layout.checker_theta = shading.horizon_squares;
+  layout.checker_phi = 2 * shading.horizon_squares;
+  layout.checker_a = encode(shading.horizon_dark);  // parity 0 (see checker_parity)
+  layout.checker_b = encode(shading.horizon_light);
+  const SchwarzschildMetric metric{q.mass};
+  layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
+  viz::SceneView scene(layout);
+
+  const auto pixels = bundle_pixels(q);
+  const std::vector<viz::TracedPath> rays = view::trace_bundle(q, pixels, frame_rgb);
+  if (!rays.empty()) {
+    viz::ScalarField field = q.color_by;
+    if (field == viz::ScalarField::pixel_color && q.bundle == "beam") field = viz::ScalarField::status;  // no pixels
+    scene.set_rays(viz::paths_to_polydata(rays), field);
+  }
+  if (q.show_orbit) {
+    const viz::TracedPath orbit = view::trace_orbit(q);
+    scene.set_orbit(viz::paths_to_polydata(std::span(&orbit, 1)), viz::ScalarField::lambda);
+  }
+  for (viz::Layer l : q.hidden) scene.set_visible(l, false);
+  viz::ViewPose pose = scene.default_view();
+  if (q.view_from) {
+    pose.from = *q.view_from;
+    pose.at = q.view_at;
+  }
+  pose.view_angle_degrees = q.view_angle;
+  scene.set_view(pose);
+
+  viz::FrameView frame;
+  frame.set_frame(frame_rgb);
+  frame.set_markers(pixels);
+
+  char frame_caption[256];
+  const char* marked = pixels.empty() ? "" : ", bundle pixels marked";
+  if (q.frame) {
+    std::snprintf(frame_caption, sizeof frame_caption, "frame %s (%dx%d)%s",
+                  std::filesystem::path(q.frame_file).filename().c_str(), q.width, q.height, marked);
+  } else {
+    std::snprintf(frame_caption, sizeof frame_caption, "frame (%dx%d, rendered in %.2f s)%s", q.width, q.height,
+                  frame_seconds, marked);
+  }
+  char scene_caption[256];
+  std::snprintf(scene_caption, sizeof scene_caption,
+                "M = %g; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", q.mass,
+                camera.position()[1], camera.position()[2] / kDeg, q.fov, rays.size(),
+                std::string(viz::to_string(scene.color_by(viz::Layer::rays))).c_str());
+
+  viz::WindowOptions opt;
+  opt.width = q.size[0];
+  opt.height = q.size[1];
+  opt.offscreen = !q.screenshot.empty();
+  opt.scene_caption = scene_caption;
+  opt.frame_caption = frame_caption;
+  viz::ViewerWindow window(scene, &frame, opt);
+  if (!q.screenshot.empty()) {
+    window.save_png(q.screenshot);
+    std::cout << "wrote " << q.screenshot << " (" << q.size[0] << "x" << q.size[1] << ")\n";
+  } else {
+    std::cout << viz::ViewerWindow::key_help() << std::endl;
+    window.interact("grtrace-view");
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine cli = make_command_line();
+  try {
+    if (!cli.parse(argc, argv)) return 0;
+    const Request q = read_request(cli);
+    if (!viz::display_available()) {
+      std::cerr << cli.program()
+                << ": error: no X display (DISPLAY is not set). VTK here renders only through X; run headless as\n"
+                   "  xvfb-run -a -s \"-screen 0 1280x1024x24\" "
+                << cli.program() << " ... --screenshot FILE.png\n";
+      return 1;
+    }
+    return q.chart.empty() ? run_view(q) : run_chart(q);
+  } catch (const UsageError& e) {
+    std::cerr << cli.program() << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {  // refusals from the library (camera, tetrad, surfaces)
+    std::cerr << cli.program() << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << cli.program() << ": error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,91 @@
+// examples/view/view_request.hpp
+// What grtrace-view was asked to do (parsed and checked in grtrace_view.cpp), and the tracing work, split over
+// translation units so the many (tableau x controller) instantiations compile in parallel:
+//   view_orbit.cpp  trace_orbit   the timelike orbit (charts, orbit layer)
+//   view_rays.cpp   trace_bundle  the bundle's rays through the scene (camera pixels or a parallel beam)
+//   view_frame.cpp  render_frame  the frame rendered in-process, as grtrace-render does
+#pragma once
+
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/render/image.hpp"
+#include "grtrace/scene/shading.hpp"
+#include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/ray_outcome.hpp"
+#include "grtrace/viz/frame_image.hpp"
+#include "grtrace/viz/geodesic_data.hpp"
+#include "grtrace/viz/orbits.hpp"
+#include "grtrace/viz/scene_view.hpp"
+#include "grtrace/viz/traced_path.hpp"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace grtrace::view {
+
+struct MethodChoice {
+  std::string tableau, control;
+  TraceSettings settings;
+};
+
+struct Request {
+  std::string screenshot;
+  std::array<int, 2> size{};
+  std::string chart;
+  SceneKind scene = SceneKind::disk;
+  double mass = 1.0;
+  std::optional<Camera> camera;
+  double fov = 55.0;
+  int width = 0, height = 0;
+  double sky_radius = 1000.0;
+  std::array<double, 2> disk{6.0, 20.0};
+  AngleCorrection correction = AngleCorrection::exact;
+  MethodChoice rays;
+  int threads = 0;
+  std::string frame_file;
+  std::optional<Image> frame;  ///< read from --frame
+  float exposure = 1.0f;
+  std::string bundle;
+  std::array<int, 2> bundle_size{};
+  double beam_width = 0.0;
+  int samples_per_step = 8;
+  viz::ScalarField color_by = viz::ScalarField::pixel_color;
+  bool show_orbit = false;
+  viz::OrbitSpec orbit;
+  MethodChoice orbit_method;
+  std::vector<viz::Layer> hidden;
+  bool checkerboard = false;
+  std::optional<Vec3> view_from;
+  Vec3 view_at = Vec3::Zero();
+  double view_angle = 30.0;
+};
+
+inline Shading make_shading(const Request& q) {
+  Shading s;
+  s.kind = q.scene;
+  if (q.scene == SceneKind::checker) s.sky = CheckerSky{};
+  else s.sky = StarFieldSky{};
+  s.disk.mass = q.mass;
+  s.disk.r_in = q.disk[0];
+  s.disk.r_out = q.disk[1];
+  return s;
+}
+
+/// Where the parallel beam starts: far enough out for its rays to be nearly straight.
+inline double beam_start_radius(const Request& q) { return std::max(4.0 * q.beam_width, 30.0 * q.mass); }
+
+/// The timelike orbit of q.orbit with q.orbit_method (view_orbit.cpp).
+viz::TracedPath trace_orbit(const Request& q);
+
+/// The bundle: rays through `pixels` of q.camera (colours from `frame`), or the parallel beam for q.bundle == "beam",
+/// traced with q.rays through the scene's objects (the disk for the disk scene) (view_rays.cpp).
+std::vector<viz::TracedPath> trace_bundle(const Request& q, std::span<const std::array<int, 2>> pixels,
+                                          const viz::Rgb8Image& frame);
+
+/// The frame as grtrace-render renders it (--tracer auto) (view_frame.cpp).
+Image render_frame(const Request& q);
+
+}  // namespace grtrace::view

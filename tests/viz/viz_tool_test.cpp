@@ -1,0 +1,177 @@
+// grtrace-view as a program: --help, refusals of bad input (exit 2, a message naming the option), offscreen
+// screenshots of the requested size, the three charts. Rendering cases skip without DISPLAY.
+#include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/observer/static_frame.hpp"
+#include "grtrace/observer/tetrad.hpp"
+#include "grtrace/render/exr_io.hpp"
+#include "grtrace/render/png_preview.hpp"
+#include "grtrace/viz/viewer_window.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#ifndef GRTRACE_VIEW_EXE
+#error "GRTRACE_VIEW_EXE (path of grtrace-view) must be defined by the build"
+#endif
+
+namespace {
+
+struct ToolRun {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+ToolRun run(const std::string& args) {
+  ToolRun r;
+  const std::string cmd = std::string(GRTRACE_VIEW_EXE) + " " + args + " 2>&1";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
+  const int w = ::pclose(p);
+  r.status = WIFEXITED(w) ? WEXITSTATUS(w) : -1;
+  return r;
+}
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("grtrace-view-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+TEST(ViewTool, HelpListsOptionsWithDefaults) {
+  const ToolRun r = run("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* s : {"--screenshot", "--size", "--chart", "--frame", "--camera-r", "--fov", "--mass", "--sky-radius",
+                        "--bundle", "--color-by", "--orbit", "--hide", "(default: 1)", "(default: 9x7)"})
+    EXPECT_NE(r.output.find(s), std::string::npos) << s;
+}
+
+TEST(ViewTool, BadInputExitsWithTwo) {
+  const std::array<std::pair<const char*, const char*>, 15> cases = {{
+      {"--camera-theta 0", "--camera-theta"},
+      {"--up -1,0,0", "up"},
+      {"--scene disk --disk-inner 2", "disk"},
+      {"--size 0x10", "--size"},
+      {"--size big", "--size"},
+      {"--chart pie", "--chart"},
+      {"--mass -1", "--mass"},
+      {"--fov 180", "--fov"},
+      {"--camera-r 1.5", "--camera-r"},
+      {"--color-by rainbow", "--color-by"},
+      {"--hide horizon,moon", "moon"},
+      {"--bundle sphere", "--bundle"},
+      {"--tableau nope", "tableau"},
+      {"--frame /nonexistent/frame.exr", "--frame"},
+      {"--screenshot /nonexistent/dir/x.png", "--screenshot"},
+  }};
+  for (const auto& [args, mention] : cases) {
+    const ToolRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(mention), std::string::npos) << args << "\n" << r.output;
+  }
+  const ToolRun unknown = run("--frobnicate 1");
+  EXPECT_EQ(unknown.status, 2);
+}
+
+/// A frame as grtrace-render writes it: colours plus the camera in the header.
+std::filesystem::path write_frame(int W, int H) {
+  using namespace grtrace;
+  Image image(W, H);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      PixelSample s;
+      s.rgb = {static_cast<float>(x) / static_cast<float>(W), 0.3f, static_cast<float>(y) / static_cast<float>(H)};
+      s.status = RayStatus::escaped;
+      image.set(x, y, s);
+    }
+  const SchwarzschildMetric metric{1.0};
+  const Vec4 x(0.0, 25.0, 1.4, 0.5);
+  const StaticFrame frame(metric.metric(x));
+  const Tetrad t = make_tetrad(metric.metric(x), frame.velocity(Vec3::Zero()), frame.spatial(Vec3(-1, 0, 0)),
+                               frame.spatial(Vec3(0, -1, 0)));
+  auto four = [](const Vec4& v) {
+    return std::to_string(v[0]) + "," + std::to_string(v[1]) + "," + std::to_string(v[2]) + "," + std::to_string(v[3]);
+  };
+  image.metadata["scene"] = "checker";
+  image.metadata["metric"] = "schwarzschild";
+  image.metadata["mass"] = "1";
+  image.metadata["camera_position"] = four(x);
+  for (int a = 0; a < 4; ++a) image.metadata["tetrad_e" + std::to_string(a)] = four(t.e[static_cast<std::size_t>(a)]);
+  image.metadata["fov_degrees"] = "70";
+  image.metadata["sky_radius"] = "100";
+  image.metadata["rtol"] = "1e-6";
+  image.metadata["atol"] = "1e-8";
+  const auto file = scratch("frame.exr");
+  write_exr(file, image);
+  write_png_preview(scratch("frame.png"), image);
+  return file;
+}
+
+TEST(ViewTool, FrameFromAnExrIsShownWithItsPreviewColours) {
+  if (!grtrace::viz::display_available()) GTEST_SKIP() << "no DISPLAY (run under xvfb-run)";
+  const int W = 40, H = 30;
+  const auto exr = write_frame(W, H);
+  const auto shot = scratch("with-frame.png");
+  const ToolRun r = run("--frame " + exr.string() + " --bundle-size 3x2 --screenshot " + shot.string() + " --size 400x200");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const grtrace::PngRgb8 png = grtrace::read_png_rgb8(shot);
+  const grtrace::PngRgb8 preview = grtrace::read_png_rgb8(scratch("frame.png"));
+  ASSERT_EQ(png.width, 400);
+  // The frame viewport is the right half (200 x 200); the 40 x 30 frame is scaled by 5 and centred.
+  const double scale = 5.0;
+  int checked = 0;
+  for (int y = 4; y < H; y += 5)
+    for (int x = 3; x < W; x += 6) {
+      const double vx = 100.0 + (x - 0.5 * (W - 1)) * scale, vy = 100.0 + ((H - 1 - y) - 0.5 * (H - 1)) * scale;
+      const int wx = 200 + static_cast<int>(vx), row = 199 - static_cast<int>(vy);
+      const auto o = static_cast<std::size_t>(3 * (row * 400 + wx)), p = static_cast<std::size_t>(3 * (y * W + x));
+      // Skip pixels under a bundle marker (a 3x2 grid: columns 0, 20, 39; rows 0, 29).
+      if ((x <= 2 || (x >= 18 && x <= 22) || x >= 37) && (y <= 2 || y >= 27)) continue;
+      EXPECT_EQ(png.rgb[o], preview.rgb[p]) << x << "," << y;
+      EXPECT_EQ(png.rgb[o + 1], preview.rgb[p + 1]) << x << "," << y;
+      EXPECT_EQ(png.rgb[o + 2], preview.rgb[p + 2]) << x << "," << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, 20);
+  // The frame's camera is used: giving another one is refused.
+  const ToolRun conflict = run("--frame " + exr.string() + " --camera-r 40 --screenshot " + shot.string());
+  EXPECT_EQ(conflict.status, 2);
+  EXPECT_NE(conflict.output.find("conflicts with --frame"), std::string::npos) << conflict.output;
+  std::filesystem::remove_all(exr.parent_path());
+}
+
+TEST(ViewTool, ScreenshotHasTheRequestedSize) {
+  if (!grtrace::viz::display_available()) GTEST_SKIP() << "no DISPLAY (run under xvfb-run)";
+  const auto file = scratch("view.png");
+  const ToolRun r = run("--screenshot " + file.string() + " --size 480x240 --width 48 --height 27 --bundle-size 4x3");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const grtrace::PngRgb8 png = grtrace::read_png_rgb8(file);
+  EXPECT_EQ(png.width, 480);
+  EXPECT_EQ(png.height, 240);
+  std::filesystem::remove_all(file.parent_path());
+}
+
+TEST(ViewTool, ChartsAreWritten) {
+  if (!grtrace::viz::display_available()) GTEST_SKIP() << "no DISPLAY (run under xvfb-run)";
+  for (const char* chart : {"orbit", "norm", "step"}) {
+    const auto file = scratch(std::string("chart-") + chart + ".png");
+    const ToolRun r = run(std::string("--chart ") + chart + " --orbit-revolutions 2 --screenshot " + file.string() +
+                      " --size 400x300");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const grtrace::PngRgb8 png = grtrace::read_png_rgb8(file);
+    EXPECT_EQ(png.width, 400);
+    EXPECT_EQ(png.height, 300);
+  }
+  std::filesystem::remove_all(scratch("x").parent_path());
+}
+
+}  // namespace

@@ -1,0 +1,80 @@
+// grtrace/viz/viewer_window.hpp
+// The grtrace-view window: the 3D scene on the left, the frame on the right (or the scene alone), captions,
+// offscreen capture to PNG, and the interactive loop with key bindings.
+//
+// Keys (interactive): 1 horizon, 2 photon sphere, 3 ISCO, 4 disk, 5 sky, 6 camera, 7 rays, 8 orbit, 9 colour bar,
+// m frame markers, c cycle the ray colouring, r reset the 3D view, s save a screenshot
+// (<prefix>-NNN.png in the working directory), h print the key list, q / Escape quit.
+// Mouse: trackball camera in the 3D view (left rotate, middle pan, right / wheel zoom).
+//
+// Rendering needs an X display (Debian's VTK has no EGL/OSMesa): run headless under
+//   xvfb-run -a -s "-screen 0 1280x1024x24" ...
+#pragma once
+
+#include "grtrace/viz/frame_image.hpp"
+
+#include <array>
+#include <memory>
+#include <string>
+
+class vtkRenderWindow;
+class vtkRenderWindowInteractor;
+
+namespace grtrace::viz {
+
+class SceneView;
+class FrameView;
+
+/// True when an X display is named (DISPLAY set and non-empty).
+bool display_available();
+
+struct WindowOptions {
+  int width = 1600, height = 800;
+  bool offscreen = false;
+  double split = 0.5;              ///< fraction of the width given to the 3D view when a frame is shown
+  std::string scene_caption;       ///< top-left text of the 3D view ("" = none)
+  std::string frame_caption;       ///< top-left text of the frame view
+  std::string title = "grtrace-view";
+};
+
+class ViewerWindow {
+ public:
+  /// `frame` may be null: the scene then fills the window. Both views must outlive the window.
+  ViewerWindow(SceneView& scene, FrameView* frame, const WindowOptions& options);
+  ~ViewerWindow();
+  ViewerWindow(const ViewerWindow&) = delete;
+  ViewerWindow& operator=(const ViewerWindow&) = delete;
+
+  vtkRenderWindow* window() const;
+  void render();
+  /// The window's pixels (RGB, row 0 at the top), after a render.
+  Rgb8Image capture();
+  /// Renders and writes the window to a PNG, whole or not at all (temporary file, then rename).
+  void save_png(const std::string& path);
+  /// Pixel origin (x, y from the bottom) and size of the frame viewport in window pixels.
+  std::array<int, 4> frame_viewport_pixels() const;
+  std::array<int, 4> scene_viewport_pixels() const;
+  /// Opens the window and runs the event loop until the user quits. Screenshots go to <prefix>-NNN.png.
+  void interact(const std::string& screenshot_prefix = "grtrace-view");
+  /// The window's interactor with the trackball style and the key bindings (created on first use; interact()
+  /// starts its event loop). Key presses sent to it (CharEvent) go through handle_key().
+  vtkRenderWindowInteractor* interactor();
+  /// Screenshots taken with the 's' key go to <prefix>-NNN.png (the first free NNN).
+  void set_screenshot_prefix(const std::string& prefix);
+  /// What a key press does in interact() (key: the character, or a key symbol such as "Escape"). Returns a line
+  /// describing the effect ("horizon off", "saved grtrace-view-001.png", ...); "quit" for q / Escape; "" if unbound.
+  std::string handle_key(const std::string& key);
+  /// The key list printed by 'h'.
+  static std::string key_help();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Writes an RGB8 image as PNG, whole or not at all. Throws std::runtime_error on failure.
+void write_png(const Rgb8Image& image, const std::string& path);
+/// Reads an 8-bit PNG (RGB or RGBA; alpha dropped). Throws std::runtime_error on failure.
+Rgb8Image read_png(const std::string& path);
+
+}  // namespace grtrace::viz

@@ -1,0 +1,298 @@
+// The two-viewport window (see grtrace/viz/viewer_window.hpp).
+#include "grtrace/viz/viewer_window.hpp"
+
+#include "grtrace/viz/frame_view.hpp"
+#include "grtrace/viz/scene_view.hpp"
+
+#include <vtkCallbackCommand.h>
+#include <vtkImageData.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPNGWriter.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+namespace grtrace::viz {
+
+bool display_available() {
+  const char* d = std::getenv("DISPLAY");
+  return d != nullptr && *d != '\0';
+}
+
+namespace {
+
+vtkSmartPointer<vtkTextActor> caption(const std::string& text, int font_size) {
+  auto t = vtkSmartPointer<vtkTextActor>::New();
+  t->SetInput(text.c_str());
+  t->GetTextProperty()->SetFontSize(font_size);
+  t->GetTextProperty()->SetColor(0.85, 0.87, 0.9);
+  t->GetTextProperty()->SetVerticalJustificationToTop();
+  t->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  t->GetPositionCoordinate()->SetValue(0.015, 0.985);
+  return t;
+}
+
+Rgb8Image from_vtk_image(vtkImageData* data) {
+  int dims[3];
+  data->GetDimensions(dims);
+  const int comps = data->GetNumberOfScalarComponents();
+  if (data->GetScalarType() != VTK_UNSIGNED_CHAR || comps < 3)
+    throw std::runtime_error("expected an 8-bit RGB(A) image");
+  Rgb8Image out(dims[0], dims[1]);
+  const auto* src = static_cast<const unsigned char*>(data->GetScalarPointer());
+  const auto ncomp = static_cast<std::size_t>(comps);
+  for (int y = 0; y < dims[1]; ++y)
+    for (int x = 0; x < dims[0]; ++x) {
+      const std::size_t o = (static_cast<std::size_t>(dims[1] - 1 - y) * static_cast<std::size_t>(dims[0]) +
+                             static_cast<std::size_t>(x)) * ncomp;
+      out.set(x, y, {src[o], src[o + 1], src[o + 2]});
+    }
+  return out;
+}
+
+std::filesystem::path temporary_sibling(const std::filesystem::path& target) {
+  return target.string() + ".tmp-" + std::to_string(::getpid()) + ".png";
+}
+
+}  // namespace
+
+void write_png(const Rgb8Image& image, const std::string& path) {
+  if (image.empty()) throw std::runtime_error("cannot write an empty image to '" + path + "'");
+  const std::filesystem::path target(path);
+  const auto dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(dir))
+    throw std::runtime_error("cannot write '" + path + "': directory '" + dir.string() + "' does not exist");
+  vtkNew<vtkImageData> data;
+  data->SetDimensions(image.width, image.height, 1);
+  data->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* dst = static_cast<unsigned char*>(data->GetScalarPointer());
+  const auto row = static_cast<std::size_t>(image.width) * 3;
+  for (int y = 0; y < image.height; ++y)
+    std::memcpy(dst + static_cast<std::size_t>(image.height - 1 - y) * row, image.rgb.data() + image.offset(0, y), row);
+  const auto tmp = temporary_sibling(target);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(tmp.c_str());
+  writer->SetInputData(data);
+  writer->Write();
+  std::error_code ec;
+  if (writer->GetErrorCode() != 0 || !std::filesystem::exists(tmp, ec)) {
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("failed to write '" + path + "' (is the directory writable?)");
+  }
+  std::filesystem::rename(tmp, target, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("failed to write '" + path + "': " + ec.message());
+  }
+}
+
+Rgb8Image read_png(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("no such file: '" + path + "'");
+  vtkNew<vtkPNGReader> reader;
+  if (!reader->CanReadFile(path.c_str())) throw std::runtime_error("'" + path + "' is not a PNG file");
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return from_vtk_image(reader->GetOutput());
+}
+
+struct ViewerWindow::Impl {
+  SceneView* scene;
+  FrameView* frame;
+  WindowOptions options;
+  vtkNew<vtkRenderWindow> window;
+  vtkSmartPointer<vtkTextActor> scene_caption, frame_caption;
+  vtkSmartPointer<vtkRenderWindowInteractor> interactor;
+  std::string prefix = "grtrace-view";
+
+  std::array<int, 4> viewport_pixels(vtkRenderer* r) const {
+    const int* size = window->GetSize();
+    double vp[4];
+    r->GetViewport(vp);
+    const int x0 = static_cast<int>(vp[0] * size[0] + 0.5), y0 = static_cast<int>(vp[1] * size[1] + 0.5);
+    const int x1 = static_cast<int>(vp[2] * size[0] + 0.5), y1 = static_cast<int>(vp[3] * size[1] + 0.5);
+    return {x0, y0, x1 - x0, y1 - y0};
+  }
+
+  std::string next_screenshot() const {
+    for (int i = 1; i < 1000; ++i) {
+      char name[64];
+      std::snprintf(name, sizeof name, "-%03d.png", i);
+      const std::string candidate = prefix + name;
+      if (!std::filesystem::exists(candidate)) return candidate;
+    }
+    return prefix + "-999.png";
+  }
+
+  static void on_char(vtkObject* caller, unsigned long, void* client, void*);
+};
+
+ViewerWindow::ViewerWindow(SceneView& scene, FrameView* frame, const WindowOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  if (options.width <= 0 || options.height <= 0) throw std::invalid_argument("window size must be positive");
+  m.scene = &scene;
+  m.frame = frame;
+  m.options = options;
+  m.window->SetSize(options.width, options.height);
+  m.window->SetWindowName(options.title.c_str());
+  m.window->SetMultiSamples(0);  // exact pixels (the frame must show its colours unchanged)
+  if (options.offscreen) m.window->SetOffScreenRendering(1);
+  const double split = frame ? options.split : 1.0;
+  scene.renderer()->SetViewport(0.0, 0.0, split, 1.0);
+  m.window->AddRenderer(scene.renderer());
+  const int font = std::max(11, std::min(options.height / 45, static_cast<int>(options.width * split) / 50));
+  if (!options.scene_caption.empty()) {
+    m.scene_caption = caption(options.scene_caption, font);
+    scene.renderer()->AddViewProp(m.scene_caption);
+  }
+  if (frame) {
+    frame->renderer()->SetViewport(split, 0.0, 1.0, 1.0);
+    m.window->AddRenderer(frame->renderer());
+    if (!options.frame_caption.empty()) {
+      m.frame_caption = caption(options.frame_caption, font);
+      frame->renderer()->AddViewProp(m.frame_caption);
+    }
+  }
+}
+
+ViewerWindow::~ViewerWindow() {
+  Impl& m = *impl_;
+  if (m.scene_caption) m.scene->renderer()->RemoveViewProp(m.scene_caption);
+  if (m.frame && m.frame_caption) m.frame->renderer()->RemoveViewProp(m.frame_caption);
+  m.window->RemoveRenderer(m.scene->renderer());
+  if (m.frame) m.window->RemoveRenderer(m.frame->renderer());
+  m.window->Finalize();
+}
+
+vtkRenderWindow* ViewerWindow::window() const { return impl_->window; }
+
+void ViewerWindow::render() {
+  impl_->scene->renderer()->ResetCameraClippingRange();
+  impl_->window->Render();
+}
+
+Rgb8Image ViewerWindow::capture() {
+  render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(impl_->window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  return from_vtk_image(grab->GetOutput());
+}
+
+void ViewerWindow::save_png(const std::string& path) { write_png(capture(), path); }
+
+std::array<int, 4> ViewerWindow::frame_viewport_pixels() const {
+  if (!impl_->frame) return {0, 0, 0, 0};
+  return impl_->viewport_pixels(impl_->frame->renderer());
+}
+
+std::array<int, 4> ViewerWindow::scene_viewport_pixels() const {
+  return impl_->viewport_pixels(impl_->scene->renderer());
+}
+
+std::string ViewerWindow::key_help() {
+  return "keys: 1 horizon, 2 photon sphere, 3 ISCO, 4 disk, 5 sky, 6 camera, 7 rays, 8 orbit, 9 colour bar, "
+         "m frame markers, c ray colouring, r reset view, s screenshot, h help, q quit";
+}
+
+std::string ViewerWindow::handle_key(const std::string& key) {
+  Impl& m = *impl_;
+  auto toggle = [&](Layer l) -> std::string {
+    if (!m.scene->has(l)) return std::string("no ") + std::string(to_string(l)) + " layer";
+    m.scene->toggle(l);
+    return std::string(to_string(l)) + (m.scene->visible(l) ? " on" : " off");
+  };
+  if (key == "Escape" || key == "q") return "quit";
+  if (key.size() != 1) return "";
+  switch (key[0]) {
+    case '1': return toggle(Layer::horizon);
+    case '2': return toggle(Layer::photon_sphere);
+    case '3': return toggle(Layer::isco);
+    case '4': return toggle(Layer::disk);
+    case '5': return toggle(Layer::sky);
+    case '6': return toggle(Layer::camera);
+    case '7': return toggle(Layer::rays);
+    case '8': return toggle(Layer::orbit);
+    case '9': return toggle(Layer::colorbar);
+    case 'm':
+      if (!m.frame) return "no frame";
+      m.frame->set_markers_visible(!m.frame->markers_visible());
+      return m.frame->markers_visible() ? "markers on" : "markers off";
+    case 'c': return "rays coloured by " + std::string(to_string(m.scene->cycle_ray_coloring()));
+    case 'r': m.scene->set_view(m.scene->default_view()); return "view reset";
+    case 's': {
+      const std::string file = m.next_screenshot();
+      save_png(file);
+      return "saved " + file;
+    }
+    case 'h': return key_help();
+    default: return "";
+  }
+}
+
+void ViewerWindow::Impl::on_char(vtkObject* caller, unsigned long, void* client, void*) {
+  auto* self = static_cast<ViewerWindow*>(client);
+  auto* iren = static_cast<vtkRenderWindowInteractor*>(caller);
+  const std::string sym = iren->GetKeySym() ? iren->GetKeySym() : "";
+  const char code = iren->GetKeyCode();
+  const std::string key = sym == "Escape" ? sym : std::string(1, code);
+  std::string said;
+  try {
+    said = self->handle_key(key);
+  } catch (const std::exception& e) {
+    said = std::string("failed: ") + e.what();
+  }
+  if (said == "quit") {
+    iren->TerminateApp();
+    return;
+  }
+  if (!said.empty()) std::cout << said << std::endl;
+  self->render();
+}
+
+void ViewerWindow::set_screenshot_prefix(const std::string& prefix) {
+  impl_->prefix = prefix.empty() ? "grtrace-view" : prefix;
+}
+
+vtkRenderWindowInteractor* ViewerWindow::interactor() {
+  Impl& m = *impl_;
+  if (!m.interactor) {
+    m.interactor = vtkSmartPointer<vtkRenderWindowInteractor>::New();
+    m.interactor->SetRenderWindow(m.window);
+    vtkNew<vtkInteractorStyleTrackballCamera> style;
+    m.interactor->SetInteractorStyle(style);
+    vtkNew<vtkCallbackCommand> keys;
+    keys->SetCallback(&Impl::on_char);
+    keys->SetClientData(this);
+    keys->SetAbortFlagOnExecute(1);  // the style's own key bindings (w, s, e, 3, f, p ...) never see our keys
+    m.interactor->AddObserver(vtkCommand::CharEvent, keys, 10.0f);
+  }
+  return m.interactor;
+}
+
+void ViewerWindow::interact(const std::string& screenshot_prefix) {
+  set_screenshot_prefix(screenshot_prefix);
+  vtkRenderWindowInteractor* iren = interactor();
+  iren->Initialize();
+  render();
+  iren->Start();
+}
+
+}  // namespace grtrace::viz

@@ -26,6 +26,7 @@
 // pass --no-png), and prints ONE line of JSON with the per-method summary.
 #include "atomic_file.hpp"
 #include "command_line.hpp"
+#include "grtrace/viz/viewer_window.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/integrate/gauss_legendre.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -42,7 +43,6 @@
 #include <vtkContextView.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkRenderWindow.h>
@@ -50,7 +50,6 @@
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 #include <vtkVector.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
 #include <array>
@@ -411,19 +410,7 @@ void write_png(const std::filesystem::path& file, const std::vector<Drift>& runs
               "|E/E0 - 1|");
 
   view->GetRenderWindow()->Render();
-  vtkNew<vtkWindowToImageFilter> capture;
-  capture->SetInput(view->GetRenderWindow());
-  capture->SetInputBufferTypeToRGB();
-  capture->ReadFrontBufferOff();
-  capture->Update();
-  tools::write_atomically(file, [&](const std::filesystem::path& tmp) {
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(tmp.c_str());
-    writer->SetInputConnection(capture->GetOutputPort());
-    writer->Write();
-    if (writer->GetErrorCode() != 0 || !std::filesystem::exists(tmp) || std::filesystem::file_size(tmp) == 0)
-      throw std::runtime_error("failed to write PNG '" + tmp.string() + "'");
-  });
+  viz::save_window_png(view->GetRenderWindow(), file.string());
 }
 
 // ---- command line ----------------------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 // R(z) = 1 + z b^T (I - zA)^-1 1 and the contour come from grtrace/tableau/stability.hpp (Hairer & Wanner II, IV.2).
 #include "atomic_file.hpp"
 #include "command_line.hpp"
+#include "grtrace/viz/viewer_window.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
 #include "grtrace/tableau/stability.hpp"
 #include "json_writer.hpp"
@@ -20,14 +21,12 @@
 #include <vtkContextView.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
 #include <array>
@@ -200,20 +199,7 @@ void write_chart_png(const std::filesystem::path& file, const std::string& title
   chart->GetLegend()->GetLabelProperties()->SetFontSize(13);
 
   view->GetRenderWindow()->Render();
-  vtkNew<vtkWindowToImageFilter> capture;
-  capture->SetInput(view->GetRenderWindow());
-  capture->SetInputBufferTypeToRGB();  // RGBA would give a transparent background
-  capture->ReadFrontBufferOff();
-  capture->Update();
-
-  tools::write_atomically(file, [&](const std::filesystem::path& tmp) {
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(tmp.c_str());
-    writer->SetInputConnection(capture->GetOutputPort());
-    writer->Write();
-    if (writer->GetErrorCode() != 0 || !std::filesystem::exists(tmp) || std::filesystem::file_size(tmp) == 0)
-      throw std::runtime_error("failed to write PNG '" + tmp.string() + "'");
-  });
+  viz::save_window_png(view->GetRenderWindow(), file.string());
 }
 
 std::vector<Series> boundary_series(const MethodStability& m, Rgb color) {

@@ -155,23 +155,7 @@ Rgb8Image render_chart(const ChartSpec& spec, int width, int height) {
   window->SetMultiSamples(0);
   build_chart(view, chart, title, note, spec, width, height);
   window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  vtkImageData* data = grab->GetOutput();
-  int dims[3];
-  data->GetDimensions(dims);
-  Rgb8Image out(dims[0], dims[1]);
-  const auto* src = static_cast<const unsigned char*>(data->GetScalarPointer());
-  for (int y = 0; y < dims[1]; ++y)
-    for (int x = 0; x < dims[0]; ++x) {
-      const std::size_t o =
-          (static_cast<std::size_t>(dims[1] - 1 - y) * static_cast<std::size_t>(dims[0]) + static_cast<std::size_t>(x)) * 3;
-      out.set(x, y, {src[o], src[o + 1], src[o + 2]});
-    }
+  Rgb8Image out = capture_window(window);
   window->Finalize();
   return out;
 }

@@ -185,15 +185,21 @@ void ViewerWindow::render() {
   impl_->window->Render();
 }
 
-Rgb8Image ViewerWindow::capture() {
-  render();
+Rgb8Image capture_window(vtkRenderWindow* window) {
   vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(impl_->window);
+  grab->SetInput(window);
   grab->SetInputBufferTypeToRGB();
   grab->ReadFrontBufferOff();
   grab->ShouldRerenderOff();
   grab->Update();
   return from_vtk_image(grab->GetOutput());
+}
+
+void save_window_png(vtkRenderWindow* window, const std::string& path) { write_png(capture_window(window), path); }
+
+Rgb8Image ViewerWindow::capture() {
+  render();
+  return capture_window(impl_->window);
 }
 
 void ViewerWindow::save_png(const std::string& path) { write_png(capture(), path); }

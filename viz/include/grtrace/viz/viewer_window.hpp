@@ -74,6 +74,11 @@ class ViewerWindow {
 
 /// Writes an RGB8 image as PNG, whole or not at all. Throws std::runtime_error on failure.
 void write_png(const Rgb8Image& image, const std::string& path);
+/// What a rendered window shows (RGB: an RGBA grab would make the background transparent), row 0 at the top.
+/// Assumes the window has been rendered (offscreen or on screen).
+Rgb8Image capture_window(vtkRenderWindow* window);
+/// capture_window + write_png: every tool's "--screenshot" / chart PNG goes through here.
+void save_window_png(vtkRenderWindow* window, const std::string& path);
 /// Reads an 8-bit PNG (RGB or RGBA; alpha dropped). Throws std::runtime_error on failure.
 Rgb8Image read_png(const std::string& path);
 

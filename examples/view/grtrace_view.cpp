@@ -157,7 +157,8 @@ class Params {
     std::string underscored = name;
     std::replace(underscored.begin(), underscored.end(), '-', '_');
     if (name == "fov") underscored = "fov_degrees";
-    for (const std::string& key : {name, underscored})
+    // grtrace-render records every option's effective value as "option_<name>" (disk radii included).
+    for (const std::string& key : {name, underscored, "option_" + name})
       if (auto it = meta_->find(key); it != meta_->end()) return it->second;
     return std::nullopt;
   }

@@ -20,6 +20,7 @@
 
 #include <chrono>
 #include <iostream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -40,6 +41,7 @@ struct Request {
   Shading shading;
   int threads = 0;
   int table_nodes = 1024;
+  bool error_map = false;
 };
 
 CommandLine make_command_line() {
@@ -76,6 +78,10 @@ CommandLine make_command_line() {
       .option("disk-outer", "20", "disk outer radius (disk scene)")
       .option("threads", "0", "OpenMP threads (0 = all cores)")
       .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
+      .flag("error-map",
+            "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
+            "elliptic-integral direction from the camera (Schwarzschild/flat only); write <out>-error.png "
+            "(heat map, log scale 1e-12 .. 1e-2 rad) and report max_error/median_error in the JSON")
       .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
   return cli;
 }
@@ -184,6 +190,8 @@ Request read_request(const CommandLine& cli) {
   if (!(q.shading.disk.r_in > 3.0 * q.metric.mass && q.shading.disk.r_out > q.shading.disk.r_in))
     throw UsageError("disk radii must satisfy 3M < --disk-inner < --disk-outer (circular orbits exist beyond 3M)");
 
+  q.error_map = cli.flag_set("error-map");
+
   q.out = cli.text("out");
   if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
     throw UsageError("--out must name an .exr file, got '" + q.out + "'");
@@ -213,13 +221,100 @@ void write_status_map(const std::string& path, const Image& image) {
   write_png_rgb8(path, image.width(), image.height(), rgb);
 }
 
+/// Sky direction of every pixel in double precision (the EXR channels are float), kept for --error-map.
+using SkyDirections = std::vector<exact::SkyDirection>;
+
 template <class Tracer>
-RenderStats render_with(const Tracer& tracer, const Request& q, Image& image) {
+RenderStats render_with(const Tracer& tracer, const Request& q, Image& image, SkyDirections* directions) {
   RenderOptions options;
   options.threads = q.threads;
   const Camera& cam = *q.camera;
-  return render_image(image, [&](int col, int row) { return shade(tracer.trace(cam.pixel_state(col, row)), q.shading); },
-                      options);
+  return render_image(
+      image,
+      [&](int col, int row) {
+        const RayOutcome o = tracer.trace(cam.pixel_state(col, row));
+        if (directions) (*directions)[image.index(col, row)] = o.where;  // distinct pixels: no data race
+        return shade(o, q.shading);
+      },
+      options);
+}
+
+// ---- --error-map: every escaped pixel against the exact answer ------------------------------------------
+
+std::string error_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-error.png"; }
+
+struct ErrorSummary {
+  double max = std::numeric_limits<double>::quiet_NaN();
+  double median = std::numeric_limits<double>::quiet_NaN();
+  long judged = 0;      ///< escaped pixels with an exact direction
+  long mismatches = 0;  ///< escaped where the exact ray is captured, or captured where it escapes
+};
+
+/// Fills the "error" channel (radians; NaN where the ray did not escape; pi where the escaped/captured verdict
+/// disagrees with the exact one) after the timed render, in double precision, and summarises it.
+ErrorSummary compute_error_channel(const Request& q, Image& image, const SkyDirections& directions) {
+  const Camera& cam = *q.camera;
+  const auto& status = image.channel("status");
+  std::vector<float>& error = image.add_channel("error", std::numeric_limits<float>::quiet_NaN());
+  std::vector<double> exact_error(image.pixel_count(), std::numeric_limits<double>::quiet_NaN());
+  const long n = static_cast<long>(image.pixel_count());
+  const double mass = q.metric.mass;
+  long mismatches = 0;
+#if defined(_OPENMP)
+  const int threads = q.threads > 0 ? q.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : mismatches) num_threads(threads)
+#endif
+  for (long i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto s = static_cast<RayStatus>(static_cast<int>(status[k]));
+    if (s != RayStatus::escaped && s != RayStatus::captured) continue;  // hit an object or failed: not judged
+    const int col = static_cast<int>(i % image.width()), row = static_cast<int>(i / image.width());
+    const auto truth = exact::asymptotic_direction(cam.pixel_state(col, row), mass);
+    if ((s == RayStatus::escaped) != truth.has_value()) {
+      ++mismatches;
+      exact_error[k] = std::numbers::pi;
+    } else if (truth) {
+      exact_error[k] = exact::angular_distance(directions[k], *truth);
+    }
+    error[k] = static_cast<float>(exact_error[k]);
+  }
+  ErrorSummary summary;
+  summary.mismatches = mismatches;
+  std::vector<double> judged;
+  for (const double e : exact_error)
+    if (!std::isnan(e)) judged.push_back(e);
+  summary.judged = static_cast<long>(judged.size());
+  if (!judged.empty()) {
+    const auto mid = judged.begin() + static_cast<std::ptrdiff_t>(judged.size() / 2);
+    std::nth_element(judged.begin(), mid, judged.end());
+    summary.median = *mid;
+    summary.max = *std::max_element(judged.begin(), judged.end());
+  }
+  return summary;
+}
+
+/// Heat map of log10(error) from 1e-12 (dark blue) to 1e-2 rad (yellow); pixels not judged dark grey,
+/// verdict mismatches white.
+void write_error_map(const std::string& path, const Image& image) {
+  const auto& error = image.channel("error");
+  std::vector<std::uint8_t> rgb(error.size() * 3);
+  // A perceptual ramp (viridis, 5 stops) from 1e-12 to 1e-2 rad.
+  static constexpr std::array<std::array<double, 3>, 5> ramp = {
+      {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}}};
+  for (std::size_t i = 0; i < error.size(); ++i) {
+    std::array<double, 3> c{45, 45, 45};
+    const double e = error[i];
+    if (e >= 3.0) {
+      c = {255, 255, 255};
+    } else if (!std::isnan(e)) {
+      const double t = std::clamp((std::log10(std::max(e, 1e-300)) + 12.0) / 10.0, 0.0, 1.0) * (ramp.size() - 1);
+      const std::size_t j = std::min(static_cast<std::size_t>(t), ramp.size() - 2);
+      const double f = t - static_cast<double>(j);
+      for (std::size_t ch = 0; ch < 3; ++ch) c[ch] = (1.0 - f) * ramp[j][ch] + f * ramp[j + 1][ch];
+    }
+    for (std::size_t ch = 0; ch < 3; ++ch) rgb[3 * i + ch] = static_cast<std::uint8_t>(std::lround(c[ch]));
+  }
+  write_png_rgb8(path, image.width(), image.height(), rgb);
 }
 
 struct RenderRun {
@@ -228,20 +323,20 @@ struct RenderRun {
 };
 
 template <ExplicitTableau T, StepController C>
-RenderRun run(const Request& q, Image& image) {
+RenderRun run(const Request& q, Image& image, SkyDirections* directions) {
   RenderRun run;
   if (q.tracer == "straight-line") {
-    run.stats = render_with(StraightLineTracer(q.settings.escape_radius, q.correction), q, image);
+    run.stats = render_with(StraightLineTracer(q.settings.escape_radius, q.correction), q, image, directions);
   } else if (q.tracer == "symmetric") {
     const SymmetricSceneTracer<T, C> tracer(q.metric, q.settings, *q.camera, q.correction, q.table_nodes);
     run.table_rays = tracer.table().table_rays();
     run.table_steps = tracer.table().table_steps();
-    run.stats = render_with(tracer, q, image);
+    run.stats = render_with(tracer, q, image, directions);
   } else if (q.scene == SceneKind::disk) {
     run.stats = render_with(GeneralSceneTracer<T, C, ThinDisk>(q.metric, q.settings, C{}, q.correction, q.shading.disk),
-                            q, image);
+                            q, image, directions);
   } else {
-    run.stats = render_with(GeneralSceneTracer<T, C>(q.metric, q.settings, C{}, q.correction), q, image);
+    run.stats = render_with(GeneralSceneTracer<T, C>(q.metric, q.settings, C{}, q.correction), q, image, directions);
   }
   return run;
 }
@@ -253,14 +348,18 @@ int main(int argc, char** argv) {
   return tools::run_tool(cli, argc, argv, [&] {
     const Request q = read_request(cli);
     Image image(q.camera->width(), q.camera->height());
+    SkyDirections directions(q.error_map ? image.pixel_count() : 0);  // --error-map only
+    SkyDirections* const where = q.error_map ? &directions : nullptr;
     const auto t0 = std::chrono::steady_clock::now();
     RenderRun result;
-    dispatch_method(q.tableau, q.control, [&]<class T, class C>() { result = run<T, C>(q, image); });
+    dispatch_method(q.tableau, q.control, [&]<class T, class C>() { result = run<T, C>(q, image, where); });
     // The table (symmetric tracer) is part of the frame's cost: time the whole thing.
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     RenderStats& st = result.stats;
     st.seconds = seconds;
     st.rays_per_second = static_cast<double>(st.rays) / seconds;
+    // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
+    const ErrorSummary errors = q.error_map ? compute_error_channel(q, image, directions) : ErrorSummary{};
 
     for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
     // Every option's effective value (given or default), so the frame can be reproduced from its header alone.
@@ -284,12 +383,18 @@ int main(int argc, char** argv) {
     image.metadata["max_steps"] = std::to_string(q.settings.max_steps);
     image.metadata["sky_radius"] = num(q.settings.escape_radius);
     image.metadata["angle_correction"] = q.correction_name;
+    if (q.error_map) {
+      image.metadata["error_max"] = num(errors.max);
+      image.metadata["error_median"] = num(errors.median);
+      image.metadata["error_mismatches"] = std::to_string(errors.mismatches);
+    }
     record_render_stats(image, st);
     write_exr(q.out, image);
     const std::string png = png_path(q.out);
     write_png_preview(png, image);
     const bool status_map = cli.flag_set("status-map");
     if (status_map) write_status_map(status_map_path(q.out), image);
+    if (q.error_map) write_error_map(error_map_path(q.out), image);
 
     JsonObject counts;
     for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.add(kRayStatusNames[i], st.status_counts[i]);
@@ -304,6 +409,11 @@ int main(int argc, char** argv) {
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
     json.add("out", q.out).add("png", png).add("threads", st.threads);
     if (status_map) json.add("status_map", status_map_path(q.out));
+    if (q.error_map) {
+      json.add("max_error", errors.max).add("median_error", errors.median);
+      json.add("error_pixels", errors.judged).add("error_mismatches", errors.mismatches);
+      json.add("error_map", error_map_path(q.out));
+    }
     if (q.tracer == "symmetric") json.add("table_rays", result.table_rays).add("table_steps", result.table_steps);
     std::cout << json.str() << std::endl;
     return 0;

@@ -1,0 +1,272 @@
+// tests/benchmarks/frame_benchmark.cpp
+// Whole frames of the seed's main scene, through grtrace-render's own code path: a static camera at r = 200 M
+// looking at the hole (up = north), fov 90, checker sky on a sphere at 400 M with the exact continuation to
+// infinity (AngleCorrection::exact), Schwarzschild M = 1, shaded pixel by pixel by the OpenMP image loop on all
+// cores (render/parallel_render.hpp):
+//   frame/general/<method>/<N>     GeneralSceneTracer: every pixel integrated (trace/scene_tracer.hpp)
+//   frame/symmetric/<table>/<N>    SymmetricSceneTracer: one SymmetricSkyTable for the frame, built inside the
+//                                  timed region (it is part of the frame's cost), read once per pixel
+//   frame/general-node/<method>/<N>  the general tracer's integration, but the exact continuation applied at the
+//                                  last accepted node instead of the interpolated sky-sphere crossing (what the
+//                                  work-precision chart recommends; see docs/benchmarks.md)
+// N = 256 (quick comparisons; ratios in one run) and 1024 (the seed's main frame; issue-6 target: <= 0.9 s on
+// 2 cores with max angular error <= 1e-6 rad over escaped pixels).
+// Counters: rays_per_second; ns_per_step = wall time x threads / accepted steps (one core's cost of one
+// ray-step; for the symmetric tracer that of the table rays, whose build time is table_ms); ns_per_pixel for
+// the symmetric tracer's look-ups; max_error, median_error (radians, escaped pixels, against
+// exact::asymptotic_direction at the camera, in double precision, computed after the timed loop); mismatches
+// (escaped/captured verdicts that disagree with the exact one); failures.
+#include "../../examples/work_precision/work_precision.hpp"
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/observer/static_frame.hpp"
+#include "grtrace/observer/tetrad.hpp"
+#include "grtrace/render/image.hpp"
+#include "grtrace/render/parallel_render.hpp"
+#include "grtrace/scene/shading.hpp"
+#include "grtrace/tableau/all_tableaux.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
+#include "grtrace/trace/symmetric_scene_tracer.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <initializer_list>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace grtrace;
+using work_precision::ExitPoint;
+
+constexpr double kCameraR = 200.0, kSkyR = 400.0, kFov = 90.0;
+const SchwarzschildMetric kMetric{1.0};
+
+/// grtrace-render's default camera: static at (r, pi/2, 0), looking at the hole, up = north.
+Camera seed_camera(int n) {
+  const Vec4 x(0.0, kCameraR, std::numbers::pi / 2.0, 0.0);
+  const Mat4 g = kMetric.metric(x);
+  const StaticFrame frame(g);
+  const Tetrad tetrad = make_tetrad(g, frame.velocity(Vec3::Zero()), frame.spatial(Vec3(-1.0, 0.0, 0.0)),
+                                    frame.spatial(Vec3(0.0, -1.0, 0.0)));
+  return Camera(x, tetrad, n, n, kFov);
+}
+
+TraceSettings settings_for(double rtol) {
+  TraceSettings s;
+  s.integrator.tolerance = {rtol, 1e-2 * rtol};
+  s.escape_radius = kSkyR;
+  return s;
+}
+
+RenderOptions quiet_options() {
+  RenderOptions o;
+  o.progress = ProgressMode::never;
+  return o;
+}
+
+/// Each pixel's answer in double precision (the image channels are float), for judging after the timed loop.
+struct FrameAnswers {
+  std::vector<exact::SkyDirection> direction;
+  std::vector<unsigned char> escaped;
+  explicit FrameAnswers(const Camera& cam)
+      : direction(static_cast<std::size_t>(cam.width()) * static_cast<std::size_t>(cam.height())),
+        escaped(direction.size(), 0) {}
+  void store(std::size_t i, const RayOutcome& o) {
+    escaped[i] = o.status == RayStatus::escaped ? 1 : 0;
+    direction[i] = o.where;
+  }
+};
+
+struct Timing {
+  double frame_seconds = 0.0;  ///< per frame
+  double step_seconds = 0.0;   ///< of which spent on the integration steps counted in `steps`
+  long steps = 0;
+};
+
+void report(benchmark::State& state, const Camera& cam, const FrameAnswers& answers, const RenderStats& stats,
+            const Timing& t) {
+  std::vector<double> errors;
+  long mismatches = 0;
+  for (int row = 0; row < cam.height(); ++row)
+    for (int col = 0; col < cam.width(); ++col) {
+      const std::size_t i =
+          static_cast<std::size_t>(row) * static_cast<std::size_t>(cam.width()) + static_cast<std::size_t>(col);
+      const auto exact_dir = exact::asymptotic_direction(cam.pixel_state(col, row), kMetric.mass);
+      if (static_cast<bool>(answers.escaped[i]) != exact_dir.has_value()) {
+        ++mismatches;
+        continue;
+      }
+      if (exact_dir) errors.push_back(exact::angular_distance(answers.direction[i], *exact_dir));
+    }
+  const auto summary = work_precision::summarize(errors);
+  const double rays = static_cast<double>(cam.width()) * cam.height();
+  state.counters["rays_per_second"] = rays / t.frame_seconds;
+  state.counters["threads"] = stats.threads;
+  state.counters["ns_per_step"] =
+      t.steps > 0 ? t.step_seconds * stats.threads * 1e9 / static_cast<double>(t.steps) : 0.0;
+  state.counters["max_error"] = summary.max;
+  state.counters["median_error"] = summary.median;
+  state.counters["mismatches"] = static_cast<double>(mismatches);
+  state.counters["failures"] = static_cast<double>(stats.failures());
+}
+
+template <class Tracer>
+RenderStats render_frame(const Tracer& tracer, const Camera& cam, Image& image, FrameAnswers& answers,
+                         const Shading& shading) {
+  return render_image(
+      image,
+      [&](int col, int row) {
+        const RayOutcome o = tracer.trace(cam.pixel_state(col, row));
+        answers.store(image.index(col, row), o);
+        return shade(o, shading);
+      },
+      quiet_options());
+}
+
+/// The general tracer as grtrace-render runs it (exact correction at the interpolated sky-sphere crossing).
+template <class T, class C>
+void frame_general(benchmark::State& state, int n, double rtol) {
+  const Camera cam = seed_camera(n);
+  const GeneralSceneTracer<T, C> tracer(kMetric, settings_for(rtol), C{}, AngleCorrection::exact);
+  Image image(n, n);
+  FrameAnswers answers(cam);
+  const Shading shading;
+  RenderStats stats;
+  Timing t;
+  for (auto _ : state) {
+    stats = render_frame(tracer, cam, image, answers, shading);
+    t.frame_seconds += stats.seconds;
+  }
+  t.frame_seconds /= static_cast<double>(state.iterations());
+  t.step_seconds = t.frame_seconds;
+  t.steps = stats.total_steps;
+  report(state, cam, answers, stats, t);
+}
+
+/// The same integration, with the exact continuation started at the last accepted node.
+template <class T, class C>
+struct NodeExitTracer {
+  GeodesicTracer<SchwarzschildMetric, T, C> tracer;
+  RayOutcome trace(const GeodesicState& y0) const {
+    GeodesicState node = GeodesicState::Zero();
+    const work_precision::detail::LastNode observer{&node};
+    const TraceResult r = tracer.trace_observed(y0, observer);
+    RayOutcome o;
+    o.status = r.status;
+    o.steps = r.accepted;
+    if (r.status == RayStatus::escaped) {
+      o.where = corrected_sky_direction(node, AngleCorrection::exact, tracer.metric().mass);
+      o.redshift = -1.0 / static_emitter_energy(tracer.metric(), node);
+    } else if (r.status == RayStatus::captured) {
+      o.object = SceneObjectId::horizon;
+      o.where = {r.final_state[2], std::remainder(r.final_state[3], 2.0 * std::numbers::pi)};
+      o.redshift = -1.0 / static_emitter_energy(tracer.metric(), r.final_state);
+    }
+    return o;
+  }
+};
+
+template <class T, class C>
+void frame_general_node(benchmark::State& state, int n, double rtol) {
+  const Camera cam = seed_camera(n);
+  const NodeExitTracer<T, C> tracer{GeodesicTracer<SchwarzschildMetric, T, C>(kMetric, settings_for(rtol))};
+  Image image(n, n);
+  FrameAnswers answers(cam);
+  const Shading shading;
+  RenderStats stats;
+  Timing t;
+  for (auto _ : state) {
+    stats = render_frame(tracer, cam, image, answers, shading);
+    t.frame_seconds += stats.seconds;
+  }
+  t.frame_seconds /= static_cast<double>(state.iterations());
+  t.step_seconds = t.frame_seconds;
+  t.steps = stats.total_steps;
+  report(state, cam, answers, stats, t);
+}
+
+/// The symmetric-sky tracer as grtrace-render runs it (--tracer symmetric / auto).
+template <class T, class C>
+void frame_symmetric(benchmark::State& state, int n, double table_rtol, int nodes_per_side) {
+  const Camera cam = seed_camera(n);
+  Image image(n, n);
+  FrameAnswers answers(cam);
+  const Shading shading;
+  RenderStats stats;
+  Timing t;
+  double table_seconds = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const SymmetricSceneTracer<T, C> tracer(kMetric, settings_for(table_rtol), cam, AngleCorrection::exact,
+                                            nodes_per_side);
+    table_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    t.steps = tracer.table().table_steps();
+    stats = render_frame(tracer, cam, image, answers, shading);
+    t.frame_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  const double iterations = static_cast<double>(state.iterations());
+  t.frame_seconds /= iterations;
+  t.step_seconds = table_seconds / iterations;
+  report(state, cam, answers, stats, t);
+  state.counters["table_rays"] = 2.0 * nodes_per_side;
+  state.counters["table_ms"] = t.step_seconds * 1e3;
+  state.counters["ns_per_pixel"] =
+      (t.frame_seconds - t.step_seconds) * stats.threads * 1e9 / (static_cast<double>(n) * n);
+}
+
+void configure(benchmark::internal::Benchmark* b, int n) {
+  b->Unit(benchmark::kMillisecond)->UseRealTime();
+  if (n > 256) b->Iterations(1);  // the 1024 x 1024 general frames take seconds each
+}
+
+template <class T, class C>
+void register_general(const std::string& name, double rtol, std::initializer_list<int> sizes) {
+  for (const int n : sizes)
+    configure(benchmark::RegisterBenchmark(("frame/general/" + name + "/" + std::to_string(n)).c_str(),
+                                           [=](benchmark::State& s) { frame_general<T, C>(s, n, rtol); }),
+              n);
+}
+
+template <class T, class C>
+void register_general_node(const std::string& name, double rtol, std::initializer_list<int> sizes) {
+  for (const int n : sizes)
+    configure(benchmark::RegisterBenchmark(("frame/general-node/" + name + "/" + std::to_string(n)).c_str(),
+                                           [=](benchmark::State& s) { frame_general_node<T, C>(s, n, rtol); }),
+              n);
+}
+
+template <class T, class C>
+void register_symmetric(const std::string& name, double rtol, int nodes, std::initializer_list<int> sizes) {
+  for (const int n : sizes)
+    benchmark::RegisterBenchmark(("frame/symmetric/" + name + "/" + std::to_string(n)).c_str(),
+                                 [=](benchmark::State& s) { frame_symmetric<T, C>(s, n, rtol, nodes); })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+}
+
+const bool registered = [] {
+  // General tracer: the defaults chosen from the chart (tsit5 + I, rtol 2e-9; tsit5 + PI, 3e-9), grtrace-render's
+  // previous default (dopri5 + PI, 1e-10), the cheapest setting with the exit at the last node (rkf78 + I, 1e-9),
+  // and the seed's integrator (RK4 + step doubling) for scale.
+  register_general<Tsitouras54, IController>("tsit5/i/2e-9", 2e-9, {256, 1024});
+  register_general<Tsitouras54, PIController>("tsit5/pi/3e-9", 3e-9, {256, 1024});
+  register_general<DormandPrince54, PIController>("dopri5/pi/1e-10", 1e-10, {256, 1024});
+  register_general_node<Fehlberg78, IController>("rkf78/i/1e-9", 1e-9, {256, 1024});
+  register_general<ClassicRK4, StepDoubling>("rk4/doubling/1e-8", 1e-8, {256});
+  // Symmetric-sky tracer (the table rays use the same method): the chosen defaults with 1024 and 512 table rays
+  // per side, grtrace-render's previous default, and Fehlberg78 at 1e-13.
+  register_symmetric<Tsitouras54, IController>("tsit5-i-2e-9-1024", 2e-9, 1024, {256, 1024});
+  register_symmetric<Tsitouras54, PIController>("tsit5-pi-3e-9-1024", 3e-9, 1024, {1024});
+  register_symmetric<Tsitouras54, IController>("tsit5-i-2e-9-512", 2e-9, 512, {1024});
+  register_symmetric<DormandPrince54, PIController>("dopri5-pi-1e-10-1024", 1e-10, 1024, {1024});
+  register_symmetric<Fehlberg78, PIController>("rkf78-pi-1e-13-1024", 1e-13, 1024, {1024});
+  return true;
+}();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -52,8 +52,29 @@ TEST(RenderCli, WritesTheContractedJsonExrAndPng) {
   for (const char* ch : {"R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"})
     EXPECT_TRUE(img.has_channel(ch)) << ch;
   for (float v : img.channel("R")) ASSERT_TRUE(std::isfinite(v));
-  EXPECT_EQ(img.metadata.at("tableau"), "dopri5");
+  EXPECT_EQ(img.metadata.at("tableau"), "tsit5");
   EXPECT_EQ(img.metadata.at("angle_correction"), "exact");
+}
+
+// Issue 6's target on the seed's main frame with the default settings: every escaped pixel's direction within
+// 1e-6 rad of the exact elliptic-integral answer (judged by --error-map, after the clock has stopped).
+TEST(RenderCli, DefaultsKeepTheMainFrameWithinOneMicroradian) {
+  const fs::path out = scratch("main.exr");
+  const CliRun r = run("--error-map --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto value = [&](const std::string& key) {
+    const auto at = r.output.find("\"" + key + "\":");
+    EXPECT_NE(at, std::string::npos) << key << " missing in " << r.output;
+    return at == std::string::npos ? std::nan("") : std::stod(r.output.substr(at + key.size() + 3));
+  };
+  const double max_error = value("max_error"), median_error = value("median_error");
+  EXPECT_LT(max_error, 1e-6);
+  EXPECT_LT(median_error, 1e-8);
+  EXPECT_GT(max_error, 0.0) << "an error map of exact zeros would mean it compared a thing with itself";
+  EXPECT_TRUE(fs::exists(out.parent_path() / "main-error.png"));
+  const grtrace::Image img = grtrace::read_exr(out);
+  ASSERT_TRUE(img.has_channel("error"));
+  EXPECT_EQ(img.width(), 1024);
 }
 
 TEST(RenderCli, OneAndTwoThreadsGiveIdenticalPixels) {

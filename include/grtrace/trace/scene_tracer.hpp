@@ -43,7 +43,11 @@ class GeneralSceneTracer {
     switch (r.status) {
       case RayStatus::escaped:
         out.object = SceneObjectId::sky;
-        out.where = corrected_sky_direction(y, correction_, m.mass);
+        // The exact continuation holds from any point of the outgoing leg: start it from the last accepted step
+        // (integrator error only), not from the crossing located on the interpolant (Hermite error for most
+        // tableaux). The other corrections are defined at the sky sphere itself.
+        out.where = corrected_sky_direction(correction_ == AngleCorrection::exact ? r.step_end_state : y, correction_,
+                                            m.mass);
         out.redshift = camera_energy / static_emitter_energy(m, y);
         break;
       case RayStatus::captured:

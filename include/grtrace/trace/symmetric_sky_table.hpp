@@ -187,9 +187,11 @@ class SymmetricSkyTable {
     Entry e{res.status, res.final_state[3], std::numeric_limits<double>::quiet_NaN(),
             static_cast<double>(res.accepted)};
     if (res.status == RayStatus::escaped) {
+      // Continue exactly from the last accepted step (just beyond the sky sphere): integrator error only.
+      const GeodesicState& end = res.step_end_state;
       const double b = r * std::sin(delta) / std::sqrt(f);
-      const auto rest = exact::remaining_sweep(b, res.final_state[1], res.final_state[5] > 0.0, M);
-      e.sweep_infinity = rest ? e.sweep + *rest : std::numeric_limits<double>::quiet_NaN();
+      const auto rest = exact::remaining_sweep(b, end[1], end[5] > 0.0, M);
+      e.sweep_infinity = rest ? end[3] + *rest : std::numeric_limits<double>::quiet_NaN();
     }
     return e;
   }

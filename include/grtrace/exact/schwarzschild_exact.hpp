@@ -16,6 +16,7 @@
 #pragma once
 
 #include "grtrace/core/types.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
 
 #include <Eigen/Geometry>  // cross product in angular_distance
 
@@ -120,33 +121,35 @@ struct SkyDirection {
   double phi;    ///< azimuth, (-pi, pi]
 };
 
+/// The sky direction of a nonzero Cartesian vector.
+inline SkyDirection sky_direction_of(const Vec3& d) {
+  SkyDirection s{};
+  direction_angles(d, s.theta, s.phi);
+  return s;
+}
+
 /// Exact asymptotic direction of a null ray in Schwarzschild coordinates (t, r, theta, phi | k^mu), traced
 /// forward in its affine parameter from the state y to infinity; nothing if it is captured.
 /// Used at the camera (the exact answer for a whole ray) and at the escape sphere (exact angle correction).
 inline std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y, double mass = 1.0) {
-  const double r = y[1], th = y[2], ph = y[3];
-  const double st = std::sin(th), ct = std::cos(th), sp = std::sin(ph), cp = std::cos(ph);
-  const Vec3 e_r(st * cp, st * sp, ct), e_th(ct * cp, ct * sp, -st), e_ph(-sp, cp, 0.0);
+  const double r = y[1];
+  const SphericalBasis e = spherical_basis(y[2], y[3]);
   const double E = (1.0 - 2.0 * mass / r) * y[4];
-  const Vec3 tangential = r * y[6] * e_th + r * st * y[7] * e_ph;  // r dOmega/dlambda in the embedding
-  const double L = r * tangential.norm();                          // total angular momentum r^2 |dOmega|
+  const Vec3 tangential = embedded_tangential_velocity(y, e);  // r dOmega/dlambda in the embedding
+  const double L = r * tangential.norm();                      // total angular momentum r^2 |dOmega|
   const double b = std::abs(L / E);
   const bool outward = y[5] > 0.0;
   const auto sweep = remaining_sweep(b, r, outward, mass);
   if (!sweep) return std::nullopt;
-  Vec3 dir = e_r;
-  if (tangential.norm() > 0.0) dir = std::cos(*sweep) * e_r + std::sin(*sweep) * tangential.normalized();
-  return SkyDirection{std::acos(std::clamp(dir.z(), -1.0, 1.0)), std::atan2(dir.y(), dir.x())};
+  Vec3 dir = e.r;
+  if (tangential.norm() > 0.0) dir = std::cos(*sweep) * e.r + std::sin(*sweep) * tangential.normalized();
+  return sky_direction_of(dir);
 }
 
 /// The seed's angle correction (eq. 7-8): the direction of the ray's Cartesian velocity at its last point,
 /// i.e. flat space beyond that point.
 inline SkyDirection flat_direction(const GeodesicState& y) {
-  const double r = y[1], th = y[2], ph = y[3];
-  const double st = std::sin(th), ct = std::cos(th), sp = std::sin(ph), cp = std::cos(ph);
-  const Vec3 e_r(st * cp, st * sp, ct), e_th(ct * cp, ct * sp, -st), e_ph(-sp, cp, 0.0);
-  const Vec3 v = y[5] * e_r + r * y[6] * e_th + r * st * y[7] * e_ph;
-  return SkyDirection{std::acos(std::clamp(v.z() / v.norm(), -1.0, 1.0)), std::atan2(v.y(), v.x())};
+  return sky_direction_of(embedded_velocity(y, spherical_basis(y[2], y[3])));
 }
 
 /// Angle between two directions on the sky (radians), accurate for small angles.

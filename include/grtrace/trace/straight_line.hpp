@@ -19,11 +19,9 @@ class StraightLineTracer {
 
   /// Takes a state in flat spherical coordinates; the ray leaves the sky sphere (radius > camera radius).
   RayOutcome trace(const GeodesicState& y) const {
-    const double r = y[1], th = y[2], ph = y[3];
-    const double st = std::sin(th), ct = std::cos(th), sp = std::sin(ph), cp = std::cos(ph);
-    const Vec3 e_r(st * cp, st * sp, ct), e_th(ct * cp, ct * sp, -st), e_ph(-sp, cp, 0.0);
-    const Vec3 p = r * e_r;
-    const Vec3 v = y[5] * e_r + r * y[6] * e_th + r * st * y[7] * e_ph;
+    const SphericalBasis e = spherical_basis(y[2], y[3]);
+    const Vec3 p = y[1] * e.r;
+    const Vec3 v = embedded_velocity(y, e);
     // |p + s v| = R for the positive root s.
     const double a = v.squaredNorm(), b = p.dot(v), c = p.squaredNorm() - sky_radius_ * sky_radius_;
     const double s = (-b + std::sqrt(b * b - a * c)) / a;
@@ -31,8 +29,7 @@ class StraightLineTracer {
     RayOutcome out;
     out.status = RayStatus::escaped;
     out.object = SceneObjectId::sky;
-    const Vec3 d = correction_ == AngleCorrection::none ? Vec3(hit.normalized()) : Vec3(v.normalized());
-    out.where = {std::acos(std::clamp(d.z(), -1.0, 1.0)), std::atan2(d.y(), d.x())};
+    out.where = exact::sky_direction_of(correction_ == AngleCorrection::none ? hit : v);
     out.radius = sky_radius_;
     out.redshift = -1.0 / y[4];  // static source in flat space: g(u, k) = k^t, and g(e_0, k_cam) = -1
     return out;

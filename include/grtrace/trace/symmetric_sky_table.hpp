@@ -43,16 +43,15 @@ struct PlanarGeometry {
 
 /// Reads the planar geometry of a ray from its state (Schwarzschild coordinates, either time direction).
 inline PlanarGeometry planar_geometry(const GeodesicState& y, double mass) {
-  const double r = y[1], th = y[2], ph = y[3];
-  const double st = std::sin(th), ct = std::cos(th), sp = std::sin(ph), cp = std::cos(ph);
-  const Vec3 e_r(st * cp, st * sp, ct), e_th(ct * cp, ct * sp, -st), e_ph(-sp, cp, 0.0);
+  const double r = y[1];
+  const SphericalBasis e = spherical_basis(y[2], y[3]);
   const double f = 1.0 - 2.0 * mass / r;
-  const Vec3 tangential = r * y[6] * e_th + r * st * y[7] * e_ph;  // orthonormal-frame tangential part of dx/dl
+  const Vec3 tangential = embedded_tangential_velocity(y, e);  // orthonormal-frame tangential part of dx/dl
   const double k_radial = y[5] / std::sqrt(f);                      // orthonormal radial part
   const double t_norm = tangential.norm();
   PlanarGeometry g;
-  g.radial = e_r;
-  g.tangential = t_norm > 0.0 ? Vec3(tangential / t_norm) : Vec3(e_th);
+  g.radial = e.r;
+  g.tangential = t_norm > 0.0 ? Vec3(tangential / t_norm) : e.theta;
   g.delta = std::atan2(t_norm, k_radial);
   g.impact = std::abs(r * t_norm / (f * y[4]));
   return g;
@@ -60,8 +59,7 @@ inline PlanarGeometry planar_geometry(const GeodesicState& y, double mass) {
 
 /// The direction at angle `sweep` from `radial` in the plane of the ray.
 inline exact::SkyDirection rotate_in_plane(const PlanarGeometry& g, double sweep) {
-  const Vec3 d = std::cos(sweep) * g.radial + std::sin(sweep) * g.tangential;
-  return {std::acos(std::clamp(d.z(), -1.0, 1.0)), std::atan2(d.y(), d.x())};
+  return exact::sky_direction_of(std::cos(sweep) * g.radial + std::sin(sweep) * g.tangential);
 }
 
 template <ExplicitTableau T, StepController C = PIController>

@@ -6,9 +6,6 @@
 //   frame/general/<method>/<N>     GeneralSceneTracer: every pixel integrated (trace/scene_tracer.hpp)
 //   frame/symmetric/<table>/<N>    SymmetricSceneTracer: one SymmetricSkyTable for the frame, built inside the
 //                                  timed region (it is part of the frame's cost), read once per pixel
-//   frame/general-node/<method>/<N>  the general tracer's integration, but the exact continuation applied at the
-//                                  last accepted node instead of the interpolated sky-sphere crossing (what the
-//                                  work-precision chart recommends; see docs/benchmarks.md)
 // N = 256 (quick comparisons; ratios in one run) and 1024 (the seed's main frame; issue-6 target: <= 0.9 s on
 // 2 cores with max angular error <= 1e-6 rad over escaped pixels).
 // Counters: rays_per_second; ns_per_step = wall time x threads / accepted steps (one core's cost of one
@@ -127,53 +124,11 @@ RenderStats render_frame(const Tracer& tracer, const Camera& cam, Image& image, 
       quiet_options());
 }
 
-/// The general tracer as grtrace-render runs it (exact correction at the interpolated sky-sphere crossing).
+/// The general tracer as grtrace-render runs it (the exact continuation starts at the last accepted step).
 template <class T, class C>
 void frame_general(benchmark::State& state, int n, double rtol) {
   const Camera cam = seed_camera(n);
   const GeneralSceneTracer<T, C> tracer(kMetric, settings_for(rtol), C{}, AngleCorrection::exact);
-  Image image(n, n);
-  FrameAnswers answers(cam);
-  const Shading shading;
-  RenderStats stats;
-  Timing t;
-  for (auto _ : state) {
-    stats = render_frame(tracer, cam, image, answers, shading);
-    t.frame_seconds += stats.seconds;
-  }
-  t.frame_seconds /= static_cast<double>(state.iterations());
-  t.step_seconds = t.frame_seconds;
-  t.steps = stats.total_steps;
-  report(state, cam, answers, stats, t);
-}
-
-/// The same integration, with the exact continuation started at the last accepted node.
-template <class T, class C>
-struct NodeExitTracer {
-  GeodesicTracer<SchwarzschildMetric, T, C> tracer;
-  RayOutcome trace(const GeodesicState& y0) const {
-    GeodesicState node = GeodesicState::Zero();
-    const work_precision::detail::LastNode observer{&node};
-    const TraceResult r = tracer.trace_observed(y0, observer);
-    RayOutcome o;
-    o.status = r.status;
-    o.steps = r.accepted;
-    if (r.status == RayStatus::escaped) {
-      o.where = corrected_sky_direction(node, AngleCorrection::exact, tracer.metric().mass);
-      o.redshift = -1.0 / static_emitter_energy(tracer.metric(), node);
-    } else if (r.status == RayStatus::captured) {
-      o.object = SceneObjectId::horizon;
-      o.where = {r.final_state[2], std::remainder(r.final_state[3], 2.0 * std::numbers::pi)};
-      o.redshift = -1.0 / static_emitter_energy(tracer.metric(), r.final_state);
-    }
-    return o;
-  }
-};
-
-template <class T, class C>
-void frame_general_node(benchmark::State& state, int n, double rtol) {
-  const Camera cam = seed_camera(n);
-  const NodeExitTracer<T, C> tracer{GeodesicTracer<SchwarzschildMetric, T, C>(kMetric, settings_for(rtol))};
   Image image(n, n);
   FrameAnswers answers(cam);
   const Shading shading;
@@ -232,14 +187,6 @@ void register_general(const std::string& name, double rtol, std::initializer_lis
 }
 
 template <class T, class C>
-void register_general_node(const std::string& name, double rtol, std::initializer_list<int> sizes) {
-  for (const int n : sizes)
-    configure(benchmark::RegisterBenchmark(("frame/general-node/" + name + "/" + std::to_string(n)).c_str(),
-                                           [=](benchmark::State& s) { frame_general_node<T, C>(s, n, rtol); }),
-              n);
-}
-
-template <class T, class C>
 void register_symmetric(const std::string& name, double rtol, int nodes, std::initializer_list<int> sizes) {
   for (const int n : sizes)
     benchmark::RegisterBenchmark(("frame/symmetric/" + name + "/" + std::to_string(n)).c_str(),
@@ -250,12 +197,12 @@ void register_symmetric(const std::string& name, double rtol, int nodes, std::in
 
 const bool registered = [] {
   // General tracer: the defaults chosen from the chart (tsit5 + I, rtol 2e-9; tsit5 + PI, 3e-9), grtrace-render's
-  // previous default (dopri5 + PI, 1e-10), the cheapest setting with the exit at the last node (rkf78 + I, 1e-9),
+  // previous default (dopri5 + PI, 1e-10), the cheapest with the continuation from the last step (rkf78 + I, 1e-9),
   // and the seed's integrator (RK4 + step doubling) for scale.
   register_general<Tsitouras54, IController>("tsit5/i/2e-9", 2e-9, {256, 1024});
   register_general<Tsitouras54, PIController>("tsit5/pi/3e-9", 3e-9, {256, 1024});
   register_general<DormandPrince54, PIController>("dopri5/pi/1e-10", 1e-10, {256, 1024});
-  register_general_node<Fehlberg78, IController>("rkf78/i/1e-9", 1e-9, {256, 1024});
+  register_general<Fehlberg78, IController>("rkf78/i/1e-9", 1e-9, {256, 1024});
   register_general<ClassicRK4, StepDoubling>("rk4/doubling/1e-8", 1e-8, {256});
   // Symmetric-sky tracer (the table rays use the same method): the chosen defaults with 1024 and 512 table rays
   // per side, grtrace-render's previous default, and Fehlberg78 at 1e-13.

@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <tuple>
 #include <utility>
 
@@ -65,7 +66,7 @@ double constraint_violation(const Metric& metric, const GeodesicState& y, double
 /// comes out with theta < 0 or > pi; the same event and direction are theta' = -theta (or 2 pi - theta),
 /// phi' = phi + pi, k^theta' = -k^theta. Returns true when it changed y.
 inline bool wrap_polar_axis(GeodesicState& y) {
-  constexpr double pi = 3.14159265358979323846;
+  constexpr double pi = std::numbers::pi;
   if (y[2] >= 0.0 && y[2] <= pi) return false;
   y[2] = y[2] < 0.0 ? -y[2] : 2.0 * pi - y[2];
   y[3] += pi;

@@ -8,7 +8,9 @@
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/render/image.hpp"
 
+#include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace grtrace {
 
@@ -28,10 +30,15 @@ struct RayOutcome {
   int steps = 0;
 };
 
+/// Where the state is on its sphere: (theta, phi) with phi reduced to (-pi, pi] (the chart's phi keeps counting turns).
+inline exact::SkyDirection chart_angles(const GeodesicState& y) {
+  return {y[2], std::remainder(y[3], 2.0 * std::numbers::pi)};
+}
+
 /// The sky direction of a ray that reached the sky sphere in state y, for each correction.
 inline exact::SkyDirection corrected_sky_direction(const GeodesicState& y, AngleCorrection correction, double mass) {
   switch (correction) {
-    case AngleCorrection::none: return {y[2], std::remainder(y[3], 2.0 * 3.14159265358979323846)};
+    case AngleCorrection::none: return chart_angles(y);
     case AngleCorrection::flat: return exact::flat_direction(y);
     case AngleCorrection::exact:
       if (auto d = exact::asymptotic_direction(y, mass)) return *d;

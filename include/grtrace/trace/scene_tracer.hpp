@@ -52,12 +52,12 @@ class GeneralSceneTracer {
         break;
       case RayStatus::captured:
         out.object = SceneObjectId::horizon;
-        out.where = {y[2], std::remainder(y[3], 2.0 * 3.14159265358979323846)};
+        out.where = chart_angles(y);
         out.radius = y[1];
         out.redshift = camera_energy / static_emitter_energy(m, y);
         break;
       case RayStatus::hit:
-        out.where = {y[2], std::remainder(y[3], 2.0 * 3.14159265358979323846)};
+        out.where = chart_angles(y);
         out.radius = y[1];
         visit_object(r.hit_event, [&](const auto& o) {
           out.object = o.id;

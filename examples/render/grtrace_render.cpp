@@ -7,12 +7,11 @@
 #include "command_line.hpp"
 #include "json_writer.hpp"
 
-#include "grtrace/observer/camera.hpp"
-#include "grtrace/observer/static_frame.hpp"
+#include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/exr_io.hpp"
-#include "grtrace/render/parallel_render.hpp"
+#include "grtrace/render/frame.hpp"
 #include "grtrace/render/png_preview.hpp"
-#include "grtrace/scene/shading.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/straight_line.hpp"
@@ -32,13 +31,12 @@ using tools::JsonObject;
 using tools::UsageError;
 
 struct Request {
-  SceneKind scene = SceneKind::checker;
-  std::string scene_name, metric_name, tableau, control, tracer, correction_name, out;
+  StandardSceneSpec scene;
+  std::string metric_name, tableau, control, tracer, correction_name, out;
   SchwarzschildMetric metric;  // mass 0 for flat space
   TraceSettings settings;
   AngleCorrection correction = AngleCorrection::exact;
   std::optional<Camera> camera;
-  Shading shading;
   int threads = 0;
   int table_nodes = 1024;
   bool error_map = false;
@@ -56,9 +54,11 @@ CommandLine make_command_line() {
       .option("camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)")
       .option("camera-theta", "90", "camera polar angle, degrees, strictly between 0 and 180")
       .option("camera-phi", "0", "camera azimuth, degrees")
-      .option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, static frame)")
-      .option("look", "-1,0,0", "look direction r,theta,phi in the static frame (default: at the hole)")
-      .option("up", "0,-1,0", "up direction r,theta,phi in the static frame (default: the north pole)")
+      .option("observer", "static", "static | zamo: the observer whose frame carries the camera (same for a "
+                                    "non-rotating hole)")
+      .option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)")
+      .option("look", "-1,0,0", "look direction r,theta,phi in the observer's frame (default: at the hole)")
+      .option("up", "0,-1,0", "up direction r,theta,phi in the observer's frame (default: the north pole)")
       .option("fov", "90", "horizontal field of view, degrees, in (0, 180)")
       .option("width", "1024", "image width in pixels")
       .option("height", "1024", "image height in pixels")
@@ -94,17 +94,17 @@ Vec3 triple(const CommandLine& cli, const std::string& name) {
 
 Request read_request(const CommandLine& cli) {
   Request q;
-  q.scene_name = cli.text("scene");
-  const auto scene = scene_kind_from_string(q.scene_name);
-  if (!scene) throw UsageError("unknown scene '" + q.scene_name + "'; choose checker, sky, redshift or disk");
-  q.scene = *scene;
+  q.scene.name = cli.text("scene");
+  if (!is_standard_scene(q.scene.name))
+    throw UsageError("unknown scene '" + q.scene.name + "'; choose checker, sky, redshift or disk");
+  const bool disk = q.scene.name == "disk";
   q.metric_name = cli.text("metric");
   if (q.metric_name != "schwarzschild" && q.metric_name != "minkowski")
     throw UsageError("unknown metric '" + q.metric_name + "'; choose schwarzschild or minkowski");
   const double mass = cli.number("mass");
   if (!(mass > 0.0)) throw UsageError("--mass must be > 0");
   q.metric.mass = q.metric_name == "minkowski" ? 0.0 : mass;
-  if (q.metric_name == "minkowski" && q.scene == SceneKind::disk)
+  if (q.metric_name == "minkowski" && disk)
     throw UsageError("--scene disk needs --metric schwarzschild (the disk orbits the mass)");
 
   q.tableau = cli.text("tableau");
@@ -149,12 +149,19 @@ Request read_request(const CommandLine& cli) {
   if (nodes < 8 || nodes > 1'000'000) throw UsageError("--table-rays must be in 8 .. 1e6");
   q.table_nodes = static_cast<int>(nodes);
 
-  const Vec4 x(0.0, r, theta * std::numbers::pi / 180.0, phi * std::numbers::pi / 180.0);
-  const StaticFrame frame(q.metric.metric(x));
+  CameraSpec spec;
+  spec.position = Vec4(0.0, r, theta * std::numbers::pi / 180.0, phi * std::numbers::pi / 180.0);
+  const auto observer = observer_kind_from_string(cli.text("observer"));
+  if (!observer) throw UsageError("unknown --observer '" + cli.text("observer") + "'; choose static or zamo");
+  spec.observer = *observer;
+  spec.velocity = triple(cli, "velocity");
+  spec.look = triple(cli, "look");
+  spec.up = triple(cli, "up");
+  spec.width = static_cast<int>(width);
+  spec.height = static_cast<int>(height);
+  spec.fov_degrees = cli.number("fov");
   try {
-    const Tetrad tetrad = make_tetrad(q.metric.metric(x), frame.velocity(triple(cli, "velocity")),
-                                      frame.spatial(triple(cli, "look")), frame.spatial(triple(cli, "up")));
-    q.camera.emplace(x, tetrad, static_cast<int>(width), static_cast<int>(height), cli.number("fov"));
+    q.camera.emplace(make_camera(q.metric, spec));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -162,34 +169,35 @@ Request read_request(const CommandLine& cli) {
   q.tracer = cli.text("tracer");
   if (q.tracer != "auto" && q.tracer != "general" && q.tracer != "symmetric")
     throw UsageError("unknown --tracer '" + q.tracer + "'; choose auto, general or symmetric");
-  if (q.tracer == "symmetric" && q.scene == SceneKind::disk)
+  if (q.tracer == "symmetric" && disk)
     throw UsageError("--tracer symmetric cannot draw a disk (it breaks the spherical symmetry); use general");
   if (q.metric_name == "minkowski") q.tracer = "straight-line";
-  else if (q.tracer == "auto") q.tracer = q.scene == SceneKind::disk ? "general" : "symmetric";
+  else if (q.tracer == "auto") q.tracer = disk ? "general" : "symmetric";
 
-  q.shading.kind = q.scene;
   const long squares = cli.integer("checker-squares");
   if (squares < 1 || squares > 10000) throw UsageError("--checker-squares must be in 1 .. 10000");
-  q.shading.horizon_squares = static_cast<int>(squares);
-  q.shading.sky = q.scene == SceneKind::checker ? decltype(q.shading.sky){CheckerSky{static_cast<int>(squares)}}
-                                                : StarFieldSky{};
+  q.scene.checker_squares = static_cast<int>(squares);
   if (const std::string tex = cli.text("sky-texture"); !tex.empty()) {
     try {
       const Image img = read_exr(tex);
       if (!img.has_channel("R") || !img.has_channel("G") || !img.has_channel("B"))
         throw UsageError("--sky-texture '" + tex + "' has no R, G, B channels");
-      q.shading.sky = TextureSky{img.width(), img.height(), img.channel("R"), img.channel("G"), img.channel("B")};
+      q.scene.texture = TextureSky{img.width(), img.height(), img.channel("R"), img.channel("G"), img.channel("B")};
     } catch (const UsageError&) {
       throw;
     } catch (const std::exception& e) {
       throw UsageError("--sky-texture: " + std::string(e.what()));
     }
   }
-  q.shading.disk.mass = q.metric.mass;
-  q.shading.disk.r_in = cli.number("disk-inner");
-  q.shading.disk.r_out = cli.number("disk-outer");
-  if (!(q.shading.disk.r_in > 3.0 * q.metric.mass && q.shading.disk.r_out > q.shading.disk.r_in))
-    throw UsageError("disk radii must satisfy 3M < --disk-inner < --disk-outer (circular orbits exist beyond 3M)");
+  q.scene.disk.r_in = cli.number("disk-inner");
+  q.scene.disk.r_out = cli.number("disk-outer");
+  if (q.metric_name == "schwarzschild") {
+    try {
+      check_disk_orbits(q.metric, q.scene.disk);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer: need 3M < inner < outer)");
+    }
+  }
 
   q.error_map = cli.flag_set("error-map");
 
@@ -224,21 +232,6 @@ void write_status_map(const std::string& path, const Image& image) {
 
 /// Sky direction of every pixel in double precision (the EXR channels are float), kept for --error-map.
 using SkyDirections = std::vector<exact::SkyDirection>;
-
-template <class Tracer>
-RenderStats render_with(const Tracer& tracer, const Request& q, Image& image, SkyDirections* directions) {
-  RenderOptions options;
-  options.threads = q.threads;
-  const Camera& cam = *q.camera;
-  return render_image(
-      image,
-      [&](int col, int row) {
-        const RayOutcome o = tracer.trace(cam.pixel_state(col, row));
-        if (directions) (*directions)[image.index(col, row)] = o.where;  // distinct pixels: no data race
-        return shade(o, q.shading);
-      },
-      options);
-}
 
 // ---- --error-map: every escaped pixel against the exact answer ------------------------------------------
 
@@ -318,28 +311,30 @@ void write_error_map(const std::string& path, const Image& image) {
   write_png_rgb8(path, image.width(), image.height(), rgb);
 }
 
-struct RenderRun {
-  RenderStats stats;
-  long table_rays = 0, table_steps = 0;
+struct TableStats {
+  long rays = 0, steps = 0;
 };
 
+/// The frame through the chosen tracer and the preset's scene (render/frame.hpp does the rest).
 template <ExplicitTableau T, StepController C>
-RenderRun run(const Request& q, Image& image, SkyDirections* directions) {
-  RenderRun run;
-  if (q.tracer == "straight-line") {
-    run.stats = render_with(StraightLineTracer(q.settings.escape_radius, q.correction), q, image, directions);
-  } else if (q.tracer == "symmetric") {
-    const SymmetricSceneTracer<T, C> tracer(q.metric, q.settings, *q.camera, q.correction, q.table_nodes);
-    run.table_rays = tracer.table().table_rays();
-    run.table_steps = tracer.table().table_steps();
-    run.stats = render_with(tracer, q, image, directions);
-  } else if (q.scene == SceneKind::disk) {
-    run.stats = render_with(GeneralSceneTracer<T, C, ThinDisk>(q.metric, q.settings, C{}, q.correction, q.shading.disk),
-                            q, image, directions);
-  } else {
-    run.stats = render_with(GeneralSceneTracer<T, C>(q.metric, q.settings, C{}, q.correction), q, image, directions);
-  }
-  return run;
+Frame run(const Request& q, SkyDirections* directions, TableStats& table) {
+  RenderOptions options;
+  options.threads = q.threads;
+  const Camera& cam = *q.camera;
+  return with_standard_scene(q.scene, [&]<class Scene>(Scene scene) -> Frame {
+    if (q.tracer == "straight-line")
+      return render_frame(cam, StraightLineTracer(MinkowskiSpherical{}, q.settings.escape_radius, q.correction, scene),
+                          options, directions);
+    if constexpr (Scene::object_count == 0) {
+      if (q.tracer == "symmetric") {
+        const SymmetricSceneTracer<T, C, Scene> tracer(q.metric, q.settings, cam, q.correction, scene, q.table_nodes);
+        table = {tracer.table().table_rays(), tracer.table().table_steps()};
+        return render_frame(cam, tracer, options, directions);
+      }
+    }
+    return render_frame(cam, make_general_tracer<T, C>(q.metric, q.settings, q.correction, scene), options,
+                        directions);
+  });
 }
 
 }  // namespace
@@ -348,15 +343,16 @@ int main(int argc, char** argv) {
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
     const Request q = read_request(cli);
-    Image image(q.camera->width(), q.camera->height());
-    SkyDirections directions(q.error_map ? image.pixel_count() : 0);  // --error-map only
+    SkyDirections directions;  // --error-map only
     SkyDirections* const where = q.error_map ? &directions : nullptr;
     const auto t0 = std::chrono::steady_clock::now();
-    RenderRun result;
-    dispatch_method(q.tableau, q.control, [&]<class T, class C>() { result = run<T, C>(q, image, where); });
+    std::optional<Frame> frame;
+    TableStats table;
+    dispatch_method(q.tableau, q.control, [&]<class T, class C>() { frame.emplace(run<T, C>(q, where, table)); });
     // The table (symmetric tracer) is part of the frame's cost: time the whole thing.
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    RenderStats& st = result.stats;
+    Image& image = frame->image;
+    RenderStats& st = frame->stats;
     st.seconds = seconds;
     st.rays_per_second = static_cast<double>(st.rays) / seconds;
     // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
@@ -365,17 +361,11 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
     // Every option's effective value (given or default), so the frame can be reproduced from its header alone.
     for (const auto& [name, value] : cli.values()) image.metadata["option_" + name] = value;
-    const Vec4& x = q.camera->position();
     auto num = [](double v) { return JsonObject::number(v); };
-    image.metadata["scene"] = q.scene_name;
+    image.metadata["scene"] = q.scene.name;
     image.metadata["metric"] = q.metric_name;
     image.metadata["mass"] = num(q.metric.mass);
-    image.metadata["camera_position"] = num(x[0]) + "," + num(x[1]) + "," + num(x[2]) + "," + num(x[3]);
-    for (int a = 0; a < 4; ++a) {
-      const Vec4& e = q.camera->tetrad().e[static_cast<std::size_t>(a)];
-      image.metadata["tetrad_e" + std::to_string(a)] = num(e[0]) + "," + num(e[1]) + "," + num(e[2]) + "," + num(e[3]);
-    }
-    image.metadata["fov_degrees"] = cli.text("fov");
+    image.metadata["observer"] = cli.text("observer");
     image.metadata["tracer"] = q.tracer;
     image.metadata["tableau"] = q.tableau;
     image.metadata["control"] = q.control;
@@ -402,9 +392,8 @@ int main(int argc, char** argv) {
     JsonObject json;
     json.add("width", st.width).add("height", st.height).add("seconds", seconds);
     json.add("rays_per_second", st.rays_per_second);
-    const double mean_steps = q.tracer == "symmetric"
-                                  ? static_cast<double>(result.table_steps) / static_cast<double>(st.rays)
-                                  : st.mean_steps;
+    const double mean_steps =
+        q.tracer == "symmetric" ? static_cast<double>(table.steps) / static_cast<double>(st.rays) : st.mean_steps;
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", q.tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
@@ -415,7 +404,7 @@ int main(int argc, char** argv) {
       json.add("error_pixels", errors.judged).add("error_mismatches", errors.mismatches);
       json.add("error_map", error_map_path(q.out));
     }
-    if (q.tracer == "symmetric") json.add("table_rays", result.table_rays).add("table_steps", result.table_steps);
+    if (q.tracer == "symmetric") json.add("table_rays", table.rays).add("table_steps", table.steps);
     std::cout << json.str() << std::endl;
     return 0;
   });

@@ -18,12 +18,12 @@
 
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera.hpp"
-#include "grtrace/observer/static_frame.hpp"
+#include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/observer/tetrad.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/render/png_preview.hpp"
-#include "grtrace/scene/shading.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/scene/thin_disk.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
@@ -226,14 +226,16 @@ Camera camera_from_options(const Params& p, double mass, double sky_radius, int 
   }
   const double fov = p.number("fov");
   if (!(fov > 0.0 && fov < 180.0)) throw UsageError("--fov must lie in (0, 180) degrees, got " + p.text("fov"));
-  const SchwarzschildMetric metric{mass};
-  const Vec4 x(0.0, r, theta * kDeg, phi * kDeg);
-  const Mat4 g = metric.metric(x);
-  const StaticFrame frame(g);
+  CameraSpec spec;
+  spec.position = Vec4(0.0, r, theta * kDeg, phi * kDeg);
+  spec.velocity = triple(p, "velocity");
+  spec.look = triple(p, "look");
+  spec.up = triple(p, "up");
+  spec.width = width;
+  spec.height = height;
+  spec.fov_degrees = fov;
   try {
-    return Camera(x, make_tetrad(g, frame.velocity(triple(p, "velocity")), frame.spatial(triple(p, "look")),
-                                 frame.spatial(triple(p, "up"))),
-                  width, height, fov);
+    return make_camera(SchwarzschildMetric{mass}, spec);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -296,9 +298,9 @@ Request read_request(const CommandLine& cli) {
     throw UsageError("--frame: the frame was rendered with --metric " + q.frame->metadata.at("metric") +
                      "; the viewer draws Schwarzschild scenes only");
 
-  const auto kind = scene_kind_from_string(p.text("scene"));
-  if (!kind) throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");
-  q.scene = *kind;
+  q.scene = p.text("scene");
+  if (!is_standard_scene(q.scene))
+    throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");
   q.mass = positive(p, "mass");
   q.sky_radius = positive(p, "sky-radius");
   if (q.frame && q.frame->metadata.count("camera_position")) {
@@ -316,8 +318,13 @@ Request read_request(const CommandLine& cli) {
   q.width = q.camera->width();
   q.height = q.camera->height();
   q.disk = {p.number("disk-inner"), p.number("disk-outer")};
-  if (q.scene == SceneKind::disk && !(q.disk[0] > 3.0 * q.mass && q.disk[1] > q.disk[0]))
-    throw UsageError("disk radii must satisfy 3M < --disk-inner < --disk-outer (circular orbits exist beyond 3M)");
+  if (q.scene == "disk") {
+    try {
+      check_disk_orbits(SchwarzschildMetric{q.mass}, make_scene_spec(q).disk);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer: need 3M < inner < outer)");
+    }
+  }
   const std::string corr = p.text("angle-correction");
   if (corr == "none") q.correction = AngleCorrection::none;
   else if (corr == "flat") q.correction = AngleCorrection::flat;
@@ -449,14 +456,15 @@ int run_view(const Request& q) {
 
   viz::SceneLayout layout;
   layout.mass = q.mass;
-  if (q.scene == SceneKind::disk) layout.disk = q.disk;
+  if (q.scene == "disk") layout.disk = q.disk;
   layout.sky_radius = q.sky_radius;
-  const Shading shading = view::make_shading(q);
+  const StandardSceneSpec scene_spec = view::make_scene_spec(q);
+  const HorizonPaint paint{scene_spec.checker_squares};  // the checker scene's horizon, drawn on the 3D sphere
   layout.horizon_checkerboard = q.checkerboard;
-  layout.checker_theta = shading.horizon_squares;
-  layout.checker_phi = 2 * shading.horizon_squares;
-  layout.checker_a = encode(shading.horizon_dark);  // parity 0 (see checker_parity)
-  layout.checker_b = encode(shading.horizon_light);
+  layout.checker_theta = paint.squares;
+  layout.checker_phi = 2 * paint.squares;
+  layout.checker_a = encode(paint.dark);  // parity 0 (see checker_parity)
+  layout.checker_b = encode(paint.light);
   const SchwarzschildMetric metric{q.mass};
   layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
   viz::SceneView scene(layout);

@@ -16,7 +16,7 @@ template <class F>
 void with_scene_tracer(const Request& q, F&& f) {
   dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
     const GeodesicTracer<SchwarzschildMetric, T, C> tracer(SchwarzschildMetric{q.mass}, q.rays.settings);
-    if (q.scene == SceneKind::disk) f(tracer, make_shading(q).disk);
+    if (q.scene == "disk") f(tracer, make_scene_spec(q).disk);
     else f(tracer);
   });
 }

@@ -8,7 +8,7 @@
 
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/render/image.hpp"
-#include "grtrace/scene/shading.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 #include "grtrace/viz/frame_image.hpp"
@@ -35,7 +35,7 @@ struct Request {
   std::string screenshot;
   std::array<int, 2> size{};
   std::string chart;
-  SceneKind scene = SceneKind::disk;
+  std::string scene = "disk";  ///< a preset of scene/standard_scenes.hpp
   double mass = 1.0;
   std::optional<Camera> camera;
   double fov = 55.0;
@@ -63,12 +63,10 @@ struct Request {
   double view_angle = 30.0;
 };
 
-inline Shading make_shading(const Request& q) {
-  Shading s;
-  s.kind = q.scene;
-  if (q.scene == SceneKind::checker) s.sky = CheckerSky{};
-  else s.sky = StarFieldSky{};
-  s.disk.mass = q.mass;
+/// The preset scene of the request (scene/standard_scenes.hpp), as grtrace-render builds it.
+inline StandardSceneSpec make_scene_spec(const Request& q) {
+  StandardSceneSpec s;
+  s.name = q.scene;
   s.disk.r_in = q.disk[0];
   s.disk.r_out = q.disk[1];
   return s;

@@ -19,7 +19,7 @@
 #include "grtrace/observer/tetrad.hpp"
 #include "grtrace/render/image.hpp"
 #include "grtrace/render/parallel_render.hpp"
-#include "grtrace/scene/shading.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/symmetric_scene_tracer.hpp"
@@ -112,14 +112,13 @@ void report(benchmark::State& state, const Camera& cam, const FrameAnswers& answ
 }
 
 template <class Tracer>
-RenderStats render_frame(const Tracer& tracer, const Camera& cam, Image& image, FrameAnswers& answers,
-                         const Shading& shading) {
+RenderStats render_answers(const Tracer& tracer, const Camera& cam, Image& image, FrameAnswers& answers) {
   return render_image(
       image,
       [&](int col, int row) {
         const RayOutcome o = tracer.trace(cam.pixel_state(col, row));
         answers.store(image.index(col, row), o);
-        return shade(o, shading);
+        return tracer.scene().shade(o);
       },
       quiet_options());
 }
@@ -128,14 +127,14 @@ RenderStats render_frame(const Tracer& tracer, const Camera& cam, Image& image, 
 template <class T, class C>
 void frame_general(benchmark::State& state, int n, double rtol) {
   const Camera cam = seed_camera(n);
-  const GeneralSceneTracer<T, C> tracer(kMetric, settings_for(rtol), C{}, AngleCorrection::exact);
+  const auto tracer =
+      make_general_tracer<T, C>(kMetric, settings_for(rtol), AngleCorrection::exact, background_scene({}));
   Image image(n, n);
   FrameAnswers answers(cam);
-  const Shading shading;
   RenderStats stats;
   Timing t;
   for (auto _ : state) {
-    stats = render_frame(tracer, cam, image, answers, shading);
+    stats = render_answers(tracer, cam, image, answers);
     t.frame_seconds += stats.seconds;
   }
   t.frame_seconds /= static_cast<double>(state.iterations());
@@ -150,17 +149,17 @@ void frame_symmetric(benchmark::State& state, int n, double table_rtol, int node
   const Camera cam = seed_camera(n);
   Image image(n, n);
   FrameAnswers answers(cam);
-  const Shading shading;
   RenderStats stats;
   Timing t;
   double table_seconds = 0.0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    const SymmetricSceneTracer<T, C> tracer(kMetric, settings_for(table_rtol), cam, AngleCorrection::exact,
-                                            nodes_per_side);
+    const SymmetricSceneTracer<T, C, BackgroundScene> tracer(kMetric, settings_for(table_rtol), cam,
+                                                             AngleCorrection::exact, background_scene({}),
+                                                             nodes_per_side);
     table_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     t.steps = tracer.table().table_steps();
-    stats = render_frame(tracer, cam, image, answers, shading);
+    stats = render_answers(tracer, cam, image, answers);
     t.frame_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   const double iterations = static_cast<double>(state.iterations());

@@ -1,6 +1,7 @@
 // Cameras, tetrads and the scene tracers against closed-form physics (issue 4's tests).
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/static_frame.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/straight_line.hpp"
@@ -31,6 +32,13 @@ TraceSettings accurate(double sky) {
   s.integrator.tolerance = {1e-10, 1e-12};
   s.escape_radius = sky;
   return s;
+}
+
+const BackgroundScene kChecker = background_scene(StandardSceneSpec{});
+
+auto general_tracer(double sky) {
+  return make_general_tracer<DormandPrince54, PIController>(SchwarzschildMetric{1.0}, accurate(sky),
+                                                            AngleCorrection::exact, kChecker);
 }
 
 TEST(Tetrad, IsOrthonormalAndRightHandedForRandomObservers) {
@@ -101,16 +109,15 @@ TEST_P(Shadow, EdgeSitsWhereTheFormulaPutsItWithinOnePixel) {
   const double fov = 2.0 * a * 180.0 / kPi * 1.6;  // the shadow fills ~60% of the width
   const int w = 201, h = 3;                        // odd: the middle row and column are on the axis
   const Camera cam = static_camera(1.0, r_o, w, h, fov);
-  const SymmetricSceneTracer<DormandPrince54, PIController> symmetric(SchwarzschildMetric{1.0}, accurate(400.0), cam,
-                                                                      AngleCorrection::exact, 256);
-  const GeneralSceneTracer<DormandPrince54, PIController> general(SchwarzschildMetric{1.0}, accurate(400.0), {},
-                                                                  AngleCorrection::exact);
+  const SymmetricSceneTracer<DormandPrince54, PIController, BackgroundScene> symmetric(
+      SchwarzschildMetric{1.0}, accurate(400.0), cam, AngleCorrection::exact, kChecker, 256);
+  const auto general = general_tracer(400.0);
   for (int which = 0; which < 2; ++which) {
     int last_inside = -1;
     for (int col = (w - 1) / 2; col < w; ++col) {
       const GeodesicState y = cam.pixel_state(col, 1);
       const RayOutcome o = which == 0 ? symmetric.trace(y) : general.trace(y);
-      if (o.object == SceneObjectId::horizon) last_inside = col;
+      if (o.object == kHorizonObject) last_inside = col;
     }
     ASSERT_GE(last_inside, (w - 1) / 2);
     ASSERT_LT(last_inside, w - 1);
@@ -126,8 +133,7 @@ TEST(Scene, FrameIsMirrorSymmetricAndRedshiftOfStaticEmittersIsExact) {
   const double r_o = 12.0, sky = 300.0;
   const int w = 41, h = 21;
   const Camera cam = static_camera(1.0, r_o, w, h, 100.0);
-  const GeneralSceneTracer<DormandPrince54, PIController> tracer(SchwarzschildMetric{1.0}, accurate(sky), {},
-                                                                 AngleCorrection::exact);
+  const auto tracer = general_tracer(sky);
   const double guard = 2.0 * (1.0 + 1e-3);
   int captured = 0, escaped = 0;
   for (int row = 0; row < h; row += 2)
@@ -147,7 +153,7 @@ TEST(Scene, FrameIsMirrorSymmetricAndRedshiftOfStaticEmittersIsExact) {
 
 TEST(Minkowski, SkyDirectionIsTheCameraFrameDirection) {
   const Camera cam = static_camera(0.0, 10.0, 31, 17, 120.0);
-  const StraightLineTracer tracer(1000.0, AngleCorrection::exact);
+  const StraightLineTracer tracer(MinkowskiSpherical{}, 1000.0, AngleCorrection::exact, kChecker);
   for (int row = 0; row < 17; ++row)
     for (int col = 0; col < 31; ++col) {
       const Vec3 d = cam.pixel_direction(col, row);  // (forward, up, right) = (-x, +z, +y) at (r, 90 deg, 0)
@@ -163,7 +169,7 @@ TEST(Minkowski, MovingCameraShowsAberrationAndDoppler) {
   const double beta = 0.6, gamma = 1.0 / std::sqrt(1.0 - beta * beta);
   // Moving forward (towards the centre, -r) at 0.6 c.
   const Camera cam = static_camera(0.0, 10.0, 41, 3, 150.0, Vec3(-beta, 0.0, 0.0));
-  const StraightLineTracer tracer(1000.0, AngleCorrection::exact);
+  const StraightLineTracer tracer(MinkowskiSpherical{}, 1000.0, AngleCorrection::exact, kChecker);
   for (int col = 0; col < 41; ++col) {
     const Vec3 d = cam.pixel_direction(col, 1);
     const double cos_camera = d[0];  // angle from the direction of motion, in the camera frame

@@ -116,7 +116,7 @@ TEST(Image, SetAndSampleRoundTrip) {
   Image image(4, 3);
   PixelSample s;
   s.rgb = {0.25f, 0.5f, 2.0f};
-  s.object = grtrace::SceneObjectId::disk;
+  s.object = 2;  // the first of the scene's own objects
   s.status = RayStatus::hit;
   s.redshift = 1.5f;
   s.sky_theta = 0.1f;
@@ -421,7 +421,7 @@ PixelSample uneven_pixel(int x, int y, CheckedScratch& scratch) {
   PixelSample s;
   s.rgb = {static_cast<float>(acc), static_cast<float>(x) / 40.0f, static_cast<float>(y) / 25.0f};
   s.status = static_cast<RayStatus>(hash % grtrace::kRayStatusCount);
-  s.object = static_cast<grtrace::SceneObjectId>(static_cast<int>(hash % 3u));
+  s.object = static_cast<int>(hash % 3u);
   s.redshift = s.status == RayStatus::escaped ? static_cast<float>(acc * 0.1) : PixelSample::nan;
   s.steps = cost;
   return s;

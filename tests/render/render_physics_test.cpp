@@ -11,7 +11,8 @@
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/static_frame.hpp"
 #include "grtrace/render/parallel_render.hpp"
-#include "grtrace/scene/shading.hpp"
+#include "grtrace/render/frame.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/straight_line.hpp"
@@ -31,14 +32,14 @@ constexpr double pi = std::numbers::pi;
 using Tableau = DormandPrince54;
 using Control = PIController;
 
-struct CameraSpec {
+struct TestCamera {
   double r = 20.0, theta_deg = 90.0, phi_deg = 0.0;
   Vec3 beta = Vec3::Zero(), look = Vec3(-1, 0, 0), up = Vec3(0, -1, 0);
   int width = 32, height = 32;
   double fov = 90.0;
 };
 
-Camera make_camera(const SchwarzschildMetric& m, const CameraSpec& c) {
+Camera make_camera(const SchwarzschildMetric& m, const TestCamera& c) {
   const Vec4 x(0.0, c.r, c.theta_deg * pi / 180.0, c.phi_deg * pi / 180.0);
   const Mat4 g = m.metric(x);
   const StaticFrame f(g);
@@ -52,15 +53,29 @@ TraceSettings settings(double sky_radius = 400.0, double rtol = 1e-10, double at
   return s;
 }
 
+BackgroundScene scene_named(const std::string& name) {
+  StandardSceneSpec spec;
+  spec.name = name;
+  return background_scene(spec);
+}
+
+auto general_tracer(const SchwarzschildMetric& m, const TraceSettings& s, const std::string& scene = "checker") {
+  return make_general_tracer<Tableau, Control>(m, s, AngleCorrection::exact, scene_named(scene));
+}
+
+auto symmetric_tracer(const SchwarzschildMetric& m, const TraceSettings& s, const Camera& cam, int nodes) {
+  return SymmetricSceneTracer<Tableau, Control, BackgroundScene>(m, s, cam, AngleCorrection::exact,
+                                                                 scene_named("checker"), nodes);
+}
+
+/// The library's frame pipeline (render/frame.hpp), quietly.
 template <class Tracer>
-Image render(const Tracer& tracer, const Camera& cam, const Shading& shading = {}, RenderStats* stats = nullptr) {
-  Image image(cam.width(), cam.height());
+Image render(const Tracer& tracer, const Camera& cam, RenderStats* stats = nullptr) {
   RenderOptions options;
   options.progress = ProgressMode::never;
-  const RenderStats st = render_image(
-      image, [&](int col, int row) { return shade(tracer.trace(cam.pixel_state(col, row)), shading); }, options);
-  if (stats) *stats = st;
-  return image;
+  Frame frame = render_frame(cam, tracer, options);
+  if (stats) *stats = frame.stats;
+  return std::move(frame.image);
 }
 
 /// Cartesian unit vectors of the spherical chart at (theta, phi).
@@ -100,15 +115,15 @@ void check_shadow(const Image& image, const Camera& cam, double a, const std::st
       const PixelSample p = image.sample(col, row);
       const double alpha = std::acos(cam.pixel_direction(col, row)[0]);
       const double one_pixel = pitch * std::cos(alpha) * std::cos(alpha);
-      if (p.object == SceneObjectId::horizon) {
+      if (p.object == kHorizonObject) {
         ++horizon;
         EXPECT_EQ(p.status, RayStatus::captured);
       } else {
-        EXPECT_EQ(p.object, SceneObjectId::sky);
+        EXPECT_EQ(p.object, kSkyObject);
         EXPECT_EQ(p.status, RayStatus::escaped);
       }
       const bool inside = alpha < a - one_pixel, outside = alpha > a + one_pixel;
-      if ((inside && p.object != SceneObjectId::horizon) || (outside && p.object != SceneObjectId::sky)) {
+      if ((inside && p.object != kHorizonObject) || (outside && p.object != kSkyObject)) {
         ++misplaced;
         ADD_FAILURE() << "pixel " << col << "," << row << " at " << alpha << " rad, shadow edge at " << a;
       }
@@ -129,18 +144,14 @@ TEST_P(ShadowSize, MatchesTheStaticObserverFormulaWithinOnePixel) {
   const double r_o = GetParam();
   const double a = shadow_angle(r_o);
   const SchwarzschildMetric m{1.0};
-  CameraSpec spec;
+  TestCamera spec;
   spec.r = r_o;
   spec.width = spec.height = 48;
   spec.fov = 2.0 * std::atan(2.2 * std::tan(a)) * 180.0 / pi;  // the shadow fills ~45% of the frame's width
   const Camera cam = make_camera(m, spec);
   const TraceSettings s = settings(4.0 * r_o + 100.0);
-  Shading shading;
-  shading.kind = SceneKind::checker;
-  check_shadow(render(GeneralSceneTracer<Tableau, Control>(m, s, Control{}, AngleCorrection::exact), cam, shading),
-               cam, a, "general tracer");
-  check_shadow(render(SymmetricSceneTracer<Tableau, Control>(m, s, cam, AngleCorrection::exact, 256), cam, shading),
-               cam, a, "symmetric-sky tracer");
+  check_shadow(render(general_tracer(m, s), cam), cam, a, "general tracer");
+  check_shadow(render(symmetric_tracer(m, s, cam, 256), cam), cam, a, "symmetric-sky tracer");
 }
 
 INSTANTIATE_TEST_SUITE_P(StaticCameras, ShadowSize, ::testing::Values(10.0, 20.0, 50.0));
@@ -156,13 +167,12 @@ TEST(MirrorSymmetry, StaticCameraLookingAtTheHoleSeesAMirrorSymmetricFrame) {
   // Camera in the equatorial plane at phi = 0 looking at the hole, up = north: left-right mirror is phi -> -phi,
   // up-down mirror is theta -> pi - theta. The data channels must show both.
   const SchwarzschildMetric m{1.0};
-  CameraSpec spec;
+  TestCamera spec;
   spec.r = 15.0;
   spec.width = 32;
   spec.height = 24;
   const Camera cam = make_camera(m, spec);
-  const Image image = render(GeneralSceneTracer<Tableau, Control>(m, settings(100.0), Control{}, AngleCorrection::exact),
-                             cam);
+  const Image image = render(general_tracer(m, settings(100.0)), cam);
   const double tol = 1e-5;  // float channels; rays near the shadow edge amplify round-off of the mirrored pixel
   long compared = 0;
   for (int row = 0; row < cam.height(); ++row)
@@ -189,7 +199,7 @@ TEST(MirrorSymmetry, StaticCameraLookingAtTheHoleSeesAMirrorSymmetricFrame) {
 
 TEST(Minkowski, EverySkyDirectionIsTheCameraFrameDirection) {
   const SchwarzschildMetric flat{0.0};  // M = 0: Minkowski in spherical coordinates
-  CameraSpec spec;
+  TestCamera spec;
   spec.r = 20.0;
   spec.theta_deg = 70.0;
   spec.phi_deg = 30.0;
@@ -211,7 +221,7 @@ TEST(Minkowski, EverySkyDirectionIsTheCameraFrameDirection) {
   };
   const Tetrad& t = cam.tetrad();
   for (AngleCorrection correction : {AngleCorrection::flat, AngleCorrection::exact}) {
-    const StraightLineTracer tracer(1000.0, correction);
+    const StraightLineTracer tracer(MinkowskiSpherical{}, 1000.0, correction, scene_named("checker"));
     double worst = 0.0;
     for (int row = 0; row < cam.height(); ++row)
       for (int col = 0; col < cam.width(); ++col) {
@@ -232,7 +242,7 @@ TEST(Minkowski, MovingCameraShowsAberrationAndTheDopplerFactor) {
   for (const Vec3& beta_vec : velocities) {
     SCOPED_TRACE("beta " + std::to_string(beta_vec[0]) + "," + std::to_string(beta_vec[1]) + "," +
                  std::to_string(beta_vec[2]));
-    CameraSpec spec;
+    TestCamera spec;
     spec.r = 20.0;
     spec.theta_deg = 60.0;
     spec.phi_deg = -20.0;
@@ -250,7 +260,7 @@ TEST(Minkowski, MovingCameraShowsAberrationAndTheDopplerFactor) {
     // observer moves with -beta along it).
     const Vec3 motion_sky = (beta_vec[0] * b.r + beta_vec[1] * b.th + beta_vec[2] * b.ph).normalized();
     const Vec3 motion_cam = -in_tetrad(cam.tetrad(), g, frame.e[0]).tail<3>().normalized();
-    const StraightLineTracer tracer(1000.0, AngleCorrection::exact);
+    const StraightLineTracer tracer(MinkowskiSpherical{}, 1000.0, AngleCorrection::exact, scene_named("checker"));
     double worst_angle = 0.0, worst_doppler = 0.0, worst_plane = 0.0;
     for (int row = 0; row < cam.height(); ++row)
       for (int col = 0; col < cam.width(); ++col) {
@@ -288,7 +298,7 @@ TEST(Minkowski, MovingCameraShowsAberrationAndTheDopplerFactor) {
 
 TEST(Redshift, StaticEmittersMatchTheGravitationalFormula) {
   const SchwarzschildMetric m{1.0};
-  CameraSpec spec;
+  TestCamera spec;
   spec.r = 8.0;
   spec.width = 24;
   spec.height = 20;
@@ -298,8 +308,8 @@ TEST(Redshift, StaticEmittersMatchTheGravitationalFormula) {
   const TraceSettings s = settings(sky);
   const double f_o = std::sqrt(1.0 - 2.0 / spec.r);
   const double guard = (1.0 + s.horizon_epsilon) * 2.0;
-  const GeneralSceneTracer<Tableau, Control> general(m, s, Control{}, AngleCorrection::exact);
-  const SymmetricSceneTracer<Tableau, Control> symmetric(m, s, cam, AngleCorrection::exact, 256);
+  const auto general = general_tracer(m, s, "redshift");
+  const auto symmetric = symmetric_tracer(m, s, cam, 256);
   long captured = 0, escaped = 0;
   for (int row = 0; row < cam.height(); ++row)
     for (int col = 0; col < cam.width(); ++col) {
@@ -314,26 +324,24 @@ TEST(Redshift, StaticEmittersMatchTheGravitationalFormula) {
       (o.status == RayStatus::captured ? captured : escaped) += 1;
       if (o.status == RayStatus::captured) {
         EXPECT_NEAR(o.radius, guard, 1e-9);  // located on the guard sphere, not a step late
-        EXPECT_EQ(o.object, SceneObjectId::horizon);
+        EXPECT_EQ(o.object, kHorizonObject);
       }
     }
   EXPECT_GT(captured, 20);
   EXPECT_GT(escaped, 20);
   // Through the whole pipeline into the image's float channel.
-  Shading shading;
-  shading.kind = SceneKind::redshift;
-  const Image image = render(general, cam, shading);
+  const Image image = render(general, cam);
   for (int row = 0; row < cam.height(); ++row)
     for (int col = 0; col < cam.width(); ++col) {
       const PixelSample p = image.sample(col, row);
-      const double r_src = p.object == SceneObjectId::horizon ? guard : sky;
+      const double r_src = p.object == kHorizonObject ? guard : sky;
       EXPECT_NEAR(p.redshift, std::sqrt(1.0 - 2.0 / r_src) / f_o, 1e-6);
     }
 }
 
 TEST(Redshift, KeplerianDiskHitsThePlaneWithTheConservedQuantityRedshift) {
   const SchwarzschildMetric m{1.0};
-  CameraSpec spec;
+  TestCamera spec;
   spec.r = 30.0;
   spec.theta_deg = 60.0;
   spec.width = 32;
@@ -343,8 +351,8 @@ TEST(Redshift, KeplerianDiskHitsThePlaneWithTheConservedQuantityRedshift) {
   ThinDisk disk;
   disk.r_in = 6.0;
   disk.r_out = 20.0;
-  const GeneralSceneTracer<Tableau, Control, ThinDisk> tracer(m, settings(100.0), Control{}, AngleCorrection::exact,
-                                                              disk);
+  const auto tracer = make_general_tracer<Tableau, Control>(m, settings(100.0), AngleCorrection::exact,
+                                                            make_scene(StarFieldSky{}, HorizonPaint{}, disk));
   const Mat4 g0 = m.metric(cam.position());
   long hits = 0;
   double left = 0.0, right = 0.0;
@@ -356,7 +364,7 @@ TEST(Redshift, KeplerianDiskHitsThePlaneWithTheConservedQuantityRedshift) {
       ASSERT_FALSE(is_failure(o.status));
       if (o.status != RayStatus::hit) continue;
       ++hits;
-      EXPECT_EQ(o.object, SceneObjectId::disk);
+      EXPECT_EQ(o.object, kFirstSceneObject);
       EXPECT_NEAR(o.where.theta, pi / 2, 1e-9);
       EXPECT_GE(o.radius, disk.r_in);
       EXPECT_LE(o.radius, disk.r_out);
@@ -380,36 +388,39 @@ TEST(Redshift, KeplerianDiskHitsThePlaneWithTheConservedQuantityRedshift) {
 
 TEST(FailedRays, GetAFlatVisibleColourNaNDataAndAreCounted) {
   const SchwarzschildMetric m{1.0};
-  CameraSpec spec;
+  TestCamera spec;
   spec.width = 12;
   spec.height = 10;
   const Camera cam = make_camera(m, spec);
   TraceSettings s = settings();
   s.max_steps = 3;
-  Shading shading;
+  const auto tracer = general_tracer(m, s);
   RenderStats stats;
-  const Image image =
-      render(GeneralSceneTracer<Tableau, Control>(m, s, Control{}, AngleCorrection::exact), cam, shading, &stats);
+  const Image image = render(tracer, cam, &stats);
   EXPECT_EQ(stats.count(RayStatus::max_steps), 120);
   EXPECT_EQ(stats.bad_colour, 0);
   for (int row = 0; row < cam.height(); ++row)
     for (int col = 0; col < cam.width(); ++col) {
       const PixelSample p = image.sample(col, row);
       EXPECT_EQ(p.status, RayStatus::max_steps);
-      EXPECT_EQ(p.rgb, shading.failure);
+      EXPECT_EQ(p.rgb, tracer.scene().failure);
       EXPECT_TRUE(std::isnan(p.redshift));
       EXPECT_TRUE(std::isnan(p.sky_theta));
       EXPECT_TRUE(std::isnan(p.sky_phi));
       EXPECT_EQ(p.steps, 3);
     }
   for (RayStatus st : {RayStatus::max_steps, RayStatus::step_underflow, RayStatus::non_finite})
-    for (SceneKind kind : {SceneKind::checker, SceneKind::sky, SceneKind::redshift, SceneKind::disk}) {
+    for (std::string_view name : kStandardSceneNames) {
       RayOutcome o;
       o.status = st;
-      shading.kind = kind;
-      const PixelSample p = shade(o, shading);
-      EXPECT_TRUE(std::isfinite(p.rgb[0]) && std::isfinite(p.rgb[1]) && std::isfinite(p.rgb[2]));
-      EXPECT_EQ(p.rgb, shading.failure);
-      EXPECT_TRUE(std::isnan(p.redshift));
+      o.object = kFirstSceneObject;  // even where the scene has an object there
+      StandardSceneSpec preset;
+      preset.name = std::string(name);
+      with_standard_scene(preset, [&](const auto& scene) {
+        const PixelSample p = scene.shade(o);
+        EXPECT_TRUE(std::isfinite(p.rgb[0]) && std::isfinite(p.rgb[1]) && std::isfinite(p.rgb[2]));
+        EXPECT_EQ(p.rgb, scene.failure);
+        EXPECT_TRUE(std::isnan(p.redshift));
+      });
     }
 }

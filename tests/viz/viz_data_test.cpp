@@ -9,6 +9,7 @@
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/static_frame.hpp"
 #include "grtrace/observer/tetrad.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
 #include "grtrace/viz/camera_glyph.hpp"
@@ -307,7 +308,8 @@ TEST(VizBundle, CameraRaysCarryTheirPixelAndTheTracersRedshift) {
   s.integrator.tolerance = {1e-10, 1e-12};
   s.escape_radius = 80.0;
   const Tracer tracer(metric, s);
-  const GeneralSceneTracer<DormandPrince54, PIController> scene(metric, s, PIController{}, AngleCorrection::none);
+  const auto scene =
+      make_general_tracer<DormandPrince54, PIController>(metric, s, AngleCorrection::none, background_scene({}));
   Rgb8Image frame(W, H);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x)

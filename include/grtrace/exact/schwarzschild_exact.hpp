@@ -16,9 +16,8 @@
 #pragma once
 
 #include "grtrace/core/types.hpp"
+#include "grtrace/core/sky_direction.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
-
-#include <Eigen/Geometry>  // cross product in angular_distance
 
 #include <cmath>
 #include <algorithm>
@@ -116,17 +115,10 @@ inline std::optional<double> remaining_sweep(double b, double r, bool outward, d
   return outward ? here : 2.0 * phi_from_infinity(b, u2, mass) - here;
 }
 
-struct SkyDirection {
-  double theta;  ///< polar angle of the asymptotic direction, [0, pi]
-  double phi;    ///< azimuth, (-pi, pi]
-};
-
-/// The sky direction of a nonzero Cartesian vector.
-inline SkyDirection sky_direction_of(const Vec3& d) {
-  SkyDirection s{};
-  direction_angles(d, s.theta, s.phi);
-  return s;
-}
+// The sky-direction type and helpers live in core/sky_direction.hpp; these names keep exact:: spellings working.
+using grtrace::SkyDirection;
+using grtrace::sky_direction_of;
+using grtrace::angular_distance;
 
 /// Exact asymptotic direction of a null ray in Schwarzschild coordinates (t, r, theta, phi | k^mu), traced
 /// forward in its affine parameter from the state y to infinity; nothing if it is captured.
@@ -150,13 +142,6 @@ inline std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y, 
 /// i.e. flat space beyond that point.
 inline SkyDirection flat_direction(const GeodesicState& y) {
   return sky_direction_of(embedded_velocity(y, spherical_basis(y[2], y[3])));
-}
-
-/// Angle between two directions on the sky (radians), accurate for small angles.
-inline double angular_distance(const SkyDirection& a, const SkyDirection& b) {
-  const Vec3 p(std::sin(a.theta) * std::cos(a.phi), std::sin(a.theta) * std::sin(a.phi), std::cos(a.theta));
-  const Vec3 q(std::sin(b.theta) * std::cos(b.phi), std::sin(b.theta) * std::sin(b.phi), std::cos(b.theta));
-  return std::atan2(p.cross(q).norm(), p.dot(q));
 }
 
 }  // namespace grtrace::exact

@@ -12,6 +12,7 @@ namespace grtrace {
 struct MinkowskiMetric {
   static constexpr std::string_view name = "minkowski";
   static constexpr Chart chart = Chart::cartesian;
+  static constexpr bool flat = true;  ///< optional trait: straight lines, never integrated (metric_traits.hpp)
 
   Mat4 metric(const Vec4& /*x*/) const { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
   Christoffel christoffel(const Vec4& /*x*/) const {

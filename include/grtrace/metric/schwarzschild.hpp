@@ -6,10 +6,12 @@
 // With mass 0 this is flat space in spherical coordinates (MinkowskiSpherical).
 #pragma once
 
+#include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 
 #include <cmath>
+#include <optional>
 
 namespace grtrace {
 
@@ -19,7 +21,7 @@ struct SchwarzschildMetric {
   double mass = 1.0;
 
   Mat4 metric(const Vec4& x) const {
-    const double r = x[1], f = 1.0 - 2.0 * mass / r, st = std::sin(x[2]);
+    const double r = x[1], f = lapse_squared(r), st = std::sin(x[2]);
     Mat4 g = Mat4::Zero();
     g(0, 0) = f;
     g(1, 1) = -1.0 / f;
@@ -60,10 +62,18 @@ struct SchwarzschildMetric {
 
   double radius(const Vec4& x) const { return x[1]; }
   double horizon_radius() const { return 2.0 * mass; }
+  /// 1 - 2M/r: g_tt, the squared lapse of the static observers.
+  double lapse_squared(double r) const { return 1.0 - 2.0 * mass / r; }
+
+  /// Optional trait (metric/metric_traits.hpp): the exact continuation of a ray from y to infinity, by elliptic
+  /// integrals (exact/schwarzschild_exact.hpp); nothing when it falls into the hole.
+  std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y) const {
+    return exact::asymptotic_direction(y, mass);
+  }
   Vec3 to_cartesian(const Vec4& x) const { return spherical_to_cartesian(x); }
 
   /// Killing energy E = g_tt k^t and axial angular momentum L_z = -g_phiphi k^phi.
-  double energy(const GeodesicState& y) const { return (1.0 - 2.0 * mass / y[1]) * y[4]; }
+  double energy(const GeodesicState& y) const { return lapse_squared(y[1]) * y[4]; }
   double angular_momentum(const GeodesicState& y) const {
     const double st = std::sin(y[2]);
     return y[1] * y[1] * st * st * y[7];
@@ -78,6 +88,7 @@ struct SchwarzschildMetric {
 /// Flat space in spherical coordinates: Schwarzschild with M = 0, under its own name.
 struct MinkowskiSpherical : SchwarzschildMetric {
   static constexpr std::string_view name = "minkowski-spherical";
+  static constexpr bool flat = true;  ///< optional trait: straight lines, never integrated (metric_traits.hpp)
   MinkowskiSpherical() : SchwarzschildMetric{0.0} {}
 };
 

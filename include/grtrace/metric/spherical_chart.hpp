@@ -43,4 +43,15 @@ inline Vec3 spherical_to_cartesian(const Vec4& x) {
   return {r * st * std::cos(x[3]), r * st * std::sin(x[3]), r * std::cos(x[2])};
 }
 
+/// The state (t, r, theta, phi | k^t, k^r, k^theta, k^phi) of an event and tangent given in the Cartesian
+/// embedding: the inverse of (spherical_to_cartesian, embedded_velocity). Assumes the point is off the polar axis.
+inline GeodesicState spherical_state_from_cartesian(double t, const Vec3& p, double kt, const Vec3& v) {
+  const double r = p.norm();
+  const double theta = std::acos(std::clamp(p.z() / r, -1.0, 1.0)), phi = std::atan2(p.y(), p.x());
+  const SphericalBasis e = spherical_basis(theta, phi);
+  GeodesicState y;
+  y << t, r, theta, phi, kt, v.dot(e.r), v.dot(e.theta) / r, v.dot(e.phi) / (r * e.sin_theta);
+  return y;
+}
+
 }  // namespace grtrace

@@ -21,7 +21,7 @@ class Camera {
  public:
   /// Refuses sizes below 1 and a field of view outside (0, 180) degrees.
   Camera(const Vec4& position, const Tetrad& tetrad, int width, int height, double fov_degrees)
-      : position_(position), tetrad_(tetrad), width_(width), height_(height) {
+      : position_(position), tetrad_(tetrad), width_(width), height_(height), fov_degrees_(fov_degrees) {
     if (width < 1 || height < 1)
       throw std::invalid_argument("camera: width and height must be at least 1 pixel, got " + std::to_string(width) +
                                   "x" + std::to_string(height));
@@ -53,11 +53,13 @@ class Camera {
   int width() const { return width_; }
   int height() const { return height_; }
   double tan_half_fov() const { return tan_half_; }
+  double fov_degrees() const { return fov_degrees_; }
 
  private:
   Vec4 position_;
   Tetrad tetrad_;
   int width_, height_;
+  double fov_degrees_;
   double tan_half_ = 1.0;
 };
 

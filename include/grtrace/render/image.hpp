@@ -4,7 +4,8 @@
 //
 // Channels (names are part of the grtrace-render contract, shared/DESIGN.md):
 //   R, G, B     linear colour
-//   object      0 sky, 1 horizon, 2 disk, ... (SceneObjectId)
+//   object      0 sky, 1 horizon, 2... the scene's objects in order (scene/object_ids.hpp; names in the
+//               "object_names" metadata)
 //   status      RayStatus as a number (core/ray_status.hpp)
 //   redshift    f_obs / f_src, NaN where undefined (e.g. failed rays)
 //   sky_theta   asymptotic direction of escaped rays (radians), NaN otherwise
@@ -37,12 +38,10 @@
 
 namespace grtrace {
 
-enum class SceneObjectId : int { sky = 0, horizon = 1, disk = 2, star = 3 };
-
 struct PixelSample {
   static constexpr float nan = std::numeric_limits<float>::quiet_NaN();
   std::array<float, 3> rgb{0.0f, 0.0f, 0.0f};
-  SceneObjectId object = SceneObjectId::sky;
+  int object = 0;  ///< position in the scene: 0 sky, 1 horizon, 2... objects (scene/object_ids.hpp)
   RayStatus status = RayStatus::max_steps;
   float redshift = nan;
   float sky_theta = nan;
@@ -100,7 +99,7 @@ class Image {
       p_[0][i] = s.rgb[0];
       p_[1][i] = s.rgb[1];
       p_[2][i] = s.rgb[2];
-      p_[3][i] = static_cast<float>(static_cast<int>(s.object));
+      p_[3][i] = static_cast<float>(s.object);
       p_[4][i] = static_cast<float>(static_cast<int>(s.status));
       p_[5][i] = s.redshift;
       p_[6][i] = s.sky_theta;
@@ -129,7 +128,7 @@ class Image {
     auto at = [&](const char* name) { return channels_.at(name)[i]; };
     PixelSample s;
     s.rgb = {at("R"), at("G"), at("B")};
-    s.object = static_cast<SceneObjectId>(static_cast<int>(at("object")));
+    s.object = static_cast<int>(at("object"));
     s.status = static_cast<RayStatus>(static_cast<int>(at("status")));
     s.redshift = at("redshift");
     s.sky_theta = at("sky_theta");

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <variant>
 #include <vector>
 
 namespace grtrace {
@@ -65,6 +66,15 @@ struct TextureSky {
                                 fy * ((1 - fx) * at(p, x0, y0 + 1) + fx * at(p, x0 + 1, y0 + 1)));
     };
     return {sample(r), sample(g), sample(b)};
+  }
+};
+
+/// A sky chosen at run time (a command-line flag): one of the three above. Painting runs once per pixel after the
+/// integration, so the visit costs nothing that matters.
+struct AnySky {
+  std::variant<CheckerSky, StarFieldSky, TextureSky> sky = StarFieldSky{};
+  Rgb operator()(double theta, double phi) const {
+    return std::visit([&](const auto& s) { return s(theta, phi); }, sky);
   }
 };
 

@@ -1,37 +1,48 @@
 // grtrace/scene/thin_disk.hpp
 // A geometrically thin accretion disk in the equatorial plane, r_in <= r <= r_out, of emitters on circular
-// Keplerian orbits: Omega = sqrt(M / r^3), u^t = 1 / sqrt(1 - 3M/r), u = u^t (1, 0, 0, Omega) (prograde, +phi).
-// As a tracer event it is the two-sided surface g = cos(theta) = 0, accepted only between its radii, so it is
-// hit where the ray crosses the plane (located on the dense output), from above or below.
+// geodesic (Keplerian) orbits of whatever metric it sits in (metric/circular_orbits.hpp: for Schwarzschild
+// Omega = sqrt(M / r^3), u^t = 1 / sqrt(1 - 3M/r)), turning towards +phi (sense = +1) or -phi (sense = -1).
+// A scene object (scene/scene_object.hpp) for metrics in a spherical chart: the two-sided surface g = cos(theta),
+// accepted only between its radii, so it is hit where the ray crosses the plane, from above or below.
 // Colour: a Shakura-Sunyaev / Novikov-Thorne-like temperature profile T(r) ~ r^(-3/4) (1 - sqrt(r_in/r))^(1/4),
 // shifted by the redshift g to T_obs = g T and dimmed with g (bolometric g^4 T^4, compressed for display),
 // as a blackbody colour.
 #pragma once
 
 #include "grtrace/core/types.hpp"
-#include "grtrace/render/image.hpp"
+#include "grtrace/metric/circular_orbits.hpp"
 #include "grtrace/scene/colour_maps.hpp"
+#include "grtrace/scene/scene_object.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 
 namespace grtrace {
 
 struct ThinDisk {
+  static constexpr std::string_view kind = "disk";
   static constexpr bool two_sided = true;
-  static constexpr SceneObjectId id = SceneObjectId::disk;
-  double mass = 1.0;
   double r_in = 6.0, r_out = 20.0;
   double peak_temperature = 5000.0;  ///< kelvin, at the hottest radius (for the colour only)
+  int sense = +1;                    ///< +1: the gas turns towards +phi; -1: towards -phi
 
   double operator()(const GeodesicState& y) const { return std::cos(y[2]); }
   bool accepts(const GeodesicState& y) const { return y[1] >= r_in && y[1] <= r_out; }
 
-  Vec4 emitter_velocity(double r) const {
-    const double omega = std::sqrt(mass / (r * r * r));
-    const double ut = 1.0 / std::sqrt(1.0 - 3.0 * mass / r);
-    return Vec4(ut, 0.0, 0.0, ut * omega);
+  /// The circular orbit's 4-velocity at the hit's radius (NaN where the metric has none: refused up front by
+  /// check_disk_orbits, so a render never meets it).
+  template <MetricPolicy M>
+    requires(M::chart == Chart::spherical)
+  Vec4 emitter_velocity(const M& metric, const Vec4& x) const {
+    if (auto u = circular_orbit_velocity(metric, x[1], sense)) return *u;
+    return Vec4::Constant(std::numeric_limits<double>::quiet_NaN());
   }
+
+  Rgb colour(const SurfaceHit& hit) const { return colour(hit.state[1], hit.redshift); }
 
   /// Linear RGB of the disk at radius r seen with redshift g = f_obs / f_src.
   Rgb colour(double r, double g) const {
@@ -45,5 +56,20 @@ struct ThinDisk {
     return {c[0] * b, c[1] * b, c[2] * b};
   }
 };
+
+/// Refuses (std::invalid_argument, saying what to change) radii that are not finite or not ordered, and a disk
+/// whose inner edge has no timelike circular orbit in the metric (for Schwarzschild: r_in <= 3M).
+template <MetricPolicy M>
+void check_disk_orbits(const M& metric, const ThinDisk& disk) {
+  if (!(std::isfinite(disk.r_in) && std::isfinite(disk.r_out) && disk.r_in > 0.0 && disk.r_out > disk.r_in))
+    throw std::invalid_argument("disk: radii must be finite with 0 < inner < outer");
+  if (const double rh = metric.horizon_radius(); !(disk.r_in > rh))
+    throw std::invalid_argument("disk: the inner radius " + std::to_string(disk.r_in) +
+                                " is inside the horizon; raise it");
+  if (!circular_orbit_velocity(metric, disk.r_in, disk.sense))
+    throw std::invalid_argument("disk: no timelike circular orbit exists at the inner radius r = " +
+                                std::to_string(disk.r_in) +
+                                " in this metric (Schwarzschild: circular orbits need r > 3M); raise the inner radius");
+}
 
 }  // namespace grtrace

@@ -123,9 +123,11 @@ class GeodesicTracer {
   template <class Observer, class... Events>
   TraceResult trace_observed(const GeodesicState& y0, Observer&& observer, const Events&... events) const {
     const GeodesicEquation<Metric> rhs{&metric_};
+    // Metrics without a horizon (flat space, wormholes: horizon_radius() == 0) get no capture surface at all.
+    const bool has_horizon = metric_.horizon_radius() > 0.0;
     const double r_guard = (1.0 + settings_.horizon_epsilon) * metric_.horizon_radius();
     const double r_escape = settings_.escape_radius;
-    auto horizon = [&](const GeodesicState& y) { return metric_.radius(y.head<4>()) - r_guard; };
+    auto horizon = [&](const GeodesicState& y) { return has_horizon ? metric_.radius(y.head<4>()) - r_guard : 1.0; };
     auto escape = [&](const GeodesicState& y) { return r_escape - metric_.radius(y.head<4>()); };
     const auto all = std::tie(horizon, escape, events...);
     constexpr std::size_t K = 2 + sizeof...(Events);

@@ -1,88 +1,101 @@
 // grtrace/trace/scene_tracer.hpp
-// The general scene tracer: one integration per camera ray through Schwarzschild, ended by the horizon guard,
-// the sky sphere, or one of the scene's objects. Objects are template parameters (events: g(y) -> double, see
-// trace/geodesic_tracer.hpp; each names its SceneObjectId and its emitter's 4-velocity), so a tracer
-// instantiated for a scene contains only that scene's objects.
+// The general scene tracer: one integration per camera ray through ANY metric policy, ended by the horizon (for
+// metrics that have one), the sky sphere, or one of the scene's objects (scene/scene_object.hpp). The metric,
+// tableau, controller and scene are template parameters, so a tracer instantiated for a scene contains only that
+// scene's objects and no virtual call.
 //
-// Redshift (seed eq. 9): f_obs / f_src = g(e_0, k_cam) / g(u_src, k_src), with g(e_0, k_cam) = -1 from the
-// camera's normalisation; static emitters for the horizon and the sky, the object's own emitter otherwise.
+// Takes:   a metric, trace settings (tolerances, sky radius, horizon guard), a controller, how escaped rays are
+//          continued to the sky (AngleCorrection: the metric's exact continuation where it has one, detected at
+//          compile time, else flat), and the scene.
+// Returns: per ray a RayOutcome: status, scene position, direction, end state (x, k), redshift.
+// Redshift (seed eq. 9): f_obs / f_src = g(e_0, k_cam) / g(u_src, k_src) with g(e_0, k_cam) = -1 by the camera's
+// normalisation of the pixel momentum. u_src: the sky's and the horizon's emitters are at rest (static where the
+// metric allows, else the ZAMO: observer/observers.hpp), an object's comes from its emitter_velocity(metric, x).
 #pragma once
 
-#include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/observer/observers.hpp"
+#include "grtrace/scene/scene.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 
-#include <cmath>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 
 namespace grtrace {
 
-/// g(u_static, k) for a static emitter at the state's radius, with u_static = d_t / sqrt(g_tt).
-inline double static_emitter_energy(const SchwarzschildMetric& m, const GeodesicState& y) {
-  const double f = 1.0 - 2.0 * m.mass / y[1];
-  return std::sqrt(f) * y[4];
+/// f_obs / f_src for a ray that left a camera with unit energy (g(e_0, k) = -1) and reached an emitter moving
+/// with 4-velocity u at the end state y (NaN when u is NaN: no emitter can exist there).
+template <MetricPolicy M>
+double redshift_at(const M& metric, const Vec4& u, const GeodesicState& y) {
+  return -1.0 / u.dot(metric.metric(y.head<4>()) * y.tail<4>());
 }
 
-template <ExplicitTableau T, StepController C, class... Objects>
+namespace detail {
+template <class Metric, class Tuple>
+struct ObjectsFit;
+template <class Metric, class... Objects>
+struct ObjectsFit<Metric, std::tuple<Objects...>> {
+  static constexpr bool value = (check_scene_object<Objects, Metric>() && ...);
+};
+}  // namespace detail
+
+template <MetricPolicy Metric, ExplicitTableau T, StepController C, class SceneT>
 class GeneralSceneTracer {
+  static_assert(detail::ObjectsFit<Metric, decltype(SceneT::objects)>::value);
+
  public:
   static constexpr const char* name = "general";
+  using MetricType = Metric;
+  using SceneType = SceneT;
 
-  GeneralSceneTracer(SchwarzschildMetric metric, TraceSettings settings, C controller, AngleCorrection correction,
-                     Objects... objects)
-      : tracer_(metric, settings, controller), correction_(correction), objects_(objects...) {}
+  GeneralSceneTracer(Metric metric, TraceSettings settings, C controller, AngleCorrection correction, SceneT scene)
+      : tracer_(metric, settings, controller), correction_(correction), scene_(std::move(scene)) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
-    const TraceResult r = std::apply([&](const auto&... o) { return tracer_.trace(y0, o...); }, objects_);
-    const SchwarzschildMetric& m = tracer_.metric();
-    const double camera_energy = -1.0;  // g(e_0, k) at the camera, by construction of the pixel momentum
+    const TraceResult r = std::apply([&](const auto&... o) { return tracer_.trace(y0, o...); }, scene_.objects);
+    const Metric& m = tracer_.metric();
     RayOutcome out;
     out.status = r.status;
     out.steps = r.accepted;
+    if (is_failure(r.status)) return out;  // no position, no redshift
     const GeodesicState& y = r.final_state;
-    switch (r.status) {
-      case RayStatus::escaped:
-        out.object = SceneObjectId::sky;
-        // The exact continuation holds from any point of the outgoing leg: start it from the last accepted step
-        // (integrator error only), not from the crossing located on the interpolant (Hermite error for most
-        // tableaux). The other corrections are defined at the sky sphere itself.
-        out.where = corrected_sky_direction(correction_ == AngleCorrection::exact ? r.step_end_state : y, correction_,
-                                            m.mass);
-        out.redshift = camera_energy / static_emitter_energy(m, y);
-        break;
-      case RayStatus::captured:
-        out.object = SceneObjectId::horizon;
-        out.where = chart_angles(y);
-        out.radius = y[1];
-        out.redshift = camera_energy / static_emitter_energy(m, y);
-        break;
-      case RayStatus::hit:
-        out.where = chart_angles(y);
-        out.radius = y[1];
-        visit_object(r.hit_event, [&](const auto& o) {
-          out.object = o.id;
-          const Vec4 u = o.emitter_velocity(y[1]);
-          out.redshift = camera_energy / u.dot(m.metric(y.head<4>()) * y.tail<4>());
-        });
-        break;
-      default: break;  // failed: no position, no redshift
+    const Vec4 x = y.head<4>();
+    out.state = y;
+    out.radius = m.radius(x);
+    Vec4 u = Vec4::Zero();
+    if (r.status == RayStatus::hit) {
+      out.object = kFirstSceneObject + r.hit_event;
+      out.where = position_direction(m, x);
+      scene_.visit_object(out.object, [&](const auto& o) { u = o.emitter_velocity(m, x); });
+    } else {
+      out.object = r.status == RayStatus::escaped ? kSkyObject : kHorizonObject;
+      // The exact continuation holds from any point of the outgoing leg: start it from the last accepted step.
+      out.where = r.status == RayStatus::escaped ? continued_direction(m, r.step_end_state, y, correction_)
+                                                 : position_direction(m, x);
+      u = rest_emitter_velocity(m, x);
     }
+    out.redshift = redshift_at(m, u, y);
     return out;
   }
 
-  const GeodesicTracer<SchwarzschildMetric, T, C>& tracer() const { return tracer_; }
+  const SceneT& scene() const { return scene_; }
+  const GeodesicTracer<Metric, T, C>& tracer() const { return tracer_; }
+  AngleCorrection correction() const { return correction_; }
 
  private:
-  template <class F>
-  void visit_object(int index, F&& f) const {
-    [&]<std::size_t... I>(std::index_sequence<I...>) {
-      ((static_cast<int>(I) == index ? f(std::get<I>(objects_)) : void()), ...);
-    }(std::index_sequence_for<Objects...>{});
-  }
-
-  GeodesicTracer<SchwarzschildMetric, T, C> tracer_;
+  GeodesicTracer<Metric, T, C> tracer_;
   AngleCorrection correction_;
-  std::tuple<Objects...> objects_;
+  SceneT scene_;
 };
+
+/// Deduces the metric and the scene: make_general_tracer<Tsit5, IController>(metric, settings, correction, scene).
+template <ExplicitTableau T, StepController C, MetricPolicy Metric, class SceneT>
+GeneralSceneTracer<Metric, T, C, SceneT> make_general_tracer(Metric metric, TraceSettings settings,
+                                                              AngleCorrection correction, SceneT scene,
+                                                              C controller = {}) {
+  return {metric, settings, controller, correction, std::move(scene)};
+}
 
 }  // namespace grtrace

@@ -1,0 +1,39 @@
+// grtrace/core/sky_direction.hpp
+// A direction on the celestial sphere, (theta, phi), in the Euclidean embedding of the metric's chart: where an
+// escaped ray ends up, or where on a sphere a hit lies. Every tracer reports it the same way.
+#pragma once
+
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
+
+#include <Eigen/Geometry>  // cross product in angular_distance
+
+#include <cmath>
+
+namespace grtrace {
+
+struct SkyDirection {
+  double theta;  ///< polar angle, [0, pi]
+  double phi;    ///< azimuth, (-pi, pi]
+};
+
+/// The sky direction of a nonzero Cartesian vector (a zero vector gives theta = NaN: callers never pass one).
+inline SkyDirection sky_direction_of(const Vec3& d) {
+  SkyDirection s{};
+  direction_angles(d, s.theta, s.phi);
+  return s;
+}
+
+/// Unit Cartesian vector of a sky direction.
+inline Vec3 unit_vector_of(const SkyDirection& s) {
+  const double st = std::sin(s.theta);
+  return {st * std::cos(s.phi), st * std::sin(s.phi), std::cos(s.theta)};
+}
+
+/// Angle between two directions on the sky (radians), accurate for small angles (atan2 of |p x q| and p.q).
+inline double angular_distance(const SkyDirection& a, const SkyDirection& b) {
+  const Vec3 p = unit_vector_of(a), q = unit_vector_of(b);
+  return std::atan2(p.cross(q).norm(), p.dot(q));
+}
+
+}  // namespace grtrace

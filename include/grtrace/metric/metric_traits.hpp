@@ -1,0 +1,80 @@
+// grtrace/metric/metric_traits.hpp
+// What the layers above the tracer (scenes, cameras, renders) ask of a metric beyond MetricPolicy, in one place.
+//
+// Required (metric/metric_concept.hpp): name, chart, metric(x), christoffel(x), acceleration(x, k), radius(x),
+// horizon_radius() (0 when there is none: no capture surface is traced), to_cartesian(x).
+//
+// Optional, detected at compile time (a metric that lacks one gets the generic answer named here):
+//   std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y) const
+//       The exact sky direction of a ray continued from y to infinity, or nothing if it falls back in.
+//       Used for AngleCorrection::exact. Generic answer: the flat continuation (the direction of the embedded
+//       velocity at y, seed eq. 7-8), exact only where the metric is flat beyond y.
+//   static constexpr bool flat = true;
+//       The metric is flat everywhere: light moves on straight lines, so trace/straight_line.hpp follows rays
+//       without integrating (MinkowskiMetric, MinkowskiSpherical). Default: false.
+//
+// Generic answers computed from the required members (no metric has to write these):
+//   embedded_velocity_of(m, y)   dx/dlambda in the chart's Euclidean embedding (spherical or Cartesian charts)
+//   position_direction(m, x)     (theta, phi) of the event in the embedding: where on its sphere a hit lies
+//   continued_direction(m, y, c) the sky direction of an escaped ray under an AngleCorrection
+// Observers and emitters "at rest" (static, ZAMO) are in observer/observers.hpp.
+#pragma once
+
+#include "grtrace/core/sky_direction.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+namespace grtrace {
+
+/// How the direction of an escaped ray is read off where it leaves the traced region (the sky sphere).
+enum class AngleCorrection {
+  none,   ///< the direction of the point where the ray meets the sky sphere (seed Fig. 4b)
+  flat,   ///< the ray's Cartesian direction there, i.e. flat space beyond (seed eq. 7-8, Fig. 4a)
+  exact,  ///< the metric's exact continuation to infinity where it has one (asymptotic_direction), else flat
+};
+
+/// True when the metric can continue a ray exactly from a state to infinity.
+template <class M>
+concept HasExactContinuation = requires(const M m, const GeodesicState y) {
+  { m.asymptotic_direction(y) } -> std::convertible_to<std::optional<SkyDirection>>;
+};
+
+/// True for metrics that declare themselves flat everywhere (the straight-line tracer's precondition).
+template <class M>
+concept FlatMetric = MetricPolicy<M> && requires { requires M::flat; };
+
+/// dx/dlambda of a state as a vector of the chart's Euclidean embedding.
+template <MetricPolicy M>
+Vec3 embedded_velocity_of(const M& /*metric*/, const GeodesicState& y) {
+  if constexpr (M::chart == Chart::spherical) return embedded_velocity(y, spherical_basis(y[2], y[3]));
+  else return y.tail<3>();
+}
+
+/// (theta, phi) of the event x seen from the centre of the embedding, phi reduced to (-pi, pi] (a spherical
+/// chart's phi keeps counting turns).
+template <MetricPolicy M>
+SkyDirection position_direction(const M& metric, const Vec4& x) {
+  if constexpr (M::chart == Chart::spherical) return {x[2], std::remainder(x[3], 2.0 * std::numbers::pi)};
+  else return sky_direction_of(metric.to_cartesian(x));
+}
+
+/// The sky direction of a ray that left the traced region. `at_sphere` is the state on the sky sphere;
+/// `from` is where the exact continuation starts (any point of the outgoing leg: the end of the last accepted
+/// step carries the integrator's error only, the point on the sphere the interpolant's too).
+template <MetricPolicy M>
+SkyDirection continued_direction(const M& metric, const GeodesicState& from, const GeodesicState& at_sphere,
+                                 AngleCorrection correction) {
+  if (correction == AngleCorrection::none) return position_direction(metric, at_sphere.head<4>());
+  if constexpr (HasExactContinuation<M>) {
+    if (correction == AngleCorrection::exact) {
+      if (auto d = metric.asymptotic_direction(from)) return *d;
+    }
+  }
+  return sky_direction_of(embedded_velocity_of(metric, at_sphere));
+}
+
+}  // namespace grtrace

@@ -1,0 +1,114 @@
+// grtrace/observer/observers.hpp
+// The two observers "at rest" that every stationary spacetime offers, and the orthonormal frame each one carries,
+// for any metric policy (no assumption of a diagonal metric or of a particular chart):
+//   static observer  u = d_t / sqrt(g_tt): at rest with respect to the Killing time t. Exists only where
+//                    g_tt > 0 (outside horizons and, for rotating holes, outside the ergosphere).
+//   ZAMO             u^mu = g^{mu t} / sqrt(g^{tt}): the zero-angular-momentum observer, normal to the t = const
+//                    slices (Bardeen, Press & Teukolsky 1972). Exists wherever t is a time function (g^{tt} > 0),
+//                    i.e. everywhere outside a horizon; equal to the static observer when g_{t i} = 0.
+// The frame's spatial axes are the chart's basis vectors d_1, d_2, d_3 orthonormalised against u and each other
+// (Gram-Schmidt in the metric): (r, theta, phi) in a spherical chart, (x, y, z) in a Cartesian one. For a diagonal
+// metric and the static observer this is the familiar local static frame.
+#pragma once
+
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+
+#include <Eigen/LU>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace grtrace {
+
+enum class ObserverKind {
+  static_observer,  ///< at rest in the Killing time; refused where g_tt <= 0
+  zamo,             ///< zero angular momentum, normal to t = const; valid everywhere outside a horizon
+};
+
+inline std::optional<ObserverKind> observer_kind_from_string(std::string_view s) {
+  if (s == "static") return ObserverKind::static_observer;
+  if (s == "zamo") return ObserverKind::zamo;
+  return std::nullopt;
+}
+
+/// The static observer's 4-velocity from g at the event, or nothing where g_tt <= 0.
+inline std::optional<Vec4> static_velocity(const Mat4& g) {
+  if (!(g(0, 0) > 0.0)) return std::nullopt;
+  return Vec4(1.0 / std::sqrt(g(0, 0)), 0.0, 0.0, 0.0);
+}
+
+/// The ZAMO's 4-velocity from g at the event, or nothing where g^{tt} <= 0 (or g is singular).
+inline std::optional<Vec4> zamo_velocity(const Mat4& g) {
+  const Mat4 inverse = g.inverse();
+  if (!inverse.allFinite() || !(inverse(0, 0) > 0.0)) return std::nullopt;
+  return Vec4(inverse.col(0) / std::sqrt(inverse(0, 0)));
+}
+
+/// The 4-velocity of an emitter at rest at x for the sky and the horizon: static where it exists, else the ZAMO,
+/// else NaN (the redshift is then undefined and reported as NaN, never guessed).
+template <MetricPolicy M>
+Vec4 rest_emitter_velocity(const M& metric, const Vec4& x) {
+  const Mat4 g = metric.metric(x);
+  if (auto u = static_velocity(g)) return *u;
+  if (auto u = zamo_velocity(g)) return *u;
+  return Vec4::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
+/// An observer's orthonormal frame: e[0] its 4-velocity, e[1..3] its spatial axes (see the top of this file).
+struct ObserverFrame {
+  std::array<Vec4, 4> e;
+
+  /// Takes g at the event and a future-directed timelike u; throws std::invalid_argument otherwise.
+  ObserverFrame(const Mat4& g, const Vec4& u) {
+    auto dot = [&](const Vec4& a, const Vec4& b) { return a.dot(g * b); };
+    const double uu = dot(u, u);
+    if (!u.allFinite() || !(uu > 0.0) || !(u[0] > 0.0))
+      throw std::invalid_argument("observer frame: the 4-velocity must be finite, timelike and future-directed");
+    e[0] = u / std::sqrt(uu);
+    for (int a = 1; a <= 3; ++a) {
+      Vec4 v = Vec4::Unit(a);
+      v -= dot(v, e[0]) * e[0];
+      for (int b = 1; b < a; ++b) v += dot(v, e[static_cast<std::size_t>(b)]) * e[static_cast<std::size_t>(b)];
+      const double n2 = -dot(v, v);
+      if (!(n2 > 0.0)) throw std::invalid_argument("observer frame: the chart's spatial axes are degenerate here");
+      e[static_cast<std::size_t>(a)] = v / std::sqrt(n2);
+    }
+  }
+
+  /// Spatial vector with components along the frame's axes, as a coordinate vector.
+  Vec4 spatial(const Vec3& v) const { return v[0] * e[1] + v[1] * e[2] + v[2] * e[3]; }
+
+  /// 4-velocity of an observer moving with 3-velocity beta (fraction of c) through this frame.
+  Vec4 velocity(const Vec3& beta) const {
+    const double b2 = beta.squaredNorm();
+    if (!(b2 < 1.0)) throw std::invalid_argument("velocity: |beta| must be below 1 (the speed of light)");
+    const double gamma = 1.0 / std::sqrt(1.0 - b2);
+    return gamma * (e[0] + spatial(beta));
+  }
+};
+
+/// The frame of the chosen observer at x. Throws std::invalid_argument, saying what to change, where that
+/// observer does not exist.
+template <MetricPolicy M>
+ObserverFrame observer_frame(const M& metric, const Vec4& x, ObserverKind kind) {
+  const Mat4 g = metric.metric(x);
+  if (!g.allFinite()) throw std::invalid_argument("observer: the metric is not finite at the camera's position");
+  if (kind == ObserverKind::static_observer) {
+    if (auto u = static_velocity(g)) return ObserverFrame(g, *u);
+    throw std::invalid_argument(
+        "observer: no static observer exists at the camera's position (g_tt <= 0: inside a horizon or an "
+        "ergosphere); use the ZAMO observer (--observer zamo) or move the camera out");
+  }
+  if (auto u = zamo_velocity(g)) return ObserverFrame(g, *u);
+  throw std::invalid_argument(
+      "observer: no zero-angular-momentum observer exists at the camera's position (g^tt <= 0: inside a "
+      "horizon); move the camera out");
+}
+
+}  // namespace grtrace

@@ -1,0 +1,109 @@
+// grtrace/scene/scene.hpp
+// A scene: what the sky looks like, what the horizon looks like, and any number of objects (scene_object.hpp),
+// each with its own colour function. Tracers take the scene as a template parameter and report outcomes by
+// position in it (scene/object_ids.hpp); Scene::shade turns an outcome into a pixel.
+//
+//   auto scene = make_scene(StarFieldSky{}, HorizonPaint{}, ThinDisk{}, MyStar{...});
+//
+// Sky and horizon painters are any `Rgb operator()(double theta, double phi) const`: the sky is painted at the
+// escaped ray's asymptotic direction, the horizon at the direction of the point where the ray met it.
+// A failed ray (max_steps, step_underflow, non_finite) gets the flat `failure` colour and NaN data, never NaN
+// colour. With colour_by_redshift every pixel is painted by f_obs / f_src (seed Fig. 5) instead.
+#pragma once
+
+#include "grtrace/render/image.hpp"
+#include "grtrace/scene/colour_maps.hpp"
+#include "grtrace/scene/object_ids.hpp"
+#include "grtrace/scene/scene_object.hpp"
+#include "grtrace/trace/ray_outcome.hpp"
+
+#include <concepts>
+#include <cstddef>
+#include <map>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace grtrace {
+
+/// What paints the sky or the horizon: a colour for a direction (theta, phi).
+template <class P>
+concept DirectionPainter = std::copy_constructible<P> && requires(const P p, double theta, double phi) {
+  { p(theta, phi) } -> std::convertible_to<Rgb>;
+};
+
+/// The horizon's paint: black, or a theta-phi checkerboard (seed Fig. 4) when squares > 0.
+struct HorizonPaint {
+  int squares = 0;  ///< 0: black; else squares along theta (twice as many along phi)
+  Rgb light{0.55f, 0.05f, 0.05f}, dark{0.05f, 0.0f, 0.0f};
+  Rgb operator()(double theta, double phi) const {
+    if (squares <= 0) return {0.0f, 0.0f, 0.0f};
+    return checker_parity(theta, phi, squares) ? light : dark;
+  }
+};
+
+template <DirectionPainter Sky, DirectionPainter Horizon, SceneObject... Objects>
+struct Scene {
+  Sky sky;
+  Horizon horizon;
+  std::tuple<Objects...> objects;
+  bool colour_by_redshift = false;
+  Rgb failure{1.0f, 0.0f, 1.0f};
+
+  static constexpr int object_count = static_cast<int>(sizeof...(Objects));
+
+  /// Names by scene position: "sky", "horizon", then each object's label (scene_object.hpp); kinds that occur
+  /// more than once without labels are numbered ("star-1", "star-2") so every position has its own name.
+  std::vector<std::string> object_names() const {
+    std::vector<std::string> names{"sky", "horizon"};
+    std::apply([&](const auto&... o) { (names.push_back(object_label(o)), ...); }, objects);
+    std::map<std::string, int> total, seen;
+    for (std::size_t i = 2; i < names.size(); ++i) ++total[names[i]];
+    for (std::size_t i = 2; i < names.size(); ++i)
+      if (total[names[i]] > 1) names[i] += "-" + std::to_string(++seen[names[i]]);
+    return names;
+  }
+
+  /// Calls f(object) for the object at scene position `position` (>= kFirstSceneObject); nothing otherwise.
+  template <class F>
+  void visit_object(int position, F&& f) const {
+    [&]<std::size_t... I>(std::index_sequence<I...>) {
+      ((static_cast<int>(I) + kFirstSceneObject == position ? f(std::get<I>(objects)) : void()), ...);
+    }(std::index_sequence_for<Objects...>{});
+  }
+
+  PixelSample shade(const RayOutcome& o) const {
+    PixelSample p;
+    p.status = o.status;
+    p.object = o.object;
+    p.steps = o.steps;
+    if (is_failure(o.status)) {
+      p.rgb = failure;
+      return p;
+    }
+    p.redshift = static_cast<float>(o.redshift);
+    if (o.status == RayStatus::escaped) {
+      p.sky_theta = static_cast<float>(o.where.theta);
+      p.sky_phi = static_cast<float>(o.where.phi);
+    }
+    if (colour_by_redshift) {
+      p.rgb = redshift_colour(o.redshift);
+    } else if (o.object == kSkyObject) {
+      p.rgb = sky(o.where.theta, o.where.phi);
+    } else if (o.object == kHorizonObject) {
+      p.rgb = horizon(o.where.theta, o.where.phi);
+    } else {
+      p.rgb = failure;  // a position outside the scene: cannot happen for the library's tracers
+      visit_object(o.object, [&](const auto& object) { p.rgb = object.colour(SurfaceHit{o.state, o.redshift}); });
+    }
+    return p;
+  }
+};
+
+template <DirectionPainter Sky, DirectionPainter Horizon, SceneObject... Objects>
+Scene<Sky, Horizon, Objects...> make_scene(Sky sky, Horizon horizon, Objects... objects) {
+  return {std::move(sky), std::move(horizon), std::tuple<Objects...>(std::move(objects)...)};
+}
+
+}  // namespace grtrace

@@ -1,0 +1,31 @@
+// grtrace/trace/scene_tracer_concept.hpp
+// What the frame pipeline (render/frame.hpp) needs of a scene tracer, whichever way it follows the light:
+//   static constexpr const char* name            "general", "symmetric-sky", "straight-line", ... (image headers)
+//   RayOutcome trace(const GeodesicState& y0) const   one camera ray, from the pixel's initial state; safe to call
+//                                                from several threads at once (no mutable state)
+//   const Scene& scene() const                   the scene it traces through: shade(outcome) -> PixelSample and
+//                                                object_names() (scene/scene.hpp)
+// The library's tracers: GeneralSceneTracer (any metric, every pixel integrated, trace/scene_tracer.hpp),
+// SymmetricSceneTracer (Schwarzschild sky and horizon from one table of rays), StraightLineTracer (flat space).
+#pragma once
+
+#include "grtrace/core/types.hpp"
+#include "grtrace/render/image.hpp"
+#include "grtrace/trace/ray_outcome.hpp"
+
+#include <concepts>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace grtrace {
+
+template <class T>
+concept SceneTracer = requires(const T t, const GeodesicState y, const RayOutcome o) {
+  { T::name } -> std::convertible_to<std::string_view>;
+  { t.trace(y) } -> std::same_as<RayOutcome>;
+  { t.scene().shade(o) } -> std::same_as<PixelSample>;
+  { t.scene().object_names() } -> std::convertible_to<std::vector<std::string>>;
+};
+
+}  // namespace grtrace

@@ -5,6 +5,7 @@
 
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/core/types.hpp"
+#include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/integrate/dense_output.hpp"
@@ -12,6 +13,8 @@
 #include "grtrace/integrate/event_locator.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
 #include "grtrace/integrate/step_controller.hpp"
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/minkowski.hpp"
 #include "grtrace/metric/schwarzschild.hpp"

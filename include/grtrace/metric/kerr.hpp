@@ -19,7 +19,7 @@
 // first derivatives of the five distinct metric components (they depend on r and theta only):
 //   F_nu = 1/2 (d_nu g_ab) k^a k^b - (k^r d_r + k^th d_th) g_{nu b} k^b,     a^mu = g^{mu nu} F_nu,
 // and g^{mu nu} is block-diagonal with the exact (t, phi) block inverse over g_tt g_phph - g_tph^2 = -Delta sin^2.
-// About 90 flops, two sin/cos; no 4x4 tables. christoffel() builds the full table from the same derivatives
+// About 100 flops, one sin/cos pair and three divisions; no 4x4 tables. christoffel() builds the full table from the same derivatives
 // (for tests and tools); the tests check both against finite differences of metric().
 #pragma once
 
@@ -39,6 +39,7 @@ namespace grtrace {
 struct KerrBLTerms {
   double r, sin_theta, cos_theta;
   double sigma, delta, big_a;  ///< Sigma, Delta, A
+  double inv_sigma, inv_delta, inv_tphi_det;  ///< 1/Sigma, 1/Delta, 1/(g_tt g_phph - g_tph^2) = -1/(Delta sin^2)
   double g_tt, g_tph, g_phph, g_rr, g_thth;
   double dr_tt, dr_tph, dr_phph, dr_rr, dr_thth;   ///< d/dr
   double dth_tt, dth_tph, dth_phph, dth_rr, dth_thth;  ///< d/dtheta
@@ -51,12 +52,17 @@ struct KerrBLTerms {
     sigma = r2 + a2 * c2;
     delta = r2 - 2.0 * m * r + a2;
     big_a = ra2 * ra2 - a2 * delta * s2;
-    const double inv_sigma = 1.0 / sigma, inv_sigma2 = inv_sigma * inv_sigma;
+    // Three divisions in all. (1/Delta is not taken as sin^2 / (Delta sin^2): that would make metric() NaN on
+    // the axis, where only the (t, phi) block is singular.)
+    inv_sigma = 1.0 / sigma;
+    inv_delta = 1.0 / delta;
+    inv_tphi_det = -inv_delta / s2;
+    const double inv_sigma2 = inv_sigma * inv_sigma;
     const double two_mr = 2.0 * m * r;
     g_tt = 1.0 - two_mr * inv_sigma;
     g_tph = two_mr * a * s2 * inv_sigma;
     g_phph = -(ra2 + two_mr * a2 * s2 * inv_sigma) * s2;
-    g_rr = -sigma / delta;
+    g_rr = -sigma * inv_delta;
     g_thth = -sigma;
     // d Sigma/dr = 2r, d Sigma/dth = -2 a^2 s c; (Sigma - 2 r^2) = -(r^2 - a^2 c^2) appears in every d/dr.
     const double w = (r2 - a2 * c2) * inv_sigma2;  // -(d/dr)(r / Sigma)
@@ -64,12 +70,12 @@ struct KerrBLTerms {
     dr_tt = 2.0 * m * w;
     dr_tph = -2.0 * m * a * s2 * w;
     dr_phph = -2.0 * r * s2 + 2.0 * m * a2 * s2 * s2 * w;
-    dr_rr = -(2.0 * r * delta - 2.0 * (r - m) * sigma) / (delta * delta);
+    dr_rr = -(2.0 * r * delta - 2.0 * (r - m) * sigma) * inv_delta * inv_delta;
     dr_thth = -2.0 * r;
     dth_tt = -2.0 * two_mr * a2 * sc * inv_sigma2;
     dth_tph = 2.0 * two_mr * a * sc * ra2 * inv_sigma2;
     dth_phph = -2.0 * ra2 * sc - 2.0 * two_mr * a2 * s2 * sc * (2.0 * sigma + a2 * s2) * inv_sigma2;
-    dth_rr = 2.0 * a2 * sc / delta;
+    dth_rr = 2.0 * a2 * sc * inv_delta;
     dth_thth = 2.0 * a2 * sc;
   }
 
@@ -129,7 +135,7 @@ struct KerrMetric {
   /// g^{mu nu}, exact: (t, phi) block over its determinant -Delta sin^2 theta, 1/g_rr, 1/g_thth.
   Mat4 inverse_metric(const Vec4& x) const {
     const KerrBLTerms q = terms(x);
-    const double inv_det = 1.0 / q.tphi_determinant();
+    const double inv_det = q.inv_tphi_det;
     Mat4 gi = Mat4::Zero();
     gi(0, 0) = q.g_phph * inv_det;
     gi(0, 3) = gi(3, 0) = -q.g_tph * inv_det;
@@ -181,11 +187,11 @@ struct KerrMetric {
     const double f_ph = -(d_tph * kt + d_phph * kph);
     const double f_r = 0.5 * qr - d_rr * kr;
     const double f_th = 0.5 * qth - d_thth * kth;
-    const double inv_det = 1.0 / q.tphi_determinant();
+    const double inv_det = q.inv_tphi_det;
     Vec4 acc;
     acc[0] = (q.g_phph * f_t - q.g_tph * f_ph) * inv_det;
-    acc[1] = f_r / q.g_rr;
-    acc[2] = f_th / q.g_thth;
+    acc[1] = -f_r * q.delta * q.inv_sigma;  // f_r / g_rr
+    acc[2] = -f_th * q.inv_sigma;           // f_th / g_thth
     acc[3] = (q.g_tt * f_ph - q.g_tph * f_t) * inv_det;
     return acc;
   }

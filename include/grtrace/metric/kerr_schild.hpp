@@ -66,7 +66,9 @@ struct KerrSchildTerms {
     // r^2 is the positive root of r^4 - b r^2 - c = 0, in the form without cancellation for either sign of b.
     const double r2 = b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
     r = std::sqrt(r2);
-    const double p = r2 + a2, inv_p = 1.0 / p, w = r2 * r2 + c, inv_w = 1.0 / w, inv_r = 1.0 / r;
+    // One division for 1/P, 1/W and 1/r (P W r ~ r^7 stays finite for any r below ~1e40 M).
+    const double p = r2 + a2, w = r2 * r2 + c, inv_pwr = 1.0 / (p * w * r);
+    const double inv_p = w * r * inv_pwr, inv_w = p * r * inv_pwr, inv_r = p * w * inv_pwr;
     f = 2.0 * mass * r2 * r * inv_w;
     l = Vec4(1.0, (e * r * x + a * y) * inv_p, (e * r * y - a * x) * inv_p, e * z * inv_r);
     dr = Eigen::Vector3d(x * r2 * r * inv_w, y * r2 * r * inv_w, z * r * p * inv_w);

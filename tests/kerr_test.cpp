@@ -487,6 +487,40 @@ TEST(KerrRays, BoyerLindquistAndKerrSchildTracesAgree) {
   EXPECT_LT(worst_const, 1e-9);
 }
 
+TEST(KerrRays, RayGrazingThePoleAgreesBetweenBoyerLindquistAndKerrSchild) {
+  // Near the BL axis k^phi ~ L_z / sin^2 theta and the steps shrink; KS has no axis at all. (A ray with L_z = 0
+  // exactly cannot be set up in BL Kerr: k^phi = omega k^t != 0 and the round-off left in L_z ~ 1e-17 sends the
+  // ray within 1e-11 of the axis, where it ends as step_underflow. Such rays belong in KS.)
+  const double spin = 0.7;
+  const KerrMetric bl{1.0, spin};
+  const KerrSchildMetric ks{1.0, spin, KerrSchildSlicing::ingoing};
+  const double far = 150.0;
+  const Tracer tbl(bl, tight_settings(1e-11, far));
+  const KSTracer tks(ks, tight_settings(1e-11, far));
+  // Start at theta = 0.4 heading towards the pole, slightly inwards, with a small L_z.
+  const GeodesicState y0 = zamo_photon(bl, Vec4(0.0, 9.0, 0.4, 0.3), Eigen::Vector3d(-0.3, -0.9, 1e-3));
+  double theta_min = kPi;
+  auto observe = [&](const Tracer::Integrator& integ, double theta) {
+    theta_min = std::min(theta_min, integ.dense(theta)[2]);
+  };
+  const TraceResult rb = tbl.trace_observed(y0, observe);
+  const TraceResult rk = tks.trace(bl_to_ks(ks, y0));
+  ASSERT_EQ(rb.status, RayStatus::escaped);
+  ASSERT_EQ(rk.status, RayStatus::escaped);
+  EXPECT_LT(theta_min, 1e-3);
+  const GeodesicState yb = bl_to_ks(ks, rb.final_state), yk = rk.final_state;
+  const double dx = (yb.head<4>() - yk.head<4>()).cwiseAbs().maxCoeff() / far;
+  const double dd = (yb.segment<3>(5).normalized() - yk.segment<3>(5).normalized()).norm();
+  Drift drift;
+  drift.add(bl, y0, rb.final_state);
+  std::printf("ray grazing the pole (theta_min %.1e): BL %d steps, KS %d steps; BL vs KS position %.2e, direction "
+              "%.2e; BL drift E %.2e L_z %.2e Q %.2e\n", theta_min, rb.accepted, rk.accepted, dx, dd, drift.e,
+              drift.l, drift.q);
+  EXPECT_LT(dx, 1e-8);
+  EXPECT_LT(dd, 1e-8);
+  EXPECT_LT(std::max({drift.e, drift.l, drift.q}), 1e-9);
+}
+
 TEST(KerrRays, KerrSchildRaysCrossTheHorizonTheSlicingIsRegularOn) {
   const double spin = 0.9;
   for (auto slicing : {KerrSchildSlicing::ingoing, KerrSchildSlicing::outgoing}) {
@@ -512,6 +546,28 @@ TEST(KerrRays, KerrSchildRaysCrossTheHorizonTheSlicingIsRegularOn) {
                   r_end, ks.outer_horizon(), res.accepted, res.final_state[4]);
     }
   }
+}
+
+TEST(KerrRays, KerrSchildRayAgainstItsSlicingDoesNotCrossTheHorizon) {
+  // The pitfall the header warns about, pinned: a past-directed ray in the ingoing chart approaches the past
+  // horizon, where that chart is singular like BL; it never reaches the capture radius.
+  const KerrSchildMetric ks{1.0, 0.9, KerrSchildSlicing::ingoing};
+  const KerrMetric bl = ks.boyer_lindquist();
+  TraceSettings s = tight_settings(1e-10, 100.0);
+  s.max_steps = 5000;
+  const KSTracer tracer(ks, s);
+  const auto e = bl.zamo_tetrad(Vec4(0.0, 6.0, 1.0, 0.0));
+  const GeodesicState y = bl_to_ks(ks, make_state(Vec4(0.0, 6.0, 1.0, 0.0), -(e[0] + e[1])));  // past, inwards
+  EXPECT_EQ(slicing_crossed_by(y[4]), KerrSchildSlicing::outgoing);
+  EXPECT_EQ(slicing_crossed_by(-y[4]), KerrSchildSlicing::ingoing);
+  const TraceResult res = tracer.trace(y);
+  EXPECT_NE(res.status, RayStatus::captured);
+  const double r_end = ks.radius(res.final_state.head<4>());
+  EXPECT_GT(r_end, ks.outer_horizon());
+  EXPECT_LT(r_end, 1.001 * ks.outer_horizon());
+  EXPECT_GT(std::abs(res.final_state[4]), 1e4);  // k^t growing without bound
+  std::printf("past-directed ray in the ingoing chart: %s at r - r_+ = %.1e after %d steps, k^t %.2e\n",
+              std::string(to_string(res.status)).c_str(), r_end - ks.outer_horizon(), res.accepted, res.final_state[4]);
 }
 
 // -----------------------------------------------------------------------------------------------------------
@@ -630,6 +686,29 @@ TEST(KerrExact, CriticalCurveIsACircleAtZeroSpinAndSeparatesCaptureFromEscape) {
     }
   }
   EXPECT_EQ(checked, 48);
+}
+
+TEST(KerrExact, MassScaling) {
+  // Lengths scale with M at fixed a/M; Omega scales with 1/M.
+  const double M = 2.5, chi = 0.6;
+  for (auto orbit : {exact::Orbit::prograde, exact::Orbit::retrograde}) {
+    EXPECT_NEAR(exact::isco_radius(chi * M, orbit, M), M * exact::isco_radius(chi, orbit), 1e-13);
+    EXPECT_NEAR(exact::photon_orbit_radius(chi * M, orbit, M), M * exact::photon_orbit_radius(chi, orbit), 1e-13);
+    EXPECT_NEAR(exact::keplerian_omega(7.0 * M, chi * M, orbit, M), exact::keplerian_omega(7.0, chi, orbit) / M, 1e-15);
+    EXPECT_NEAR(exact::keplerian_ut(7.0 * M, chi * M, orbit, M), exact::keplerian_ut(7.0, chi, orbit), 1e-14);
+  }
+  EXPECT_NEAR(exact::equatorial_deflection(8.0 * M, chi * M, M), exact::equatorial_deflection(8.0, chi), 1e-13);
+  const auto [xi, eta] = exact::spherical_photon_orbit(3.0 * M, chi * M, M);
+  const auto [xi1, eta1] = exact::spherical_photon_orbit(3.0, chi);
+  EXPECT_NEAR(xi, M * xi1, 1e-13);
+  EXPECT_NEAR(eta, M * M * eta1, 1e-12);
+  // The metrics: a(x, k) at (t, M r, theta, phi) with k scaled alike is a(x, k) / M.
+  const KerrMetric m1{1.0, chi}, mM{M, chi * M};
+  const Vec4 x(0.0, 4.0, 1.0, 0.5), k(1.3, -0.4, 0.05, 0.02);
+  const Vec4 xs(0.0, 4.0 * M, 1.0, 0.5), ks(1.3, -0.4, 0.05 / M, 0.02 / M);
+  // (lambda scales with M: a^t, a^r scale with 1/M, a^theta and a^phi with 1/M^2.)
+  const Vec4 a1 = m1.acceleration(x, k);
+  EXPECT_LT(rel_diff(mM.acceleration(xs, ks), Vec4(a1[0] / M, a1[1] / M, a1[2] / (M * M), a1[3] / (M * M))), 1e-14);
 }
 
 TEST(KerrInput, BadInputIsRefused) {

@@ -21,8 +21,9 @@
 // Which slicing to use. A ray crosses r_+ in this chart only towards the horizon the slicing is regular on:
 // future-directed rays (k^t > 0) fall through the future horizon of the ingoing chart; past-directed rays
 // (k^t < 0, rays traced backwards from a camera) fall through the past horizon of the outgoing chart. The other
-// combination behaves like Boyer-Lindquist (the ray creeps towards r_+ while k^t grows without bound), so pick the
-// slicing by the time direction of k.
+// combination behaves like Boyer-Lindquist (the ray creeps towards r_+ while k^t grows without bound; with the
+// capture radius inside r_+ it then ends as step_underflow, not captured), so pick the slicing by the time
+// direction of k: slicing_crossed_by(k^t). The default is ingoing, the form of shared/reference/kerr.md.
 //
 // Capture. radius(x) is the BL-like r of the quadric above (constant on oblate spheroids; it is the BL r of the
 // event), and horizon_radius() returns the capture radius r_c = r_+ - (r_+ - r_-)/4, inside the outer horizon:
@@ -50,6 +51,13 @@
 namespace grtrace {
 
 enum class KerrSchildSlicing { ingoing, outgoing };
+
+/// The slicing whose horizon a ray with this k^t crosses: ingoing for future-directed rays (k^t > 0), outgoing
+/// for past-directed ones (k^t < 0, camera rays traced backwards). The Kerr-Schild t = const slices are spacelike
+/// everywhere (g^tt = 1 + f > 0), so the sign of k^t is the ray's time orientation at any event, even inside r_+.
+inline constexpr KerrSchildSlicing slicing_crossed_by(double k_t) {
+  return k_t < 0.0 ? KerrSchildSlicing::outgoing : KerrSchildSlicing::ingoing;
+}
 
 /// The quantities of the Kerr-Schild form at a spatial point: r, f, l, and their first derivatives.
 struct KerrSchildTerms {

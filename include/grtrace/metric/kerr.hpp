@@ -16,11 +16,15 @@
 // With a = 0 every function equals SchwarzschildMetric's.
 //
 // The acceleration is derived from the Euler-Lagrange form of the geodesic equation, which needs only the
-// first derivatives of the five distinct metric components (they depend on r and theta only):
+// first derivatives of the metric (it depends on r and theta only):
 //   F_nu = 1/2 (d_nu g_ab) k^a k^b - (k^r d_r + k^th d_th) g_{nu b} k^b,     a^mu = g^{mu nu} F_nu,
-// and g^{mu nu} is block-diagonal with the exact (t, phi) block inverse over g_tt g_phph - g_tph^2 = -Delta sin^2.
-// About 100 flops, one sin/cos pair and three divisions; no 4x4 tables. christoffel() builds the full table from the same derivatives
-// (for tests and tools); the tests check both against finite differences of metric().
+// with g^{mu nu} block-diagonal and the (t, phi) block inverted exactly (its determinant is -Delta sin^2 th).
+// Written with h = 2Mr/Sigma and T = k^t - a sin^2 th k^phi, the (t, phi) part of g(k, k) is
+// (k^t)^2 - (r^2 + a^2) sin^2 th (k^phi)^2 - h T^2, which keeps the formulas short: ~115 flops, one sincos, three
+// divisions, no 4x4 tables (about 2x SchwarzschildMetric::acceleration; tests/benchmarks/kerr_benchmark.cpp).
+// christoffel() builds the full table from the analytic derivatives of the five metric components in
+// KerrBLTerms (tests and tools); the tests check acceleration() against it and both against finite differences
+// of metric().
 #pragma once
 
 #include "grtrace/metric/metric_concept.hpp"
@@ -167,32 +171,40 @@ struct KerrMetric {
     return christoffel_from_derivatives(inverse_metric(x), metric_derivatives(x));
   }
 
-  /// -Gamma^mu_ab k^a k^b in closed form (see the header comment).
+  /// -Gamma^mu_ab k^a k^b in closed form (see the header comment). Written with h = 2 M r / Sigma and
+  /// T = k^t - a sin^2 k^phi, in which the (t, phi) block is g(k, k)_tphi = k^t^2 - (r^2 + a^2) sin^2 k^phi^2 - h T^2,
+  /// p_t = k^t - h T and p_phi = -(r^2 + a^2) sin^2 k^phi + h a sin^2 T; the only division by sin^2 is the one
+  /// the chart needs (g^phiphi).
   Vec4 acceleration(const Vec4& x, const Vec4& k) const {
-    const KerrBLTerms q = terms(x);
+    const double m = mass, a = spin, r = x[1], s = std::sin(x[2]), c = std::cos(x[2]);
     const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];
-    // Quadratic forms (d_r g)(k, k) and (d_th g)(k, k).
-    const double tp = 2.0 * kt * kph;
-    const double qr = q.dr_tt * kt * kt + q.dr_tph * tp + q.dr_phph * kph * kph + q.dr_rr * kr * kr +
-                      q.dr_thth * kth * kth;
-    const double qth = q.dth_tt * kt * kt + q.dth_tph * tp + q.dth_phph * kph * kph + q.dth_rr * kr * kr +
-                       q.dth_thth * kth * kth;
-    // Derivative of the metric along k (only r and theta move it).
-    const double d_tt = kr * q.dr_tt + kth * q.dth_tt;
-    const double d_tph = kr * q.dr_tph + kth * q.dth_tph;
-    const double d_phph = kr * q.dr_phph + kth * q.dth_phph;
-    const double d_rr = kr * q.dr_rr + kth * q.dth_rr;
-    const double d_thth = kr * q.dr_thth + kth * q.dth_thth;
-    const double f_t = -(d_tt * kt + d_tph * kph);
-    const double f_ph = -(d_tph * kt + d_phph * kph);
-    const double f_r = 0.5 * qr - d_rr * kr;
-    const double f_th = 0.5 * qth - d_thth * kth;
-    const double inv_det = q.inv_tphi_det;
+    const double r2 = r * r, a2 = a * a, s2 = s * s, sc = s * c, ra2 = r2 + a2;
+    const double sigma = r2 + a2 * c * c, delta = ra2 - 2.0 * m * r;
+    const double inv_sigma = 1.0 / sigma, inv_delta = 1.0 / delta;
+    const double h = 2.0 * m * r * inv_sigma;
+    const double t_comb = kt - a * s2 * kph;  // T
+    // d_r h and d_th h; D = k^r d_r + k^th d_th applied to h and (at fixed k) to T.
+    const double dh_r = -2.0 * m * (r2 - a2 * c * c) * inv_sigma * inv_sigma;
+    const double dh_th = 2.0 * h * a2 * sc * inv_sigma;
+    const double d_h = kr * dh_r + kth * dh_th;
+    const double d_t = -2.0 * a * sc * kth * kph;
+    // Sigma / Delta = -g_rr and its derivatives.
+    const double dq_r = 2.0 * (r * delta - (r - m) * sigma) * inv_delta * inv_delta;
+    const double dq_th = -2.0 * a2 * sc * inv_delta;
+    // F_nu = 1/2 d_nu g(k, k) - D(g_{nu b}) k^b = -D(p_nu) for nu = t, phi (Killing directions).
+    const double f_t = d_h * t_comb + h * d_t;
+    const double f_ph = 2.0 * (r * kr * s2 + ra2 * sc * kth) * kph - a * (d_h * s2 * t_comb + 2.0 * h * sc * kth * t_comb + h * s2 * d_t);
+    const double f_r = -r * (s2 * kph * kph + kth * kth) - 0.5 * dh_r * t_comb * t_comb + 0.5 * dq_r * kr * kr +
+                       dq_th * kr * kth;
+    const double f_th = sc * (-ra2 * kph * kph + a2 * inv_delta * kr * kr - a2 * kth * kth + 2.0 * h * a * t_comb * kph) -
+                        0.5 * dh_th * t_comb * t_comb + 2.0 * r * kr * kth;
+    // g^tt = (r^2 + a^2 + h a^2 sin^2) / Delta, g^tphi = h a / Delta, g^phiphi = -(1 - h) / (Delta sin^2),
+    // g^rr = -Delta / Sigma, g^thth = -1 / Sigma.
     Vec4 acc;
-    acc[0] = (q.g_phph * f_t - q.g_tph * f_ph) * inv_det;
-    acc[1] = -f_r * q.delta * q.inv_sigma;  // f_r / g_rr
-    acc[2] = -f_th * q.inv_sigma;           // f_th / g_thth
-    acc[3] = (q.g_tt * f_ph - q.g_tph * f_t) * inv_det;
+    acc[0] = ((ra2 + h * a2 * s2) * f_t + h * a * f_ph) * inv_delta;
+    acc[1] = -f_r * delta * inv_sigma;
+    acc[2] = -f_th * inv_sigma;
+    acc[3] = (h * a * f_t - (1.0 - h) * f_ph / s2) * inv_delta;
     return acc;
   }
 

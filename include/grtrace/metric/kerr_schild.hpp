@@ -22,7 +22,7 @@
 // future-directed rays (k^t > 0) fall through the future horizon of the ingoing chart; past-directed rays
 // (k^t < 0, rays traced backwards from a camera) fall through the past horizon of the outgoing chart. The other
 // combination behaves like Boyer-Lindquist (the ray creeps towards r_+ while k^t grows without bound; with the
-// capture radius inside r_+ it then ends as step_underflow, not captured), so pick the slicing by the time
+// capture radius inside r_+ it then ends as step_underflow or max_steps, never captured), so pick the slicing by the time
 // direction of k: slicing_crossed_by(k^t). The default is ingoing, the form of shared/reference/kerr.md.
 //
 // Capture. radius(x) is the BL-like r of the quadric above (constant on oblate spheroids; it is the BL r of the

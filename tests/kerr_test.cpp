@@ -11,9 +11,10 @@
 //     geodesics; photon orbits are double roots of the radial potential; the shadow edge separates capture
 //     from escape); bad input refused.
 // M = 1 throughout. Errors measured are printed, so the report can quote them.
+#include "grtrace/metric/kerr.hpp"
+
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
-#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
@@ -102,7 +103,8 @@ TEST(KerrMetric, ZeroSpinIsSchwarzschild) {
     worst_a = std::max(worst_a, rel_diff(kerr.acceleration(x, k), schw.acceleration(x, k)));
     const Christoffel gk = kerr.christoffel(x), gsch = schw.christoffel(x);
     for (std::size_t mu = 0; mu < 4; ++mu)
-      worst_gamma = std::max(worst_gamma, (gk[mu] - gsch[mu]).cwiseAbs().maxCoeff() / (1.0 + gsch[mu].cwiseAbs().maxCoeff()));
+      worst_gamma =
+          std::max(worst_gamma, (gk[mu] - gsch[mu]).cwiseAbs().maxCoeff() / (1.0 + gsch[mu].cwiseAbs().maxCoeff()));
   }
   std::printf("a = 0 vs Schwarzschild: metric %.2e, acceleration %.2e, Christoffel %.2e (max relative)\n", worst_g,
               worst_a, worst_gamma);
@@ -154,8 +156,10 @@ TEST(KerrSchildMetric, AccelerationMatchesChristoffelAndFiniteDifferencesAndInve
         worst_null = std::max(worst_null, std::abs(q.l[0] * q.l[0] - q.l.tail<3>().squaredNorm()));
       }
     }
-  std::printf("KS: acceleration vs Christoffel table %.2e, vs finite differences %.2e; |g g^-1 - 1| %.2e, "
-              "|l.l| %.2e\n", worst_table, worst_fd, worst_inv, worst_null);
+  std::printf(
+      "KS: acceleration vs Christoffel table %.2e, vs finite differences %.2e; |g g^-1 - 1| %.2e, "
+      "|l.l| %.2e\n",
+      worst_table, worst_fd, worst_inv, worst_null);
   EXPECT_LT(worst_table, 1e-13);
   EXPECT_LT(worst_fd, 1e-9);
   EXPECT_LT(worst_inv, 1e-14);
@@ -203,8 +207,7 @@ double numerical_kretschmann(const M& metric, const Vec4& x, double h) {
           for (int e = 0; e < 4; ++e)
             for (int b = 0; b < 4; ++b)
               for (int c = 0; c < 4; ++c)
-                for (int d = 0; d < 4; ++d)
-                  v += g(a, e) * gi(f, b) * gi(gg, c) * gi(hh, d) * Rud[e][b][c][d];
+                for (int d = 0; d < 4; ++d) v += g(a, e) * gi(f, b) * gi(gg, c) * gi(hh, d) * Rud[e][b][c][d];
           Rdu[a][f][gg][hh] = v;
         }
   double K = 0.0;
@@ -290,8 +293,8 @@ TEST(KerrMetric, HorizonsErgosphereAndZamoFrame) {
     }
   }
   const KerrMetric m6{1.0, 0.6};
-  EXPECT_NEAR(m6.ergosphere_radius(0.0), 1.8, 1e-15);       // poles: touches r_+
-  EXPECT_NEAR(m6.ergosphere_radius(kPi / 2), 2.0, 1e-15);   // equator: 2M
+  EXPECT_NEAR(m6.ergosphere_radius(0.0), 1.8, 1e-15);            // poles: touches r_+
+  EXPECT_NEAR(m6.ergosphere_radius(kPi / 2), 2.0, 1e-15);        // equator: 2M
   EXPECT_TRUE(m6.metric(Vec4(0.0, 5.0, 0.0, 0.0)).allFinite());  // the axis is singular only for Gamma and g^-1
 }
 
@@ -348,8 +351,10 @@ TEST(KerrRays, EnergyAngularMomentumCarterAndNullConstraintConserved) {
     ASSERT_EQ(all_the_way.status, RayStatus::captured);
     guard.add(m, y0, all_the_way.final_state);
   }
-  std::printf("16 rays (%d escaped, %d captured), rtol 1e-10, to r = 100 or 1.05 r_+: drift E %.2e, L_z %.2e, "
-              "Q %.2e, g(k,k) %.2e\n", escaped, captured, outside.e, outside.l, outside.q, outside.null);
+  std::printf(
+      "16 rays (%d escaped, %d captured), rtol 1e-10, to r = 100 or 1.05 r_+: drift E %.2e, L_z %.2e, "
+      "Q %.2e, g(k,k) %.2e\n",
+      escaped, captured, outside.e, outside.l, outside.q, outside.null);
   std::printf("  captured rays down to the guard 1.001 r_+: drift E %.2e, L_z %.2e, Q %.2e, g(k,k) %.2e\n", guard.e,
               guard.l, guard.q, guard.null);
   EXPECT_GT(escaped, 0);
@@ -441,7 +446,8 @@ TEST(KerrRays, EquatorialDeflectionMatchesIyerHansen) {
   double worst = 0.0;
   // Impact parameters above the critical one of each sense (a = 0.9: b_c = +2.9, -6.8; a = -0.6: +6.2, -3.7 approx).
   const std::vector<std::pair<double, std::vector<double>>> cases = {
-      {0.9, {3.5, 5.0, 6.0, 8.0, 15.0, 40.0, -7.0, -9.0, -20.0}}, {-0.6, {6.5, 8.0, 15.0, 40.0, -4.5, -7.0, -9.0, -20.0}}};
+      {0.9, {3.5, 5.0, 6.0, 8.0, 15.0, 40.0, -7.0, -9.0, -20.0}},
+      {-0.6, {6.5, 8.0, 15.0, 40.0, -4.5, -7.0, -9.0, -20.0}}};
   for (const auto& [a, bs] : cases)
     for (double b : bs) {
       const double exact_d = exact::equatorial_deflection(b, a);
@@ -465,7 +471,7 @@ TEST(KerrRays, BoyerLindquistAndKerrSchildTracesAgree) {
   double worst_x = 0.0, worst_dir = 0.0, worst_const = 0.0;
   // Rays that pass close to the hole (periapsis near 3-4 M) and escape, in and out of the equatorial plane.
   for (const Eigen::Vector3d& n : {Eigen::Vector3d(-0.5, 0.2, 0.8), Eigen::Vector3d(-0.5, -0.3, -0.8),
-                                  Eigen::Vector3d(0.2, 0.7, -0.3), Eigen::Vector3d(-0.4, 0.6, -0.6)}) {
+                                   Eigen::Vector3d(0.2, 0.7, -0.3), Eigen::Vector3d(-0.4, 0.6, -0.6)}) {
     const GeodesicState y0 = zamo_photon(bl, Vec4(0.0, 7.0, 1.1, 0.5), n);
     const TraceResult rb = tbl.trace(y0);
     const TraceResult rk = tks.trace(bl_to_ks(ks, y0));
@@ -513,9 +519,10 @@ TEST(KerrRays, RayGrazingThePoleAgreesBetweenBoyerLindquistAndKerrSchild) {
   const double dd = (yb.segment<3>(5).normalized() - yk.segment<3>(5).normalized()).norm();
   Drift drift;
   drift.add(bl, y0, rb.final_state);
-  std::printf("ray grazing the pole (theta_min %.1e): BL %d steps, KS %d steps; BL vs KS position %.2e, direction "
-              "%.2e; BL drift E %.2e L_z %.2e Q %.2e\n", theta_min, rb.accepted, rk.accepted, dx, dd, drift.e,
-              drift.l, drift.q);
+  std::printf(
+      "ray grazing the pole (theta_min %.1e): BL %d steps, KS %d steps; BL vs KS position %.2e, direction "
+      "%.2e; BL drift E %.2e L_z %.2e Q %.2e\n",
+      theta_min, rb.accepted, rk.accepted, dx, dd, drift.e, drift.l, drift.q);
   EXPECT_LT(dx, 1e-8);
   EXPECT_LT(dd, 1e-8);
   EXPECT_LT(std::max({drift.e, drift.l, drift.q}), 1e-9);
@@ -542,8 +549,8 @@ TEST(KerrRays, KerrSchildRaysCrossTheHorizonTheSlicingIsRegularOn) {
       EXPECT_LT(res.accepted, 400);
       EXPECT_LT(constraint_violation(ks, res.final_state, 0.0), 1e-8);
       std::printf("KS %s: captured at r = %.4f (r_+ = %.4f) after %d steps, k^t %.3f\n",
-                  slicing == KerrSchildSlicing::ingoing ? "ingoing, future-directed" : "outgoing, past-directed",
-                  r_end, ks.outer_horizon(), res.accepted, res.final_state[4]);
+                  slicing == KerrSchildSlicing::ingoing ? "ingoing, future-directed" : "outgoing, past-directed", r_end,
+                  ks.outer_horizon(), res.accepted, res.final_state[4]);
     }
   }
 }
@@ -642,7 +649,8 @@ TEST(KerrExact, PhotonOrbitsAreDoubleRootsOfTheRadialPotential) {
       const double scale = std::pow(r * r + a * a + std::abs(a * xi), 2);
       const double h = 1e-5;
       const double R = exact::radial_potential(r, xi, eta, a);
-      const double dR = (exact::radial_potential(r + h, xi, eta, a) - exact::radial_potential(r - h, xi, eta, a)) / (2 * h);
+      const double dR =
+          (exact::radial_potential(r + h, xi, eta, a) - exact::radial_potential(r - h, xi, eta, a)) / (2 * h);
       worst = std::max({worst, std::abs(R) / scale, std::abs(dR) * r / scale});
     }
   }
@@ -651,7 +659,8 @@ TEST(KerrExact, PhotonOrbitsAreDoubleRootsOfTheRadialPotential) {
 }
 
 TEST(KerrExact, CriticalCurveIsACircleAtZeroSpinAndSeparatesCaptureFromEscape) {
-  for (const auto& p : exact::critical_curve(0.0, 1.0, 64)) EXPECT_NEAR(std::hypot(p.alpha, p.beta), std::sqrt(27.0), 1e-13);
+  for (const auto& p : exact::critical_curve(0.0, 1.0, 64))
+    EXPECT_NEAR(std::hypot(p.alpha, p.beta), std::sqrt(27.0), 1e-13);
   for (const auto& p : exact::critical_curve(1e-5, 1.0, 64))
     EXPECT_NEAR(std::hypot(p.alpha, p.beta), std::sqrt(27.0), 1e-4) << p.r;
   // Edge-on, the ends of the curve are the equatorial photon orbits: alpha = -xi(r_ph).
@@ -662,8 +671,10 @@ TEST(KerrExact, CriticalCurveIsACircleAtZeroSpinAndSeparatesCaptureFromEscape) {
     amin = std::min(amin, p.alpha);
     amax = std::max(amax, p.alpha);
   }
-  EXPECT_NEAR(amin, -exact::spherical_photon_orbit(exact::photon_orbit_radius(a, exact::Orbit::prograde), a).first, 1e-9);
-  EXPECT_NEAR(amax, -exact::spherical_photon_orbit(exact::photon_orbit_radius(a, exact::Orbit::retrograde), a).first, 1e-9);
+  EXPECT_NEAR(amin, -exact::spherical_photon_orbit(exact::photon_orbit_radius(a, exact::Orbit::prograde), a).first,
+              1e-9);
+  EXPECT_NEAR(amax, -exact::spherical_photon_orbit(exact::photon_orbit_radius(a, exact::Orbit::retrograde), a).first,
+              1e-9);
   EXPECT_LT(amin, 0.0);  // co-rotating side at alpha < 0
   // Rays with the constants of points just outside the curve escape, just inside are captured.
   const KerrMetric m{1.0, a};

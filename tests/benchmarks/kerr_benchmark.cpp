@@ -6,8 +6,10 @@
 //   accel/kerr_schild/<a>       KerrSchildMetric::acceleration at the corresponding KS state
 //   accel/kerr_bl_table         acceleration_from_christoffel(christoffel()) for comparison (not for the hot loop)
 //   ray/<metric>[/<a>]          one photon from r = 7 M to r = 200 M with DormandPrince54 + PI at rtol 1e-9
-//                               (ray/kerr_bl/0 is the same ray as ray/schwarzschild: the whole-ray cost of Kerr at a = 0)
-// One call per iteration: read the CPU column (the machine is shared; wall time inflates under load). Run: build-*/tests/benchmarks/kerr_benchmark --benchmark_min_time=0.2
+//                               (ray/kerr_bl/0 is the same ray as ray/schwarzschild: the whole-ray cost of Kerr at a =
+//                               0)
+// One call per iteration: read the CPU column (the machine is shared; wall time inflates under load). Run:
+// build-*/tests/benchmarks/kerr_benchmark --benchmark_min_time=0.2
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -15,7 +17,6 @@
 #include "grtrace/trace/geodesic_tracer.hpp"
 
 #include <benchmark/benchmark.h>
-
 
 namespace {
 

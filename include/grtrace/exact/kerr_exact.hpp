@@ -27,8 +27,10 @@
 // panels are needed: the result diverges logarithmically there).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -140,7 +142,8 @@ inline double keplerian_redshift(double r, double xi, double spin, Orbit orbit, 
 }
 
 /// Spherical photon orbit constants at radius r (Bardeen 1973):
-///   xi = L_z/E = [r^2 (3M - r) - a^2 (r + M)] / (a (r - M)),  eta = Q/E^2 = r^3 [4 a^2 M - r (r - 3M)^2] / (a^2 (r - M)^2)
+///   xi = L_z/E = [r^2 (3M - r) - a^2 (r + M)] / (a (r - M)),  eta = Q/E^2 = r^3 [4 a^2 M - r (r - 3M)^2] / (a^2 (r -
+///   M)^2)
 /// Needs a != 0 (for a = 0 every spherical photon orbit is at 3M with xi^2 + eta = 27 M^2).
 inline std::pair<double, double> spherical_photon_orbit(double r, double spin, double mass = 1.0) {
   kerr_detail::check_hole(spin, mass, "spherical_photon_orbit");
@@ -163,7 +166,7 @@ struct CelestialPoint {
 /// orbits r in [r_ph,pro, r_ph,retro] where beta is real. `samples` radii; returns both signs of beta.
 /// For a = 0 the circle of radius 3 sqrt(3) M.
 inline std::vector<CelestialPoint> critical_curve(double spin, double inclination, int samples = 400,
-                                                   double mass = 1.0) {
+                                                  double mass = 1.0) {
   kerr_detail::check_hole(spin, mass, "critical_curve");
   if (!std::isfinite(inclination) || !(inclination > 0.0) || !(inclination < std::numbers::pi))
     throw std::invalid_argument("critical_curve: inclination must be in (0, pi) radians");

@@ -42,10 +42,10 @@ namespace grtrace {
 /// derivatives of the five distinct metric components (d/dr and d/dtheta; nothing depends on t or phi).
 struct KerrBLTerms {
   double r, sin_theta, cos_theta;
-  double sigma, delta, big_a;  ///< Sigma, Delta, A
+  double sigma, delta, big_a;                 ///< Sigma, Delta, A
   double inv_sigma, inv_delta, inv_tphi_det;  ///< 1/Sigma, 1/Delta, 1/(g_tt g_phph - g_tph^2) = -1/(Delta sin^2)
   double g_tt, g_tph, g_phph, g_rr, g_thth;
-  double dr_tt, dr_tph, dr_phph, dr_rr, dr_thth;   ///< d/dr
+  double dr_tt, dr_tph, dr_phph, dr_rr, dr_thth;       ///< d/dr
   double dth_tt, dth_tph, dth_phph, dth_rr, dth_thth;  ///< d/dtheta
 
   KerrBLTerms(double mass, double a, double r_in, double theta) : r(r_in) {
@@ -193,11 +193,13 @@ struct KerrMetric {
     const double dq_th = -2.0 * a2 * sc * inv_delta;
     // F_nu = 1/2 d_nu g(k, k) - D(g_{nu b}) k^b = -D(p_nu) for nu = t, phi (Killing directions).
     const double f_t = d_h * t_comb + h * d_t;
-    const double f_ph = 2.0 * (r * kr * s2 + ra2 * sc * kth) * kph - a * (d_h * s2 * t_comb + 2.0 * h * sc * kth * t_comb + h * s2 * d_t);
-    const double f_r = -r * (s2 * kph * kph + kth * kth) - 0.5 * dh_r * t_comb * t_comb + 0.5 * dq_r * kr * kr +
-                       dq_th * kr * kth;
-    const double f_th = sc * (-ra2 * kph * kph + a2 * inv_delta * kr * kr - a2 * kth * kth + 2.0 * h * a * t_comb * kph) -
-                        0.5 * dh_th * t_comb * t_comb + 2.0 * r * kr * kth;
+    const double f_ph = 2.0 * (r * kr * s2 + ra2 * sc * kth) * kph -
+                        a * (d_h * s2 * t_comb + 2.0 * h * sc * kth * t_comb + h * s2 * d_t);
+    const double f_r =
+        -r * (s2 * kph * kph + kth * kth) - 0.5 * dh_r * t_comb * t_comb + 0.5 * dq_r * kr * kr + dq_th * kr * kth;
+    const double f_th =
+        sc * (-ra2 * kph * kph + a2 * inv_delta * kr * kr - a2 * kth * kth + 2.0 * h * a * t_comb * kph) -
+        0.5 * dh_th * t_comb * t_comb + 2.0 * r * kr * kth;
     // g^tt = (r^2 + a^2 + h a^2 sin^2) / Delta, g^tphi = h a / Delta, g^phiphi = -(1 - h) / (Delta sin^2),
     // g^rr = -Delta / Sigma, g^thth = -1 / Sigma.
     Vec4 acc;

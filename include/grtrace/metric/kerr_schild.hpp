@@ -22,12 +22,12 @@
 // future-directed rays (k^t > 0) fall through the future horizon of the ingoing chart; past-directed rays
 // (k^t < 0, rays traced backwards from a camera) fall through the past horizon of the outgoing chart. The other
 // combination behaves like Boyer-Lindquist (the ray creeps towards r_+ while k^t grows without bound; with the
-// capture radius inside r_+ it then ends as step_underflow or max_steps, never captured), so pick the slicing by the time
-// direction of k: slicing_crossed_by(k^t). The default is ingoing, the form of shared/reference/kerr.md.
+// capture radius inside r_+ it then ends as step_underflow or max_steps, never captured), so pick the slicing by the
+// time direction of k: slicing_crossed_by(k^t). The default is ingoing, the form of shared/reference/kerr.md.
 //
 // Capture. radius(x) is the BL-like r of the quadric above (constant on oblate spheroids; it is the BL r of the
 // event), and horizon_radius() returns the capture radius r_c = r_+ - (r_+ - r_-)/4, inside the outer horizon:
-// the tracer's guard (1 + eps) r_c stays below r_+ for eps < (r_+ - r_c)/r_c (0.25 for a = 0, 2% for a = 0.999 M),
+// the tracer's guard (1 + eps) r_c stays below r_+ for eps < (r_+ - r_c)/r_c (1/3 for a = 0, 2% for a = 0.999 M),
 // so a ray is only called captured once it is inside r_+, from where no ray returns: the decision is exact, not a
 // tolerance. r_c stays above r_- so rays never reach the region near the ring. outer_horizon() gives r_+ itself.
 //
@@ -63,10 +63,10 @@ inline constexpr KerrSchildSlicing slicing_crossed_by(double k_t) {
 struct KerrSchildTerms {
   double r;
   double f;
-  Vec4 l;                 ///< l_mu (lower index), l_t = 1
-  Eigen::Vector3d dr;     ///< d_i r
-  Eigen::Vector3d df;     ///< d_i f
-  Eigen::Matrix3d dl;     ///< dl(i, j) = d_i l_j (spatial; l_t is constant)
+  Vec4 l;              ///< l_mu (lower index), l_t = 1
+  Eigen::Vector3d dr;  ///< d_i r
+  Eigen::Vector3d df;  ///< d_i f
+  Eigen::Matrix3d dl;  ///< dl(i, j) = d_i l_j (spatial; l_t is constant)
 
   KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
     const double a2 = a * a, b = x * x + y * y + z * z - a2, c = a2 * z * z;
@@ -156,8 +156,8 @@ struct KerrSchildMetric {
     const KerrSchildTerms q = terms(x);
     const Eigen::Vector3d ks = k.tail<3>();
     const double s = q.l.dot(k);
-    const Eigen::Vector3d jk = q.dl * ks;                 // (d_i l_j) k^j
-    const Eigen::Vector3d dlk = q.dl.transpose() * ks;    // k^i d_i l_j
+    const Eigen::Vector3d jk = q.dl * ks;               // (d_i l_j) k^j
+    const Eigen::Vector3d dlk = q.dl.transpose() * ks;  // k^i d_i l_j
     const double df_k = q.df.dot(ks), ds = ks.dot(jk);
     Vec4 force = (s * df_k + q.f * ds) * q.l;
     force.tail<3>() += -0.5 * s * s * q.df - q.f * s * jk + q.f * s * dlk;

@@ -1,0 +1,279 @@
+// grtrace/metric/kerr_schild.hpp
+// Kerr spacetime in Cartesian Kerr-Schild coordinates x = (t, x, y, z): regular across the horizon that the
+// chosen slicing penetrates, no polar axis. G = c = 1, signature (+,-,-,-).
+//
+// Takes:   mass M > 0, spin a with |a| < M (KerrSchildMetric::checked refuses anything else), and the slicing:
+//          ingoing (regular on the future horizon) or outgoing (regular on the past horizon). Events off the
+//          ring singularity (x^2 + y^2 = a^2, z = 0) and off the disk z = 0, x^2 + y^2 < a^2 it bounds.
+// Returns: g_{mu nu} = eta_{mu nu} - f l_mu l_nu, its exact inverse g^{mu nu} = eta^{mu nu} + f L^mu L^nu
+//          (L^mu = eta^{mu nu} l_nu; l is null), Gamma, the acceleration -Gamma^mu_ab k^a k^b in closed form,
+//          the Boyer-Lindquist-like radius r, E, L_z, Q, the Kretschmann scalar, and (free functions below)
+//          the maps of events and tangent vectors between this chart and KerrMetric's Boyer-Lindquist chart.
+// Source: Kerr, PRL 11, 237 (1963); Kerr & Schild (1965); Visser, arXiv:0706.0622, sec. 3; shared/reference/kerr.md.
+// In the usual (-,+,+,+) form g = eta + f l l; flipping the overall sign gives the (+,-,-,-) form used here:
+//   f = 2 M r^3 / (r^4 + a^2 z^2),   r^4 - (R^2 - a^2) r^2 - a^2 z^2 = 0,   R^2 = x^2 + y^2 + z^2,
+//   l_mu = (1, (e r x + a y)/(r^2 + a^2), (e r y - a x)/(r^2 + a^2), e z / r),   e = +1 ingoing, -1 outgoing.
+// (The outgoing chart is the time reverse t -> -t of the ingoing chart of spin -a.) Relation to Boyer-Lindquist:
+//   x + i y = (r + i e a) sin(th) e^{i phi_KS},  z = r cos(th),
+//   dt_KS = dt_BL + e (2 M r / Delta) dr,  dphi_KS = dphi_BL + e (a / Delta) dr.
+// The tests check these signs by pulling g back to the BL metric and by tracing the same ray in both charts.
+//
+// Which slicing to use. A ray crosses r_+ in this chart only towards the horizon the slicing is regular on:
+// future-directed rays (k^t > 0) fall through the future horizon of the ingoing chart; past-directed rays
+// (k^t < 0, rays traced backwards from a camera) fall through the past horizon of the outgoing chart. The other
+// combination behaves like Boyer-Lindquist (the ray creeps towards r_+ while k^t grows without bound; with the
+// capture radius inside r_+ it then ends as step_underflow or max_steps, never captured), so pick the slicing by the
+// time direction of k: slicing_crossed_by(k^t). The default is ingoing, the form of shared/reference/kerr.md.
+//
+// Capture. radius(x) is the BL-like r of the quadric above (constant on oblate spheroids; it is the BL r of the
+// event), and horizon_radius() returns the capture radius r_c = r_+ - (r_+ - r_-)/4, inside the outer horizon:
+// the tracer's guard (1 + eps) r_c stays below r_+ for eps < (r_+ - r_c)/r_c (1/3 for a = 0, 2% for a = 0.999 M),
+// so a ray is only called captured once it is inside r_+, from where no ray returns: the decision is exact, not a
+// tolerance. r_c stays above r_- so rays never reach the region near the ring. outer_horizon() gives r_+ itself.
+//
+// Acceleration (closed form from the Kerr-Schild structure, no 4x4 tables): with s = l_a k^a, J_ij = d_i l_j,
+// Df = k^i d_i f, Dl_j = k^i J_ij, Ds = k^i J_ij k^j, the Euler-Lagrange form of the geodesic equation gives
+//   F_nu = -1/2 s^2 d_nu f - f s (J k)_nu + s (Df l_nu + f Dl_nu) + f Ds l_nu,
+//   -Gamma^mu_ab k^a k^b = g^{mu nu} F_nu = eta^{mu nu} F_nu + f L^mu (L . F).
+// The derivatives of r follow from the quadric: d_x r = x r^3 / W, d_y r = y r^3 / W, d_z r = z r (r^2 + a^2) / W,
+// W = r^4 + a^2 z^2.
+#pragma once
+
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace grtrace {
+
+enum class KerrSchildSlicing { ingoing, outgoing };
+
+/// The slicing whose horizon a ray with this k^t crosses: ingoing for future-directed rays (k^t > 0), outgoing
+/// for past-directed ones (k^t < 0, camera rays traced backwards). The Kerr-Schild t = const slices are spacelike
+/// everywhere (g^tt = 1 + f > 0), so the sign of k^t is the ray's time orientation at any event, even inside r_+.
+inline constexpr KerrSchildSlicing slicing_crossed_by(double k_t) {
+  return k_t < 0.0 ? KerrSchildSlicing::outgoing : KerrSchildSlicing::ingoing;
+}
+
+/// The quantities of the Kerr-Schild form at a spatial point: r, f, l, and their first derivatives.
+struct KerrSchildTerms {
+  double r;
+  double f;
+  Vec4 l;              ///< l_mu (lower index), l_t = 1
+  Eigen::Vector3d dr;  ///< d_i r
+  Eigen::Vector3d df;  ///< d_i f
+  Eigen::Matrix3d dl;  ///< dl(i, j) = d_i l_j (spatial; l_t is constant)
+
+  KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
+    const double a2 = a * a, b = x * x + y * y + z * z - a2, c = a2 * z * z;
+    const double root = std::sqrt(b * b + 4.0 * c);
+    // r^2 is the positive root of r^4 - b r^2 - c = 0, in the form without cancellation for either sign of b.
+    const double r2 = b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
+    r = std::sqrt(r2);
+    // One division for 1/P, 1/W and 1/r (P W r ~ r^7 stays finite for any r below ~1e40 M).
+    const double p = r2 + a2, w = r2 * r2 + c, inv_pwr = 1.0 / (p * w * r);
+    const double inv_p = w * r * inv_pwr, inv_w = p * r * inv_pwr, inv_r = p * w * inv_pwr;
+    f = 2.0 * mass * r2 * r * inv_w;
+    l = Vec4(1.0, (e * r * x + a * y) * inv_p, (e * r * y - a * x) * inv_p, e * z * inv_r);
+    dr = Eigen::Vector3d(x * r2 * r * inv_w, y * r2 * r * inv_w, z * r * p * inv_w);
+    // d_i f = f (3 d_i r / r - (4 r^3 d_i r + 2 a^2 z delta_iz) / W)
+    const double kf = 3.0 * inv_r - 4.0 * r2 * r * inv_w;
+    df = f * kf * dr;
+    df[2] -= f * 2.0 * a2 * z * inv_w;
+    // d_i l_x = (e x d_i r + e r delta_ix + a delta_iy - 2 r l_x d_i r) / P, and likewise for l_y; l_z = e z / r.
+    const double cx = (e * x - 2.0 * r * l[1]) * inv_p, cy = (e * y - 2.0 * r * l[2]) * inv_p;
+    const double cz = -e * z * inv_r * inv_r;
+    for (int i = 0; i < 3; ++i) {
+      dl(i, 0) = cx * dr[i];
+      dl(i, 1) = cy * dr[i];
+      dl(i, 2) = cz * dr[i];
+    }
+    dl(0, 0) += e * r * inv_p;
+    dl(1, 0) += a * inv_p;
+    dl(1, 1) += e * r * inv_p;
+    dl(0, 1) -= a * inv_p;
+    dl(2, 2) += e * inv_r;
+  }
+};
+
+struct KerrSchildMetric {
+  static constexpr std::string_view name = "kerr-schild";
+  static constexpr Chart chart = Chart::cartesian;
+  double mass = 1.0;
+  double spin = 0.0;  ///< a = J/M, |a| < M; the sign gives the sense of rotation about +z
+  KerrSchildSlicing slicing = KerrSchildSlicing::ingoing;
+
+  /// A KerrSchildMetric after checking M > 0 finite and |a| < M; throws std::invalid_argument otherwise.
+  static KerrSchildMetric checked(double mass, double spin, KerrSchildSlicing slicing = KerrSchildSlicing::ingoing) {
+    const KerrMetric bl = KerrMetric::checked(mass, spin);  // same rules, same messages
+    return KerrSchildMetric{bl.mass, bl.spin, slicing};
+  }
+
+  /// e = +1 for the ingoing chart, -1 for the outgoing one.
+  double orientation() const { return slicing == KerrSchildSlicing::ingoing ? 1.0 : -1.0; }
+  KerrSchildTerms terms(const Vec4& x) const { return KerrSchildTerms(mass, spin, orientation(), x[1], x[2], x[3]); }
+  /// The Boyer-Lindquist metric of the same hole (for the conversions and the BL quantities).
+  KerrMetric boyer_lindquist() const { return KerrMetric{mass, spin}; }
+
+  static Mat4 eta() { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
+
+  Mat4 metric(const Vec4& x) const {
+    const KerrSchildTerms q = terms(x);
+    return eta() - q.f * q.l * q.l.transpose();
+  }
+
+  /// g^{mu nu} = eta^{mu nu} + f L^mu L^nu, exact.
+  Mat4 inverse_metric(const Vec4& x) const {
+    const KerrSchildTerms q = terms(x);
+    const Vec4 up = eta() * q.l;
+    return eta() + q.f * up * up.transpose();
+  }
+
+  /// d_c g_{mu nu} = -(d_c f) l_mu l_nu - f (d_c l_mu l_nu + l_mu d_c l_nu); zero for c = t.
+  std::array<Mat4, 4> metric_derivatives(const Vec4& x) const {
+    const KerrSchildTerms q = terms(x);
+    std::array<Mat4, 4> dg;
+    dg[0].setZero();
+    for (int i = 0; i < 3; ++i) {
+      Vec4 dl = Vec4::Zero();
+      dl.tail<3>() = q.dl.row(i).transpose();
+      const Mat4 outer = dl * q.l.transpose();
+      dg[static_cast<std::size_t>(i + 1)] = -q.df[i] * q.l * q.l.transpose() - q.f * (outer + outer.transpose());
+    }
+    return dg;
+  }
+
+  Christoffel christoffel(const Vec4& x) const {
+    return christoffel_from_derivatives(inverse_metric(x), metric_derivatives(x));
+  }
+
+  /// -Gamma^mu_ab k^a k^b in closed form (see the header comment).
+  Vec4 acceleration(const Vec4& x, const Vec4& k) const {
+    const KerrSchildTerms q = terms(x);
+    const Eigen::Vector3d ks = k.tail<3>();
+    const double s = q.l.dot(k);
+    const Eigen::Vector3d jk = q.dl * ks;               // (d_i l_j) k^j
+    const Eigen::Vector3d dlk = q.dl.transpose() * ks;  // k^i d_i l_j
+    const double df_k = q.df.dot(ks), ds = ks.dot(jk);
+    Vec4 force = (s * df_k + q.f * ds) * q.l;
+    force.tail<3>() += -0.5 * s * s * q.df - q.f * s * jk + q.f * s * dlk;
+    // g^{-1} F = eta F + f L (L . F), L = eta l.
+    const Vec4 up(q.l[0], -q.l[1], -q.l[2], -q.l[3]);
+    const Vec4 eta_f(force[0], -force[1], -force[2], -force[3]);
+    return eta_f + q.f * up.dot(force) * up;
+  }
+
+  /// The Boyer-Lindquist-like r of the event (the quadric's root), not the Euclidean distance.
+  double radius(const Vec4& x) const { return terms(x).r; }
+  /// The capture radius r_c = r_+ - (r_+ - r_-)/4 (see the header comment: inside r_+, so capture is exact).
+  double horizon_radius() const { return outer_horizon() - 0.25 * (outer_horizon() - inner_horizon()); }
+  /// The chart's own coordinates: the Kerr-Schild x, y, z (r = const surfaces are oblate spheroids).
+  Vec3 to_cartesian(const Vec4& x) const { return x.tail<3>(); }
+
+  double outer_horizon() const { return mass + std::sqrt(mass * mass - spin * spin); }
+  double inner_horizon() const { return mass - std::sqrt(mass * mass - spin * spin); }
+
+  // ---- constants of geodesic motion (same values as KerrMetric's at the corresponding BL state) -------------
+  /// E = p_t = g_{t nu} k^nu (d_t is the same Killing field in both charts).
+  double energy(const GeodesicState& y) const { return metric(y.head<4>()).row(0).dot(y.tail<4>()); }
+  /// L_z = -p_phi with d_phi = -y d_x + x d_y: L_z = -(x p_y - y p_x).
+  double angular_momentum(const GeodesicState& y) const {
+    const Vec4 p = metric(y.head<4>()) * y.tail<4>();
+    return -(y[1] * p[2] - y[2] * p[1]);
+  }
+  /// Carter's constant, evaluated at the corresponding Boyer-Lindquist state (valid for r > r_+).
+  double carter_constant(const GeodesicState& y) const;
+  /// Kretschmann scalar, the BL formula at r and cos(theta) = z / r.
+  double kretschmann(const Vec4& x) const {
+    const double r = radius(x);
+    return boyer_lindquist().kretschmann_at(r, x[3] / r);
+  }
+};
+
+static_assert(MetricPolicy<KerrSchildMetric>);
+
+// ---- Boyer-Lindquist <-> Kerr-Schild (valid outside the outer horizon, r > r_+) -------------------------------
+
+namespace kerr_schild_detail {
+/// t_KS - t_BL = e int 2 M r / Delta dr and phi_KS - phi_BL = e a int dr / Delta (constants chosen to vanish
+/// nowhere special; only differences matter): partial fractions over r_+ and r_-.
+inline double time_shift(const KerrSchildMetric& m, double r) {
+  const double rp = m.outer_horizon(), rm = m.inner_horizon(), d = rp - rm;
+  double v = 2.0 * m.mass * rp / d * std::log(std::abs(r - rp) / m.mass);
+  if (rm > 0.0) v -= 2.0 * m.mass * rm / d * std::log(std::abs(r - rm) / m.mass);
+  return m.orientation() * v;
+}
+inline double phi_shift(const KerrSchildMetric& m, double r) {
+  const double rp = m.outer_horizon(), rm = m.inner_horizon();
+  return m.orientation() * m.spin / (rp - rm) * std::log(std::abs((r - rp) / (r - rm)));
+}
+}  // namespace kerr_schild_detail
+
+/// The Kerr-Schild event of a Boyer-Lindquist event (t, r, theta, phi).
+inline Vec4 bl_to_ks_position(const KerrSchildMetric& m, const Vec4& x_bl) {
+  const double r = x_bl[1], st = std::sin(x_bl[2]), ct = std::cos(x_bl[2]);
+  const double ea = m.orientation() * m.spin;
+  const double ph = x_bl[3] + kerr_schild_detail::phi_shift(m, r), cp = std::cos(ph), sp = std::sin(ph);
+  return Vec4(x_bl[0] + kerr_schild_detail::time_shift(m, r), st * (r * cp - ea * sp), st * (r * sp + ea * cp), r * ct);
+}
+
+/// d x_KS / d x_BL at a Boyer-Lindquist event: maps BL tangent vectors to KS ones.
+inline Mat4 bl_to_ks_jacobian(const KerrSchildMetric& m, const Vec4& x_bl) {
+  const double r = x_bl[1], st = std::sin(x_bl[2]), ct = std::cos(x_bl[2]);
+  const double e = m.orientation(), ea = e * m.spin;
+  const double delta = r * r - 2.0 * m.mass * r + m.spin * m.spin;
+  const double ph = x_bl[3] + kerr_schild_detail::phi_shift(m, r), cp = std::cos(ph), sp = std::sin(ph);
+  const double dph_dr = e * m.spin / delta;  // d phi_KS / dr at fixed phi_BL
+  const double x = st * (r * cp - ea * sp), y = st * (r * sp + ea * cp);
+  Mat4 jac = Mat4::Zero();
+  jac(0, 0) = 1.0;
+  jac(0, 1) = e * 2.0 * m.mass * r / delta;
+  // x(r, theta, phi_KS): d/dr = st cp, d/dtheta = ct (r cp - ea sp), d/dphi_KS = -y; phi_KS depends on r and phi_BL.
+  jac(1, 1) = st * cp - y * dph_dr;
+  jac(1, 2) = ct * (r * cp - ea * sp);
+  jac(1, 3) = -y;
+  jac(2, 1) = st * sp + x * dph_dr;
+  jac(2, 2) = ct * (r * sp + ea * cp);
+  jac(2, 3) = x;
+  jac(3, 1) = ct;
+  jac(3, 2) = -r * st;
+  return jac;
+}
+
+inline GeodesicState bl_to_ks(const KerrSchildMetric& m, const GeodesicState& y_bl) {
+  const Vec4 x = y_bl.head<4>();
+  return make_state(bl_to_ks_position(m, x), bl_to_ks_jacobian(m, x) * y_bl.tail<4>());
+}
+
+/// The Boyer-Lindquist event of a Kerr-Schild event outside r_+ (phi in (-pi, pi] plus the BL shift).
+inline Vec4 ks_to_bl_position(const KerrSchildMetric& m, const Vec4& x_ks) {
+  const double r = m.radius(x_ks);
+  const double theta = std::acos(std::clamp(x_ks[3] / r, -1.0, 1.0));
+  const double phi_ks = std::atan2(x_ks[2], x_ks[1]) - std::atan2(m.orientation() * m.spin, r);
+  return Vec4(x_ks[0] - kerr_schild_detail::time_shift(m, r), r, theta, phi_ks - kerr_schild_detail::phi_shift(m, r));
+}
+
+/// A Kerr-Schild state (event and tangent) in Boyer-Lindquist coordinates, outside r_+ and off the axis.
+inline GeodesicState ks_to_bl(const KerrSchildMetric& m, const GeodesicState& y_ks) {
+  const Vec4 x = y_ks.head<4>(), k = y_ks.tail<4>();
+  const KerrSchildTerms q = m.terms(x);
+  const double r = q.r, e = m.orientation(), a = m.spin;
+  const double delta = r * r - 2.0 * m.mass * r + a * a;
+  const double kr = q.dr.dot(k.tail<3>());
+  const double ct = x[3] / r, st = std::sqrt(std::max(0.0, 1.0 - ct * ct));
+  const double kth = (ct * kr - k[3]) / (r * st);
+  const double rho2 = x[1] * x[1] + x[2] * x[2];
+  const double kph_ks = (x[1] * k[2] - x[2] * k[1]) / rho2 + e * a * kr / (r * r + a * a);
+  const Vec4 k_bl(k[0] - e * 2.0 * m.mass * r / delta * kr, kr, kth, kph_ks - e * a / delta * kr);
+  return make_state(ks_to_bl_position(m, x), k_bl);
+}
+
+inline double KerrSchildMetric::carter_constant(const GeodesicState& y) const {
+  return boyer_lindquist().carter_constant(ks_to_bl(*this, y));
+}
+
+}  // namespace grtrace

@@ -103,6 +103,7 @@ static_assert(!MetricComponents<NoHorizon>);
 static_assert(MetricComponents<SchwarzschildComponents> && MetricComponents<EllisWormhole> &&
               MetricComponents<SchwarzschildDeSitter> && MetricComponents<ReissnerNordstrom> &&
               MetricComponents<EddingtonFinkelstein> && MetricComponents<MinkowskiComponents>);
+static_assert(AutoSchwarzschild::active_count == 2 && AutoMinkowski::active_count == 4);
 static_assert(MetricPolicy<AutoMetric<EllisWormhole>> && MetricPolicy<AutoMetric<SchwarzschildDeSitter>> &&
               MetricPolicy<AutoMetric<ReissnerNordstrom>> && MetricPolicy<AutoMetric<EddingtonFinkelstein>>);
 

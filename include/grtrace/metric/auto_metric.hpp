@@ -12,6 +12,7 @@
 //              double radius(const grtrace::Vec4& x) const;
 //              double horizon_radius() const;
 //              grtrace::Vec3 to_cartesian(const grtrace::Vec4& x) const;   // optional: default from the chart
+//              static constexpr std::array<int, 2> depends_on = {1, 2};      // optional: see below
 //            };
 //          Inside metric_components write `using std::sin;` (etc.) and call sin(...) unqualified, so the same code
 //          runs on double and on Dual<4> (std::sin(x) would not accept a Dual).
@@ -22,11 +23,18 @@
 //          triangle (the 10 independent components); metric(x) returns C's matrix as written, so the testing kit
 //          (grtrace/testing.hpp) still sees a lower triangle that disagrees.
 //
-// Cost: one evaluation of g with Dual<4> (value + 4 partial derivatives per component; sin, sqrt, 1/r ... are
-// evaluated once each, on the value), then the contraction
+// Optional C::depends_on lists the coordinates g depends on (the others are Killing directions, e.g. t and phi of
+// a static axisymmetric metric): acceleration() then differentiates along those only (Dual<2> instead of Dual<4>
+// for g(r, theta): about half the work). jet() and christoffel() always differentiate along all four, so they stay
+// the reference: a wrong depends_on makes acceleration() disagree with -Gamma(k, k) from christoffel(), which
+// grtrace::testing::christoffel_consistent (testing.hpp) reports.
+//
+// Cost of acceleration(): one evaluation of g with Dual<K> (value + K partial derivatives per component; sin,
+// sqrt, 1/r ... are evaluated once each, on the value), then the contraction
 //     Gamma_{nu ab} k^a k^b = (d_k g)_{nu b} k^b - 1/2 d_nu (g_ab k^a k^b),   d_k = k^a d_a,
-// done on the gradients directly (no 4x4x4 table), and one 4x4 solve with g. The full table is only built by
-// christoffel(), which tests and tools use.
+// done on the gradients of the 10 upper-triangle components directly (no 4x4x4 table), and one solve with g
+// (4 divisions when g is diagonal at x, else a 4x4 inverse). The full table is only built by christoffel(),
+// which tests and tools use.
 #pragma once
 
 #include "grtrace/core/types.hpp"
@@ -90,6 +98,31 @@ concept has_to_cartesian = requires(const C c, const Vec4 x) {
   { c.to_cartesian(x) } -> std::convertible_to<Vec3>;
 };
 
+/// Optional: `static constexpr std::array<int, K> depends_on = {1, 2};` lists the coordinates g depends on.
+template <class C>
+concept declares_dependencies = requires { C::depends_on; };
+
+template <class C>
+constexpr auto active_coordinates() {
+  if constexpr (declares_dependencies<C>) {
+    return C::depends_on;
+  } else {
+    return std::array<int, 4>{0, 1, 2, 3};
+  }
+}
+
+/// depends_on is a std::array<int, K>, 1 <= K <= 4, of distinct increasing indices in 0..3.
+template <class C>
+constexpr bool dependencies_valid() {
+  constexpr auto a = active_coordinates<C>();
+  if (a.size() < 1 || a.size() > 4) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] < 0 || a[i] > 3) return false;
+    if (i > 0 && a[i] <= a[i - 1]) return false;
+  }
+  return true;
+}
+
 }  // namespace auto_metric_detail
 
 /// What a user writes to get a metric by automatic differentiation (see the top of this header).
@@ -136,6 +169,9 @@ struct AutoMetric : C {
                 "template <class S> Eigen::Matrix<S, 4, 4> metric_components(const Eigen::Matrix<S, 4, 1>& x) const, "
                 "returning Eigen::Matrix<S, 4, 4>: AutoMetric calls it with S = grtrace::Dual<4> to differentiate it "
                 "(a function of Vec4, or one returning Mat4 for every S, has no derivatives to give)");
+  static_assert(auto_metric_detail::dependencies_valid<C>(),
+                "AutoMetric<C>: C::depends_on must be a std::array<int, K> (1 <= K <= 4) of increasing coordinate "
+                "indices 0..3, e.g. `static constexpr std::array<int, 2> depends_on = {1, 2};` for g(r, theta)");
   static_assert(auto_metric_detail::has_radius<C>,
                 "AutoMetric<C>: C needs `double radius(const grtrace::Vec4& x) const` (the escape test's distance)");
   static_assert(auto_metric_detail::has_horizon_radius<C>,
@@ -185,25 +221,38 @@ struct AutoMetric : C {
     return G;
   }
 
-  /// -Gamma^mu_{ab} k^a k^b without the table: with s_nu = g_{nu b} k^b (a Dual, so it carries d_c s_nu),
-  ///   Gamma_{nu ab} k^a k^b = k^c d_c s_nu - 1/2 d_nu (k^b s_b),
-  /// then one solve with g raises the index.
+  /// The coordinates acceleration() differentiates along: C::depends_on when C declares it, else all four.
+  static constexpr auto active = auto_metric_detail::active_coordinates<C>();
+  static constexpr int active_count = static_cast<int>(active.size());
+
+  /// -Gamma^mu_{ab} k^a k^b without the table. From the 10 upper-triangle components g_ab (Duals over the active
+  /// coordinates) it forms the directional derivatives (d_k g)_ab = k^c d_c g_ab and q_c = d_c g(k, k), then
+  ///   Gamma_{nu ab} k^a k^b = (d_k g)_{nu b} k^b - q_nu / 2,
+  /// and raises the index with one solve: a division per component when g is diagonal at x (checked at run time,
+  /// exact zeros), else the general 4x4 inverse.
   Vec4 acceleration(const Vec4& x, const Vec4& k) const {
-    const Mat4Of<MetricDual> G = dual_components(x);
-    Mat4 g;
-    Vec4 lowered;  // Gamma_{nu ab} k^a k^b
-    MetricDual kk(0.0);  // g(k, k) with its gradient
-    for (int nu = 0; nu < 4; ++nu) {
-      MetricDual s(0.0);
-      for (int b = 0; b < 4; ++b) {
-        const MetricDual& gnb = nu <= b ? G(nu, b) : G(b, nu);  // upper triangle only
-        g(nu, b) = gnb.v;
-        s += gnb * k[b];
+    using D = Dual<active_count>;
+    Vec4Of<D> xd;
+    for (int i = 0; i < 4; ++i) xd[i] = D(x[i]);
+    for (std::size_t j = 0; j < active.size(); ++j) xd[active[j]] = D::variable(x[active[j]], static_cast<int>(j));
+    const Mat4Of<D> G = C::metric_components(xd);
+    Mat4 g, dk;
+    Vec4 q = Vec4::Zero();
+    for (int a = 0; a < 4; ++a)
+      for (int b = a; b < 4; ++b) {
+        const D& e = G(a, b);
+        g(a, b) = g(b, a) = e.v;
+        const double w = (a == b ? 1.0 : 2.0) * k[a] * k[b];
+        double along_k = 0.0;
+        for (std::size_t j = 0; j < active.size(); ++j) {
+          along_k += e.d[j] * k[active[j]];
+          q[active[j]] += w * e.d[j];
+        }
+        dk(a, b) = dk(b, a) = along_k;
       }
-      lowered[nu] = s.d[0] * k[0] + s.d[1] * k[1] + s.d[2] * k[2] + s.d[3] * k[3];
-      kk += s * k[nu];
-    }
-    for (int nu = 0; nu < 4; ++nu) lowered[nu] -= 0.5 * kk.d[static_cast<std::size_t>(nu)];
+    const Vec4 lowered = dk * k - 0.5 * q;  // Gamma_{nu ab} k^a k^b
+    if (g(0, 1) == 0.0 && g(0, 2) == 0.0 && g(0, 3) == 0.0 && g(1, 2) == 0.0 && g(1, 3) == 0.0 && g(2, 3) == 0.0)
+      return Vec4(-lowered[0] / g(0, 0), -lowered[1] / g(1, 1), -lowered[2] / g(2, 2), -lowered[3] / g(3, 3));
     return -(g.inverse() * lowered);
   }
 

@@ -19,6 +19,7 @@
 
 #include "grtrace/metric/auto_metric.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace grtrace {
@@ -29,6 +30,8 @@ struct EddingtonFinkelstein {
   double mass = 1.0;
   double capture_fraction = 0.5;  ///< capture at r = capture_fraction * 2M (see the header comment)
   bool outgoing = false;          ///< false: ingoing v = t + r*; true: outgoing u = t - r*
+
+  static constexpr std::array<int, 2> depends_on = {1, 2};  ///< g(r, theta): v and phi are Killing
 
   template <class S>
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {

@@ -10,6 +10,7 @@
 
 #include "grtrace/metric/auto_metric.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace grtrace {
@@ -18,6 +19,8 @@ struct EllisWormhole {
   static constexpr std::string_view name = "ellis-wormhole";
   static constexpr Chart chart = Chart::spherical;
   double throat = 1.0;  ///< b0
+
+  static constexpr std::array<int, 2> depends_on = {1, 2};  ///< g(l, theta): t and phi are Killing
 
   template <class S>
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {

@@ -9,6 +9,7 @@
 
 #include "grtrace/metric/auto_metric.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace grtrace {
@@ -18,6 +19,8 @@ struct ReissnerNordstrom {
   static constexpr Chart chart = Chart::spherical;
   double mass = 1.0;
   double charge = 0.5;
+
+  static constexpr std::array<int, 2> depends_on = {1, 2};  ///< g(r, theta): t and phi are Killing
 
   template <class S>
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {

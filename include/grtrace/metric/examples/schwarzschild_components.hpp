@@ -9,6 +9,7 @@
 
 #include "grtrace/metric/auto_metric.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace grtrace {
@@ -17,6 +18,8 @@ struct SchwarzschildComponents {
   static constexpr std::string_view name = "schwarzschild-auto";
   static constexpr Chart chart = Chart::spherical;
   double mass = 1.0;
+
+  static constexpr std::array<int, 2> depends_on = {1, 2};  ///< g(r, theta): t and phi are Killing
 
   template <class S>
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {

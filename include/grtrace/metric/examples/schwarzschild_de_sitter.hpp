@@ -14,6 +14,7 @@
 
 #include "grtrace/metric/auto_metric.hpp"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -24,6 +25,8 @@ struct SchwarzschildDeSitter {
   static constexpr Chart chart = Chart::spherical;
   double mass = 1.0;
   double lambda = 1e-4;  ///< cosmological constant Lambda (units 1/M^2)
+
+  static constexpr std::array<int, 2> depends_on = {1, 2};  ///< g(r, theta): t and phi are Killing
 
   template <class S>
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {

@@ -10,9 +10,15 @@
 //                         ns_per_step (wall time / accepted steps), steps, rejected, rhs_evals, error (rad,
 //                         against exact::asymptotic_direction at the camera, continued from the sky-sphere
 //                         crossing) and error_node (continued from the last accepted node)
+//   ad/<piece>/<metric>   automatic differentiation (metric/auto_metric.hpp) against the closed form, for
+//                         Schwarzschild: acceleration() alone, one dopri5 step, and one whole ray (tsit5, I
+//                         controller, rtol 2e-9: the render default) with counter ns_per_step per accepted step;
+//                         <metric> is closed (SchwarzschildMetric) or auto (AutoMetric<SchwarzschildComponents>)
 // Run: build-*/tests/benchmarks/step_benchmark --benchmark_min_time=0.2
+//      build-*/tests/benchmarks/step_benchmark --benchmark_filter='^ad/' --benchmark_min_time=0.5
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
+#include "grtrace/metric/examples/schwarzschild_components.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
@@ -172,6 +178,71 @@ void register_ray(const std::string& name, double rtol) {
     one_ray<T, C>(s, rtol, 525, 512);
   })->Unit(benchmark::kMicrosecond);
 }
+
+// ---- automatic differentiation against the closed form (issue 13) ----------------------------------------
+
+template <class Metric>
+void ad_acceleration(benchmark::State& state) {
+  const Metric metric{};
+  GeodesicState y = strong_field_state();
+  Vec4 x = y.head<4>(), k = y.tail<4>();
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(k);
+    Vec4 a = metric.acceleration(x, k);
+    benchmark::DoNotOptimize(a);
+  }
+  state.counters["ns_per_eval"] = timer.ns_per(1.0, state.iterations());
+}
+
+template <class Metric>
+void ad_step(benchmark::State& state) {
+  const Metric metric{};
+  const GeodesicEquation<Metric> f{&metric};
+  RungeKuttaStepper<DormandPrince54, 8> stepper;
+  GeodesicState y = strong_field_state();
+  const GeodesicState f0 = f(y);
+  GeodesicState y_new, err;
+  double h = 0.05;
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(y);
+    benchmark::DoNotOptimize(h);
+    stepper.step(f, y, f0, h, y_new, err);
+    benchmark::DoNotOptimize(y_new);
+    benchmark::DoNotOptimize(err);
+  }
+  state.counters["ns_per_step"] = timer.ns_per(1.0, state.iterations());
+}
+
+template <class Metric>
+void ad_ray(benchmark::State& state) {
+  TraceSettings settings;
+  settings.integrator.tolerance = {2e-9, 2e-11};
+  settings.escape_radius = 400.0;
+  const GeodesicTracer<Metric, Tsitouras54, IController> tracer(Metric{}, settings);
+  const GeodesicState y0 = seed_frame_pixel(768, 640);
+  TraceResult r;
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    r = tracer.trace(y0);
+    benchmark::DoNotOptimize(r);
+  }
+  if (r.status != RayStatus::escaped) {
+    state.SkipWithError("the benchmark ray did not escape");
+    return;
+  }
+  state.counters["ns_per_step"] = timer.ns_per(static_cast<double>(r.accepted), state.iterations());
+  state.counters["steps"] = r.accepted;
+}
+
+BENCHMARK(ad_acceleration<SchwarzschildMetric>)->Name("ad/acceleration/closed");
+BENCHMARK(ad_acceleration<AutoSchwarzschild>)->Name("ad/acceleration/auto");
+BENCHMARK(ad_step<SchwarzschildMetric>)->Name("ad/step_dopri5/closed");
+BENCHMARK(ad_step<AutoSchwarzschild>)->Name("ad/step_dopri5/auto");
+BENCHMARK(ad_ray<SchwarzschildMetric>)->Name("ad/ray_tsit5/closed")->Unit(benchmark::kMicrosecond);
+BENCHMARK(ad_ray<AutoSchwarzschild>)->Name("ad/ray_tsit5/auto")->Unit(benchmark::kMicrosecond);
 
 const bool registered = [] {
   for_each_tableau([](auto tag) {

@@ -6,8 +6,9 @@
 // deflection against the exact one and against the closed-form tracer; the MetricComponents concept's verdicts;
 // the example metrics' physics (Schwarzschild-de Sitter horizons, a ray through the wormhole throat,
 // Eddington-Finkelstein against Schwarzschild coordinates and through r = 2M with fixed-step RK4).
-#include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/auto_metric.hpp"
+
+#include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/dual.hpp"
 #include "grtrace/metric/examples/eddington_finkelstein.hpp"
 #include "grtrace/metric/examples/ellis_wormhole.hpp"
@@ -55,8 +56,7 @@ TEST(Dual, ElementaryFunctionsHaveTheirDerivatives) {
   const D f = sin(x) * exp(y) + sqrt(x * y) - log(y) / x + pow(x, 2.5) + tan(x) * cos(y) + atan2(y, x);
   const double xv = 0.7, yv = 1.3;
   const double dfdx = std::cos(xv) * std::exp(yv) + 0.5 * yv / std::sqrt(xv * yv) + std::log(yv) / (xv * xv) +
-                      2.5 * std::pow(xv, 1.5) + std::cos(yv) / (std::cos(xv) * std::cos(xv)) -
-                      yv / (xv * xv + yv * yv);
+                      2.5 * std::pow(xv, 1.5) + std::cos(yv) / (std::cos(xv) * std::cos(xv)) - yv / (xv * xv + yv * yv);
   const double dfdy = std::sin(xv) * std::exp(yv) + 0.5 * xv / std::sqrt(xv * yv) - 1.0 / (yv * xv) -
                       std::tan(xv) * std::sin(yv) + xv / (xv * xv + yv * yv);
   EXPECT_NEAR(f.d[0], dfdx, 1e-14 * std::abs(dfdx));
@@ -118,15 +118,14 @@ Vec4 random_event(std::mt19937& rng, const M& metric) {
   } else {
     const double rh = metric.horizon_radius();
     const double r_lo = rh > 0.0 ? 1.05 * rh : 0.5, r_hi = rh > 0.0 ? 50.0 * rh : 50.0;
-    return Vec4(100.0 * u(rng) - 50.0, r_lo + (r_hi - r_lo) * u(rng), 0.05 + (kPi - 0.1) * u(rng),
-                2.0 * kPi * u(rng));
+    return Vec4(100.0 * u(rng) - 50.0, r_lo + (r_hi - r_lo) * u(rng), 0.05 + (kPi - 0.1) * u(rng), 2.0 * kPi * u(rng));
   }
 }
 
 struct Mismatch {
-  double christoffel = 0.0;    ///< worst |AD - closed| / |closed| over the nonzero symbols
-  double zero_symbols = 0.0;   ///< worst |AD| / max|Gamma| over the symbols that vanish in closed form
-  double acceleration = 0.0;   ///< worst |AD - closed| / sum |Gamma^mu_ab k^a k^b| terms, per component
+  double christoffel = 0.0;   ///< worst |AD - closed| / |closed| over the nonzero symbols
+  double zero_symbols = 0.0;  ///< worst |AD| / max|Gamma| over the symbols that vanish in closed form
+  double acceleration = 0.0;  ///< worst |AD - closed| / sum |Gamma^mu_ab k^a k^b| terms, per component
   int nonzero = 0;
 };
 
@@ -167,9 +166,10 @@ Mismatch compare(const Closed& closed, const Components& components, std::uint32
 }
 
 void expect_matches(const char* what, const Mismatch& m) {
-  std::printf("%s: worst relative Christoffel error %.3g (%d nonzero symbols), vanishing symbols %.3g, "
-              "acceleration %.3g\n",
-              what, m.christoffel, m.nonzero, m.zero_symbols, m.acceleration);
+  std::printf(
+      "%s: worst relative Christoffel error %.3g (%d nonzero symbols), vanishing symbols %.3g, "
+      "acceleration %.3g\n",
+      what, m.christoffel, m.nonzero, m.zero_symbols, m.acceleration);
   EXPECT_LT(m.christoffel, 1e-13) << what;
   EXPECT_LT(m.zero_symbols, 1e-13) << what;
   EXPECT_LT(m.acceleration, 1e-13) << what;
@@ -348,10 +348,10 @@ TEST(EddingtonFinkelstein, EscapingRayEndsInTheSameSkyDirectionAsInSchwarzschild
     const auto ds = exact::asymptotic_direction(rs.final_state);
     ASSERT_TRUE(de && ds);
     const double angle = exact::angular_distance(*de, *ds);
-    std::printf("b = %4.1f: EF sky (%.12f, %.12f), Schwarzschild sky (%.12f, %.12f), %.3g rad apart; "
-                "t from EF %.10f vs %.10f\n",
-                b, de->theta, de->phi, ds->theta, ds->phi, angle, ef.to_schwarzschild(re.final_state)[0],
-                rs.final_state[0]);
+    std::printf(
+        "b = %4.1f: EF sky (%.12f, %.12f), Schwarzschild sky (%.12f, %.12f), %.3g rad apart; "
+        "t from EF %.10f vs %.10f\n",
+        b, de->theta, de->phi, ds->theta, ds->phi, angle, ef.to_schwarzschild(re.final_state)[0], rs.final_state[0]);
     EXPECT_LT(angle, 1e-8) << "b = " << b;
     EXPECT_NEAR(ef.to_schwarzschild(re.final_state)[0], rs.final_state[0], 1e-6 * rs.final_state[0]);
     EXPECT_NEAR(ef.energy(re.final_state), 1.0, 1e-9);
@@ -377,10 +377,11 @@ TEST(EddingtonFinkelstein, CapturedRayCrossesTheHorizonWithFixedStepRK4) {
     kv_max = 0.0;
     inside_steps = 0;
     const TraceResult r = tracer.trace_observed(ef.from_schwarzschild(schwarzschild_photon(b)), observer);
-    std::printf("b = %.1f: %s at r = %.6f after %d fixed steps (%d inside r = 2M), |k^v| <= %.4g, "
-                "g(k,k) drift %.3g, E = %.12f\n",
-                b, to_string(r.status).data(), r.final_state[1], r.accepted, inside_steps, kv_max, r.constraint_drift,
-                ef.energy(r.final_state));
+    std::printf(
+        "b = %.1f: %s at r = %.6f after %d fixed steps (%d inside r = 2M), |k^v| <= %.4g, "
+        "g(k,k) drift %.3g, E = %.12f\n",
+        b, to_string(r.status).data(), r.final_state[1], r.accepted, inside_steps, kv_max, r.constraint_drift,
+        ef.energy(r.final_state));
     EXPECT_EQ(r.status, RayStatus::captured) << "b = " << b;
     EXPECT_NEAR(r.final_state[1], ef.capture_radius() * (1.0 + s.horizon_epsilon), 1e-9);
     EXPECT_GT(inside_steps, 5) << "the ray must be integrated inside r = 2M, not stopped at it";

@@ -4,8 +4,6 @@
 // deliberately broken metrics with messages that name the component, the event and both values: a sign error in
 // g, an asymmetric g, a degenerate g, a wrong Christoffel symbol, an acceleration that disagrees with its own
 // Christoffel table, a wrong depends_on, a quantity that is not conserved, a metric that is not flat far away.
-#include "grtrace/testing.hpp"
-
 #include "grtrace/metric/auto_metric.hpp"
 #include "grtrace/metric/examples/eddington_finkelstein.hpp"
 #include "grtrace/metric/examples/ellis_wormhole.hpp"
@@ -15,6 +13,7 @@
 #include "grtrace/metric/examples/schwarzschild_de_sitter.hpp"
 #include "grtrace/metric/minkowski.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/testing.hpp"
 
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
@@ -193,9 +192,11 @@ TEST(KitCatches, AWrongChristoffelSymbol) {
   EXPECT_TRUE(kit::christoffel_consistent(m, at));  // the typo is self-consistent
   const auto r = kit::christoffel_matches(m, SchwarzschildComponents{1.0}, at);
   const double s = std::sin(1.0) * std::cos(1.0);
-  EXPECT_EQ(message_of(r), "schwarzschild-typo: Gamma^theta_{phi phi} = Gamma[2](3, 3) at x = (0, 6, 1, 0): "
-                           "christoffel() gives " + kit::detail::num(s) + " but differentiating the reference g gives " +
-                               kit::detail::num(-s) + " (relative difference 2 > 1e-11)");
+  EXPECT_EQ(message_of(r),
+            "schwarzschild-typo: Gamma^theta_{phi phi} = Gamma[2](3, 3) at x = (0, 6, 1, 0): "
+            "christoffel() gives " +
+                kit::detail::num(s) + " but differentiating the reference g gives " + kit::detail::num(-s) +
+                " (relative difference 2 > 1e-11)");
   EXPECT_NONFATAL_FAILURE(EXPECT_TRUE(kit::christoffel_matches(m, SchwarzschildComponents{1.0}, at)),
                           "Gamma^theta_{phi phi} = Gamma[2](3, 3)");
 }
@@ -214,7 +215,8 @@ TEST(KitCatches, AnAccelerationThatDisagreesWithItsChristoffels) {
   const WrongAcceleration m{};
   const std::vector<Vec4> at = kit::sample_events(m, {}, 5);
   const std::string msg = message_of(kit::christoffel_consistent(m, at));
-  EXPECT_TRUE(contains(msg, "schwarzschild-acceleration-typo: acceleration^phi = acceleration(x, k)[3] at x = (")) << msg;
+  EXPECT_TRUE(contains(msg, "schwarzschild-acceleration-typo: acceleration^phi = acceleration(x, k)[3] at x = ("))
+      << msg;
   EXPECT_TRUE(contains(msg, "-Gamma^phi_ab k^a k^b from christoffel() gives")) << msg;
   // Along rays the typo breaks L_z, and the conservation check names it.
   EXPECT_NONFATAL_FAILURE(EXPECT_TRUE(kit::conserved_along_null_geodesics(m, energy_and_lz(m))),
@@ -230,8 +232,9 @@ struct WrongDependsOn : SchwarzschildComponents {
 TEST(KitCatches, AWrongDependsOn) {
   const AutoMetric<WrongDependsOn> m{};
   const std::vector<Vec4> at = {Vec4(0.0, 5.0, 1.0, 0.0)};
-  EXPECT_NONFATAL_FAILURE(EXPECT_TRUE(kit::christoffel_consistent(m, at)),
-                          "schwarzschild-depends-on-r-only: acceleration^theta = acceleration(x, k)[2] at x = (0, 5, 1, 0)");
+  EXPECT_NONFATAL_FAILURE(
+      EXPECT_TRUE(kit::christoffel_consistent(m, at)),
+      "schwarzschild-depends-on-r-only: acceleration^theta = acceleration(x, k)[2] at x = (0, 5, 1, 0)");
 }
 
 TEST(KitCatches, AQuantityThatIsNotConserved) {
@@ -251,9 +254,10 @@ TEST(KitCatches, AMetricThatIsNotFlatFarAway) {
   const AutoSchwarzschildDeSitter m{{1.0, 1e-4}};
   const auto r = kit::approaches_flat(m, 100.0, 1e-6);
   // g_tt = 1 - 2/100 - 1e-4 * 100^2 / 3 = 0.64666...
-  EXPECT_TRUE(contains(message_of(r), "schwarzschild-de-sitter: not flat at radius 100: g_{t t} = g(0, 0) at "
-                                      "x = (0, 100, 0.4, 0.1) is 0.6466666667 but flat space (minkowski-spherical) "
-                                      "has 1"))
+  EXPECT_TRUE(contains(message_of(r),
+                       "schwarzschild-de-sitter: not flat at radius 100: g_{t t} = g(0, 0) at "
+                       "x = (0, 100, 0.4, 0.1) is 0.6466666667 but flat space (minkowski-spherical) "
+                       "has 1"))
       << message_of(r);
 }
 

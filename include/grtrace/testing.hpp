@@ -17,9 +17,9 @@
 //   metric_is_symmetric      g_ab = g_ba
 //   metric_is_lorentzian     one positive and three negative eigenvalues, none (near) zero
 //   inverse_is_consistent    g g^-1 = 1 (M::inverse_metric when it has one, else Eigen's inverse of g)
-//   christoffel_consistent   Gamma^mu_ab = Gamma^mu_ba, and acceleration(x, k) = -Gamma^mu_ab k^a k^b from christoffel()
+//   christoffel_consistent   Gamma^mu_ab = Gamma^mu_ba; acceleration(x, k) = -Gamma^mu_ab k^a k^b of christoffel()
 //   christoffel_matches      christoffel() and acceleration() against the automatic derivative of a reference g
-//   conserved_along_null_geodesics  g(k, k) and each named quantity along random null rays (GeodesicTracer)
+//   conserved_along_null_geodesics   g(k, k) and each named quantity along random null rays (GeodesicTracer)
 //   approaches_flat          g -> flat space (Minkowski in the same chart, or a given flat metric) at a radius
 #pragma once
 
@@ -61,8 +61,8 @@ struct Region {
 
 /// Settings of the whole-metric check (expect_valid_metric); every tolerance is the one the single check takes.
 struct MetricCheckOptions {
-  Region points{};            ///< where the pointwise checks look (default: [1.1 r_h, 30 r_h], or [0.5, 30])
-  Region rays{};              ///< where null rays start (default: [3 r_h, 15 r_h], or [2, 30])
+  Region points{};  ///< where the pointwise checks look (default: [1.1 r_h, 30 r_h], or [0.5, 30])
+  Region rays{};    ///< where null rays start (default: [3 r_h, 15 r_h], or [2, 30])
   int point_count = 25;
   int ray_count = 6;
   std::uint32_t seed = 20261122u;
@@ -116,8 +116,8 @@ std::string g_name(int a, int b) {
 /// "Gamma^theta_{phi phi} = Gamma[2](3, 3)"
 template <MetricPolicy M>
 std::string gamma_name(int mu, int a, int b) {
-  return std::string("Gamma^") + coordinate<M>(mu) + "_{" + coordinate<M>(a) + " " + coordinate<M>(b) +
-         "} = Gamma[" + std::to_string(mu) + "](" + std::to_string(a) + ", " + std::to_string(b) + ")";
+  return std::string("Gamma^") + coordinate<M>(mu) + "_{" + coordinate<M>(a) + " " + coordinate<M>(b) + "} = Gamma[" +
+         std::to_string(mu) + "](" + std::to_string(a) + ", " + std::to_string(b) + ")";
 }
 template <MetricPolicy M>
 std::string who() {
@@ -162,7 +162,8 @@ std::vector<Vec4> sample_events(const M& metric, Region region, int count, std::
     if constexpr (M::chart == Chart::spherical) {
       out.emplace_back(t, r, theta, phi);
     } else {
-      out.emplace_back(t, r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi), r * std::cos(theta));
+      out.emplace_back(t, r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi),
+                       r * std::cos(theta));
     }
   }
   return out;
@@ -181,10 +182,10 @@ template <MetricPolicy M>
       for (int b = a + 1; b < 4; ++b)
         if (!(std::abs(g(a, b) - g(b, a)) <= tolerance * scale))
           return ::testing::AssertionFailure()
-                 << detail::who<M>() << "g is not symmetric at x = " << detail::vec(x) << ": " << detail::g_name<M>(a, b)
-                 << " is " << detail::num(g(a, b)) << " but " << detail::g_name<M>(b, a) << " is " << detail::num(g(b, a))
-                 << " (difference " << detail::small(g(a, b) - g(b, a)) << " > " << detail::small(tolerance)
-                 << " of the largest component " << detail::num(scale) << ")";
+                 << detail::who<M>() << "g is not symmetric at x = " << detail::vec(x) << ": "
+                 << detail::g_name<M>(a, b) << " is " << detail::num(g(a, b)) << " but " << detail::g_name<M>(b, a)
+                 << " is " << detail::num(g(b, a)) << " (difference " << detail::small(g(a, b) - g(b, a)) << " > "
+                 << detail::small(tolerance) << " of the largest component " << detail::num(scale) << ")";
   }
   return ::testing::AssertionSuccess();
 }
@@ -270,8 +271,8 @@ std::string compare_christoffel(const Christoffel& got, const Christoffel& want,
       }
   if (worst < 0.0) return {};
   const double g = got[static_cast<std::size_t>(wm)](wa, wb), w = want[static_cast<std::size_t>(wm)](wa, wb);
-  return gamma_name<M>(wm, wa, wb) + " at x = " + vec(x) + ": " + got_what + " gives " + num(g) + " but " +
-         want_what + " gives " + num(w) + " (relative difference " + small(worst) + " > " + small(rtol) + ")";
+  return gamma_name<M>(wm, wa, wb) + " at x = " + vec(x) + ": " + got_what + " gives " + num(g) + " but " + want_what +
+         " gives " + num(w) + " (relative difference " + small(worst) + " > " + small(rtol) + ")";
 }
 
 /// Worst component of acceleration(x, k) against -Gamma(k, k) ("" when within tolerance); relative to the size of
@@ -304,8 +305,8 @@ inline Vec4 random_direction(std::mt19937& rng) {
 /// for a random k at each event (the two are written separately in closed-form metrics, and AutoMetric's
 /// acceleration uses C::depends_on where christoffel() does not: this catches a wrong depends_on).
 template <MetricPolicy M>
-::testing::AssertionResult christoffel_consistent(const M& metric, const std::vector<Vec4>& points,
-                                                  double rtol = 1e-11, std::uint32_t seed = 7u) {
+::testing::AssertionResult christoffel_consistent(const M& metric, const std::vector<Vec4>& points, double rtol = 1e-11,
+                                                  std::uint32_t seed = 7u) {
   std::mt19937 rng(seed);
   for (const Vec4& x : points) {
     const Christoffel G = metric.christoffel(x);
@@ -315,8 +316,9 @@ template <MetricPolicy M>
         for (int b = a + 1; b < 4; ++b)
           if (!(std::abs(Gm(a, b) - Gm(b, a)) <= rtol * std::max({std::abs(Gm(a, b)), std::abs(Gm(b, a)), 1e-300})))
             return ::testing::AssertionFailure()
-                   << detail::who<M>() << "christoffel() is not symmetric in its lower indices at x = " << detail::vec(x)
-                   << ": " << detail::gamma_name<M>(mu, a, b) << " is " << detail::num(Gm(a, b)) << " but "
+                   << detail::who<M>()
+                   << "christoffel() is not symmetric in its lower indices at x = " << detail::vec(x) << ": "
+                   << detail::gamma_name<M>(mu, a, b) << " is " << detail::num(Gm(a, b)) << " but "
                    << detail::gamma_name<M>(mu, b, a) << " is " << detail::num(Gm(b, a));
     }
     const Vec4 k = detail::random_direction(rng);
@@ -348,8 +350,8 @@ template <MetricPolicy M, MetricComponents C>
                                                      "differentiating the reference g", x);
     if (bad.empty()) {
       const Vec4 k = detail::random_direction(rng);
-      bad = detail::compare_acceleration<M>(metric.acceleration(x, k), ad, x, k, rtol,
-                                            "the differentiated reference g");
+      bad =
+          detail::compare_acceleration<M>(metric.acceleration(x, k), ad, x, k, rtol, "the differentiated reference g");
     }
     if (!bad.empty()) return ::testing::AssertionFailure() << detail::who<M>() << bad;
   }
@@ -443,8 +445,8 @@ template <MetricPolicy M, ExplicitTableau Tableau = DormandPrince54>
     };
     const TraceResult r = tracer.trace_observed(y0, observer);
     check(r.step_end_state);
-    const std::string ray = "null geodesic " + std::to_string(traced) + " from x = " + detail::vec(x) +
-                            ", k = " + detail::vec(*k);
+    const std::string ray =
+        "null geodesic " + std::to_string(traced) + " from x = " + detail::vec(x) + ", k = " + detail::vec(*k);
     // One failure for the ray, one line per quantity that moved (the user's first, g(k, k) last).
     std::string lines;
     for (std::size_t j = 1; j <= quantities.size() + 1; ++j) {
@@ -453,22 +455,22 @@ template <MetricPolicy M, ExplicitTableau Tableau = DormandPrince54>
       if (w.step < 0) continue;
       if (!lines.empty()) lines += "\n" + detail::who<M>();
       if (i == 0) {
-        lines += "g(k, k) not conserved along the " + ray + ": 0 at the start, " + detail::num(w.value) +
-                 " at step " + std::to_string(w.step) + " (x = " + detail::vec(w.y.template head<4>()) +
-                 "; relative to its terms " + detail::small(w.error) + " > " +
-                 detail::small(options.conservation_tolerance) + ")";
+        lines += "g(k, k) not conserved along the " + ray + ": 0 at the start, " + detail::num(w.value) + " at step " +
+                 std::to_string(w.step) + " (x = " + detail::vec(w.y.template head<4>()) + "; relative to its terms " +
+                 detail::small(w.error) + " > " + detail::small(options.conservation_tolerance) + ")";
       } else {
         lines += quantities[i - 1].name + " not conserved along the " + ray + ": " + detail::num(q0[i - 1]) +
-                 " at the start, " + detail::num(w.value) + " at step " + std::to_string(w.step) + " (x = " +
-                 detail::vec(w.y.template head<4>()) + "; |change| / (1 + |start|) = " + detail::small(w.error) +
-                 " > " + detail::small(options.conservation_tolerance) + ")";
+                 " at the start, " + detail::num(w.value) + " at step " + std::to_string(w.step) +
+                 " (x = " + detail::vec(w.y.template head<4>()) +
+                 "; |change| / (1 + |start|) = " + detail::small(w.error) + " > " +
+                 detail::small(options.conservation_tolerance) + ")";
       }
     }
     if (is_failure(r.status)) {
       if (!lines.empty()) lines += "\n" + detail::who<M>();
-      lines += "the " + ray + " ended as " + std::string(to_string(r.status)) + " after " +
-               std::to_string(r.accepted) + " steps at x = " + detail::vec(r.final_state.template head<4>()) +
-               " (rtol " + detail::small(options.ray_rtol) + ")";
+      lines += "the " + ray + " ended as " + std::string(to_string(r.status)) + " after " + std::to_string(r.accepted) +
+               " steps at x = " + detail::vec(r.final_state.template head<4>()) + " (rtol " +
+               detail::small(options.ray_rtol) + ")";
     }
     if (!lines.empty()) return ::testing::AssertionFailure() << detail::who<M>() << lines;
   }
@@ -489,7 +491,9 @@ template <MetricPolicy M, MetricPolicy Flat>
     for (double phi : {0.1, 2.5}) {
       Vec4 x;
       if constexpr (M::chart == Chart::spherical) x = Vec4(0.0, radius, theta, phi);
-      else x = Vec4(0.0, radius * std::sin(theta) * std::cos(phi), radius * std::sin(theta) * std::sin(phi), radius * std::cos(theta));
+      else
+        x = Vec4(0.0, radius * std::sin(theta) * std::cos(phi), radius * std::sin(theta) * std::sin(phi),
+                 radius * std::cos(theta));
       const Mat4 g = metric.metric(x), eta = flat.metric(x);
       Vec4 s;
       for (int a = 0; a < 4; ++a) s[a] = std::max(eta.row(a).cwiseAbs().maxCoeff(), 1e-300);
@@ -498,10 +502,10 @@ template <MetricPolicy M, MetricPolicy Flat>
           const double err = std::abs(g(a, b) - eta(a, b)) / std::sqrt(s[a] * s[b]);
           if (!(err <= tolerance))
             return ::testing::AssertionFailure()
-                   << detail::who<M>() << "not flat at radius " << detail::num(radius) << ": " << detail::g_name<M>(a, b)
-                   << " at x = " << detail::vec(x) << " is " << detail::num(g(a, b)) << " but flat space ("
-                   << Flat::name << ") has " << detail::num(eta(a, b)) << " (difference " << detail::small(err)
-                   << " in frame units > " << detail::small(tolerance) << ")";
+                   << detail::who<M>() << "not flat at radius " << detail::num(radius) << ": "
+                   << detail::g_name<M>(a, b) << " at x = " << detail::vec(x) << " is " << detail::num(g(a, b))
+                   << " but flat space (" << Flat::name << ") has " << detail::num(eta(a, b)) << " (difference "
+                   << detail::small(err) << " in frame units > " << detail::small(tolerance) << ")";
         }
     }
   return ::testing::AssertionSuccess();
@@ -546,8 +550,8 @@ void expect_valid_metric(const M& metric, const C& reference, const std::vector<
 
 /// GRTRACE_EXPECT_VALID_METRIC(metric [, reference] [, quantities] [, options]): expect_valid_metric with the
 /// caller's file and line in every failure.
-#define GRTRACE_EXPECT_VALID_METRIC(...)                                         \
-  do {                                                                           \
-    SCOPED_TRACE("GRTRACE_EXPECT_VALID_METRIC(" #__VA_ARGS__ ")");               \
-    ::grtrace::testing::expect_valid_metric(__VA_ARGS__);                        \
+#define GRTRACE_EXPECT_VALID_METRIC(...)                           \
+  do {                                                             \
+    SCOPED_TRACE("GRTRACE_EXPECT_VALID_METRIC(" #__VA_ARGS__ ")"); \
+    ::grtrace::testing::expect_valid_metric(__VA_ARGS__);          \
   } while (false)

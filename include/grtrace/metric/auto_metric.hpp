@@ -100,7 +100,9 @@ concept has_to_cartesian = requires(const C c, const Vec4 x) {
 
 /// Optional: `static constexpr std::array<int, K> depends_on = {1, 2};` lists the coordinates g depends on.
 template <class C>
-concept declares_dependencies = requires { C::depends_on; };
+concept declares_dependencies = requires {
+  C::depends_on;
+};
 
 template <class C>
 constexpr auto active_coordinates() {
@@ -127,15 +129,14 @@ constexpr bool dependencies_valid() {
 
 /// What a user writes to get a metric by automatic differentiation (see the top of this header).
 template <class C>
-concept MetricComponents =
-    auto_metric_detail::has_name<C> && auto_metric_detail::has_chart<C> &&
+concept MetricComponents = auto_metric_detail::has_name<C> && auto_metric_detail::has_chart<C> &&
     auto_metric_detail::components_of_double<C> && auto_metric_detail::components_of_dual<C> &&
     auto_metric_detail::has_radius<C> && auto_metric_detail::has_horizon_radius<C>;
 
 /// g_{ab} and its first derivatives at one event.
 struct MetricJet {
-  Mat4 g;                    ///< g_{ab}, symmetric (mirrored from the upper triangle)
-  std::array<Mat4, 4> dg;    ///< dg[c](a, b) = d g_{ab} / d x^c
+  Mat4 g;                  ///< g_{ab}, symmetric (mirrored from the upper triangle)
+  std::array<Mat4, 4> dg;  ///< dg[c](a, b) = d g_{ab} / d x^c
 };
 
 /// A diagonal metric diag(g00, g11, g22, g33) in any scalar type (most of the example metrics).
@@ -157,11 +158,9 @@ struct AutoMetric : C {
   static_assert(auto_metric_detail::has_chart<C>,
                 "AutoMetric<C>: C needs `static constexpr grtrace::Chart chart = grtrace::Chart::spherical;` "
                 "(or Chart::cartesian)");
-  static_assert(auto_metric_detail::components_of_double<C> ||
-                    !auto_metric_detail::components_of_double_nonconst<C>,
+  static_assert(auto_metric_detail::components_of_double<C> || !auto_metric_detail::components_of_double_nonconst<C>,
                 "AutoMetric<C>: C::metric_components must be a const member function");
-  static_assert(auto_metric_detail::components_of_double<C> ||
-                    auto_metric_detail::components_of_double_nonconst<C>,
+  static_assert(auto_metric_detail::components_of_double<C> || auto_metric_detail::components_of_double_nonconst<C>,
                 "AutoMetric<C>: C needs `template <class S> Eigen::Matrix<S, 4, 4> "
                 "metric_components(const Eigen::Matrix<S, 4, 1>& x) const` returning g_{mu nu}(x)");
   static_assert(!auto_metric_detail::components_of_double<C> || auto_metric_detail::components_of_dual<C>,
@@ -209,9 +208,9 @@ struct AutoMetric : C {
       Mat4& F = first[static_cast<std::size_t>(nu)];
       for (int a = 0; a < 4; ++a)
         for (int b = a; b < 4; ++b)
-          F(a, b) = F(b, a) = 0.5 * (j.dg[static_cast<std::size_t>(a)](nu, b) +
-                                     j.dg[static_cast<std::size_t>(b)](nu, a) -
-                                     j.dg[static_cast<std::size_t>(nu)](a, b));
+          F(a, b) = F(b, a) =
+              0.5 * (j.dg[static_cast<std::size_t>(a)](nu, b) + j.dg[static_cast<std::size_t>(b)](nu, a) -
+                     j.dg[static_cast<std::size_t>(nu)](a, b));
     }
     Christoffel G;
     for (int mu = 0; mu < 4; ++mu) {

@@ -36,7 +36,7 @@ struct Dual {
   static_assert(N >= 1, "Dual<N>: N is the number of derivative directions and must be at least 1");
   static constexpr std::size_t size = static_cast<std::size_t>(N);
 
-  double v = 0.0;             ///< the value
+  double v = 0.0;                ///< the value
   std::array<double, size> d{};  ///< d[i] = d(value)/d(variable i)
 
   constexpr Dual() = default;

@@ -3,7 +3,6 @@
 #include <grtrace/metric/auto_metric.hpp>
 #include <grtrace/metric/schwarzschild.hpp>
 #include <grtrace/testing.hpp>
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,10 +29,12 @@ TEST(ConsumerKit, MyMetricPassesTheKit) {
   const grtrace::AutoMetric<MyCharged> m{};
   grtrace::testing::MetricCheckOptions o;
   o.flat_radius = 1e8;
-  GRTRACE_EXPECT_VALID_METRIC(m, {{"energy", [](const grtrace::GeodesicState& y) {
-                                     const double r = y[1];
-                                     return (1.0 - 2.0 / r + 0.16 / (r * r)) * y[4];
-                                   }}},
+  GRTRACE_EXPECT_VALID_METRIC(m,
+                              {{"energy",
+                                [](const grtrace::GeodesicState& y) {
+                                  const double r = y[1];
+                                  return (1.0 - 2.0 / r + 0.16 / (r * r)) * y[4];
+                                }}},
                               o);
 }
 

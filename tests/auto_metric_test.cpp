@@ -5,7 +5,8 @@
 // SchwarzschildMetric, MinkowskiMetric and MinkowskiSpherical to 1e-13 relative; an AutoMetric-traced Schwarzschild
 // deflection against the exact one and against the closed-form tracer; the MetricComponents concept's verdicts;
 // the example metrics' physics (Schwarzschild-de Sitter horizons, a ray through the wormhole throat,
-// Eddington-Finkelstein against Schwarzschild coordinates and through r = 2M with fixed-step RK4).
+// Eddington-Finkelstein against Schwarzschild coordinates and through r = 2M with fixed-step RK4, the outgoing
+// chart for past-directed rays).
 #include "grtrace/metric/auto_metric.hpp"
 
 #include "grtrace/exact/schwarzschild_exact.hpp"
@@ -404,6 +405,31 @@ TEST(EddingtonFinkelstein, CapturedRayCrossesTheHorizonWithFixedStepRK4) {
   const TraceResult rs = schwarzschild.trace(schwarzschild_photon(3.0));
   std::printf("Schwarzschild coordinates, b = 3: %s at r = %.6f\n", to_string(rs.status).data(), rs.final_state[1]);
   EXPECT_GE(rs.final_state[1], 2.0);
+}
+
+TEST(EddingtonFinkelstein, OutgoingChartTakesPastDirectedCameraRaysThroughTheHorizon) {
+  // A camera's rays are traced backwards (k past-directed, DESIGN.md). Those that "hit the hole" cross the PAST
+  // horizon, which the outgoing chart u = t - r* covers: the time reverse of the ingoing case.
+  TraceSettings s;
+  s.initial_step = 0.01;
+  const EddingtonFinkelstein out{1.0, 0.5, true};
+  const GeodesicTracer<AutoEddingtonFinkelstein, ClassicRK4, FixedStep> tracer(AutoEddingtonFinkelstein{out}, s);
+  const GeodesicTracer<AutoEddingtonFinkelstein, ClassicRK4, FixedStep> ingoing(AutoEddingtonFinkelstein{}, s);
+  for (double b : {0.5, 3.0}) {
+    GeodesicState y = schwarzschild_photon(b);
+    y.tail<4>() = -y.tail<4>();  // past-directed: k^t < 0 ...
+    y[5] = -std::abs(y[5]);      // ... and still heading inwards, for the hole
+    const TraceResult r = tracer.trace(out.from_schwarzschild(y));
+    std::printf("outgoing EF, past-directed b = %.1f: %s at r = %.6f after %d steps, g(k,k) drift %.3g\n", b,
+                to_string(r.status).data(), r.final_state[1], r.accepted, r.constraint_drift);
+    EXPECT_EQ(r.status, RayStatus::captured) << "b = " << b;
+    EXPECT_LT(r.final_state[1], 2.0);
+    EXPECT_LT(std::abs(r.constraint_drift), 1e-4);
+    // The ingoing chart cannot take the same past-directed ray through r = 2M (v -> -infinity there).
+    const TraceResult ri = ingoing.trace(EddingtonFinkelstein{}.from_schwarzschild(y));
+    std::printf("  ingoing EF, same ray: %s at r = %.6f\n", to_string(ri.status).data(), ri.final_state[1]);
+    EXPECT_NE(ri.status, RayStatus::captured);
+  }
 }
 
 }  // namespace

@@ -13,7 +13,9 @@
 //   ad/<piece>/<metric>   automatic differentiation (metric/auto_metric.hpp) against the closed form, for
 //                         Schwarzschild: acceleration() alone, one dopri5 step, and one whole ray (tsit5, I
 //                         controller, rtol 2e-9: the render default) with counter ns_per_step per accepted step;
-//                         <metric> is closed (SchwarzschildMetric) or auto (AutoMetric<SchwarzschildComponents>)
+//                         <metric> is closed (SchwarzschildMetric), auto (AutoMetric<SchwarzschildComponents>,
+//                         which declares depends_on = {r, theta}: Dual<2>) or auto_dual4 (the same g without
+//                         depends_on: Dual<4>)
 // Run: build-*/tests/benchmarks/step_benchmark --benchmark_min_time=0.2
 //      build-*/tests/benchmarks/step_benchmark --benchmark_filter='^ad/' --benchmark_min_time=0.5
 #include "grtrace/exact/schwarzschild_exact.hpp"
@@ -181,6 +183,20 @@ void register_ray(const std::string& name, double rtol) {
 
 // ---- automatic differentiation against the closed form (issue 13) ----------------------------------------
 
+/// SchwarzschildComponents without depends_on: acceleration() differentiates along all four coordinates (Dual<4>).
+struct SchwarzschildEveryCoordinate {
+  static constexpr std::string_view name = "schwarzschild-auto-dual4";
+  static constexpr Chart chart = Chart::spherical;
+  double mass = 1.0;
+  template <class S>
+  Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
+    return SchwarzschildComponents{mass}.metric_components(x);
+  }
+  double radius(const Vec4& x) const { return x[1]; }
+  double horizon_radius() const { return 2.0 * mass; }
+};
+using AutoSchwarzschildDual4 = AutoMetric<SchwarzschildEveryCoordinate>;
+
 template <class Metric>
 void ad_acceleration(benchmark::State& state) {
   const Metric metric{};
@@ -239,10 +255,13 @@ void ad_ray(benchmark::State& state) {
 
 BENCHMARK(ad_acceleration<SchwarzschildMetric>)->Name("ad/acceleration/closed");
 BENCHMARK(ad_acceleration<AutoSchwarzschild>)->Name("ad/acceleration/auto");
+BENCHMARK(ad_acceleration<AutoSchwarzschildDual4>)->Name("ad/acceleration/auto_dual4");
 BENCHMARK(ad_step<SchwarzschildMetric>)->Name("ad/step_dopri5/closed");
 BENCHMARK(ad_step<AutoSchwarzschild>)->Name("ad/step_dopri5/auto");
+BENCHMARK(ad_step<AutoSchwarzschildDual4>)->Name("ad/step_dopri5/auto_dual4");
 BENCHMARK(ad_ray<SchwarzschildMetric>)->Name("ad/ray_tsit5/closed")->Unit(benchmark::kMicrosecond);
 BENCHMARK(ad_ray<AutoSchwarzschild>)->Name("ad/ray_tsit5/auto")->Unit(benchmark::kMicrosecond);
+BENCHMARK(ad_ray<AutoSchwarzschildDual4>)->Name("ad/ray_tsit5/auto_dual4")->Unit(benchmark::kMicrosecond);
 
 const bool registered = [] {
   for_each_tableau([](auto tag) {

@@ -63,7 +63,8 @@ TEST(Dual, ElementaryFunctionsHaveTheirDerivatives) {
   EXPECT_NEAR(f.d[0], dfdx, 1e-14 * std::abs(dfdx));
   EXPECT_NEAR(f.d[1], dfdy, 1e-14 * std::abs(dfdy));
   EXPECT_TRUE(x < y && y > 1.0 && x == 0.7);  // comparisons read the value
-  EXPECT_EQ(value(f), f.v);
+  EXPECT_EQ(primal_value(f), f.v);
+  EXPECT_EQ(primal_value(0.25), 0.25);
 }
 
 // -----------------------------------------------------------------------------------------------------------

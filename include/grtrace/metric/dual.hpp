@@ -19,7 +19,8 @@
 //   - compile time: one small header instead of unsupported/Eigen/AutoDiff and its expression machinery.
 // Elementary functions are hidden friends found by argument-dependent lookup, so metric code written as
 // `using std::sin; sin(theta)` works for double and for Dual alike. There is deliberately no conversion from
-// Dual to double (it would silently drop the derivative); value(s) reads the value of either.
+// Dual to double (it would silently drop the derivative); primal_value(s) reads the value of either (for branches
+// in a metric).
 #pragma once
 
 #include <Eigen/Core>
@@ -169,16 +170,10 @@ struct Dual {
 };
 
 /// The value of a number, Dual or plain (for branches and for code shared by both).
-constexpr double value(double x) { return x; }
+constexpr double primal_value(double x) { return x; }
 template <int N>
-constexpr double value(const Dual<N>& x) {
+constexpr double primal_value(const Dual<N>& x) {
   return x.v;
-}
-
-/// x^2 for either kind of number (one multiply, which pow(x, 2) does not promise).
-template <class S>
-constexpr S square(const S& x) {
-  return x * x;
 }
 
 }  // namespace grtrace

@@ -6,6 +6,7 @@
 #   <prefix>/<libdir>/cmake/grtrace/grtraceTargets.cmake       grtrace::grtrace (Eigen3 + GLM only)
 #   <prefix>/<libdir>/cmake/grtrace/grtraceRenderTargets.cmake grtrace::render  (+ OpenMP, OpenEXR, libpng), if built
 #   <prefix>/<libdir>/cmake/grtrace/grtraceVizTargets.cmake    grtrace::viz     (compiled, VTK), if built
+#   <prefix>/<libdir>/cmake/grtrace/grtraceTestingTargets.cmake grtrace::testing (+ GTest), if GTest was found
 #
 # Each optional target lives in its own export set, so the package config loads it (and looks for its
 # dependencies) separately: a consumer of grtrace::grtrace never needs OpenEXR or VTK installed.
@@ -34,6 +35,16 @@ if(TARGET grtrace_render)
           NAMESPACE grtrace::
           DESTINATION "${GRTRACE_INSTALL_CMAKEDIR}")
   set(GRTRACE_EXPORTED_RENDER ON)
+endif()
+
+# ---- grtrace::testing (header-only usage target: grtrace/testing.hpp + GTest::gtest) -------------------
+set(GRTRACE_EXPORTED_TESTING OFF)
+if(TARGET grtrace_testing)
+  install(TARGETS grtrace_testing EXPORT grtraceTestingTargets)
+  install(EXPORT grtraceTestingTargets
+          NAMESPACE grtrace::
+          DESTINATION "${GRTRACE_INSTALL_CMAKEDIR}")
+  set(GRTRACE_EXPORTED_TESTING ON)
 endif()
 
 # ---- grtrace::viz (compiled VTK frontend) --------------------------------------------------------------

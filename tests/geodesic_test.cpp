@@ -494,7 +494,7 @@ TEST(AsymptoticDirection, AgreesWithTheTracedRayCorrectedExactly) {
   std::normal_distribution<double> n(0.0, 1.0);
   int escaped = 0, captured = 0;
   double worst = 0.0, largest_flat_error = 0.0;
-  for (int i = 0; i < 40; ++i) {
+  for (int i = 0; i < 80; ++i) {
     const double r = 3.2 + 16.8 * u(rng), theta = 0.3 + (kPi - 0.6) * u(rng), phi = 2.0 * kPi * u(rng);
     const GeodesicState y0 = null_state(m, r, theta, phi, Vec3(n(rng), n(rng), n(rng)));
     const double b = m.total_angular_momentum(y0) / m.energy(y0);

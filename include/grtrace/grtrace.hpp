@@ -1,5 +1,6 @@
 // grtrace/grtrace.hpp
 // Everything of the header-only core in one include (Eigen + GLM only; no OpenMP, OpenEXR or VTK).
+// The GoogleTest kit grtrace/testing.hpp is not included (it needs GTest; link grtrace::testing).
 // Rendering I/O lives in grtrace/render/ (link grtrace::render); the VTK frontend in grtrace/viz (grtrace::viz).
 #pragma once
 
@@ -14,7 +15,15 @@
 #include "grtrace/integrate/event_locator.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
 #include "grtrace/integrate/step_controller.hpp"
+#include "grtrace/metric/auto_metric.hpp"
 #include "grtrace/metric/circular_orbits.hpp"
+#include "grtrace/metric/dual.hpp"
+#include "grtrace/metric/examples/eddington_finkelstein.hpp"
+#include "grtrace/metric/examples/ellis_wormhole.hpp"
+#include "grtrace/metric/examples/minkowski_components.hpp"
+#include "grtrace/metric/examples/reissner_nordstrom.hpp"
+#include "grtrace/metric/examples/schwarzschild_components.hpp"
+#include "grtrace/metric/examples/schwarzschild_de_sitter.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/metric_concept.hpp"

@@ -10,9 +10,17 @@
 //                         ns_per_step (wall time / accepted steps), steps, rejected, rhs_evals, error (rad,
 //                         against exact::asymptotic_direction at the camera, continued from the sky-sphere
 //                         crossing) and error_node (continued from the last accepted node)
+//   ad/<piece>/<metric>   automatic differentiation (metric/auto_metric.hpp) against the closed form, for
+//                         Schwarzschild: acceleration() alone, one dopri5 step, and one whole ray (tsit5, I
+//                         controller, rtol 2e-9: the render default) with counter ns_per_step per accepted step;
+//                         <metric> is closed (SchwarzschildMetric), auto (AutoMetric<SchwarzschildComponents>,
+//                         which declares depends_on = {r, theta}: Dual<2>) or auto_dual4 (the same g without
+//                         depends_on: Dual<4>)
 // Run: build-*/tests/benchmarks/step_benchmark --benchmark_min_time=0.2
+//      build-*/tests/benchmarks/step_benchmark --benchmark_filter='^ad/' --benchmark_min_time=0.5
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
+#include "grtrace/metric/examples/schwarzschild_components.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
@@ -172,6 +180,88 @@ void register_ray(const std::string& name, double rtol) {
     one_ray<T, C>(s, rtol, 525, 512);
   })->Unit(benchmark::kMicrosecond);
 }
+
+// ---- automatic differentiation against the closed form (issue 13) ----------------------------------------
+
+/// SchwarzschildComponents without depends_on: acceleration() differentiates along all four coordinates (Dual<4>).
+struct SchwarzschildEveryCoordinate {
+  static constexpr std::string_view name = "schwarzschild-auto-dual4";
+  static constexpr Chart chart = Chart::spherical;
+  double mass = 1.0;
+  template <class S>
+  Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
+    return SchwarzschildComponents{mass}.metric_components(x);
+  }
+  double radius(const Vec4& x) const { return x[1]; }
+  double horizon_radius() const { return 2.0 * mass; }
+};
+using AutoSchwarzschildDual4 = AutoMetric<SchwarzschildEveryCoordinate>;
+
+template <class Metric>
+void ad_acceleration(benchmark::State& state) {
+  const Metric metric{};
+  GeodesicState y = strong_field_state();
+  Vec4 x = y.head<4>(), k = y.tail<4>();
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(k);
+    Vec4 a = metric.acceleration(x, k);
+    benchmark::DoNotOptimize(a);
+  }
+  state.counters["ns_per_eval"] = timer.ns_per(1.0, state.iterations());
+}
+
+template <class Metric>
+void ad_step(benchmark::State& state) {
+  const Metric metric{};
+  const GeodesicEquation<Metric> f{&metric};
+  RungeKuttaStepper<DormandPrince54, 8> stepper;
+  GeodesicState y = strong_field_state();
+  const GeodesicState f0 = f(y);
+  GeodesicState y_new, err;
+  double h = 0.05;
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(y);
+    benchmark::DoNotOptimize(h);
+    stepper.step(f, y, f0, h, y_new, err);
+    benchmark::DoNotOptimize(y_new);
+    benchmark::DoNotOptimize(err);
+  }
+  state.counters["ns_per_step"] = timer.ns_per(1.0, state.iterations());
+}
+
+template <class Metric>
+void ad_ray(benchmark::State& state) {
+  TraceSettings settings;
+  settings.integrator.tolerance = {2e-9, 2e-11};
+  settings.escape_radius = 400.0;
+  const GeodesicTracer<Metric, Tsitouras54, IController> tracer(Metric{}, settings);
+  const GeodesicState y0 = seed_frame_pixel(768, 640);
+  TraceResult r;
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    r = tracer.trace(y0);
+    benchmark::DoNotOptimize(r);
+  }
+  if (r.status != RayStatus::escaped) {
+    state.SkipWithError("the benchmark ray did not escape");
+    return;
+  }
+  state.counters["ns_per_step"] = timer.ns_per(static_cast<double>(r.accepted), state.iterations());
+  state.counters["steps"] = r.accepted;
+}
+
+BENCHMARK(ad_acceleration<SchwarzschildMetric>)->Name("ad/acceleration/closed");
+BENCHMARK(ad_acceleration<AutoSchwarzschild>)->Name("ad/acceleration/auto");
+BENCHMARK(ad_acceleration<AutoSchwarzschildDual4>)->Name("ad/acceleration/auto_dual4");
+BENCHMARK(ad_step<SchwarzschildMetric>)->Name("ad/step_dopri5/closed");
+BENCHMARK(ad_step<AutoSchwarzschild>)->Name("ad/step_dopri5/auto");
+BENCHMARK(ad_step<AutoSchwarzschildDual4>)->Name("ad/step_dopri5/auto_dual4");
+BENCHMARK(ad_ray<SchwarzschildMetric>)->Name("ad/ray_tsit5/closed")->Unit(benchmark::kMicrosecond);
+BENCHMARK(ad_ray<AutoSchwarzschild>)->Name("ad/ray_tsit5/auto")->Unit(benchmark::kMicrosecond);
+BENCHMARK(ad_ray<AutoSchwarzschildDual4>)->Name("ad/ray_tsit5/auto_dual4")->Unit(benchmark::kMicrosecond);
 
 const bool registered = [] {
   for_each_tableau([](auto tag) {

@@ -3,6 +3,7 @@
 #   2. move the prefix to WORK_DIR/moved and check no installed CMake file still names the old prefix
 #   3. configure + build consumer/ against it with find_package(grtrace CONFIG REQUIRED)
 #   4. run the consumer (non-zero exit = a failed check)
+#   5. run grtrace_consumer_kit (the testing component's GoogleTest suite) when the consumer built it
 # Inputs (-D): GRTRACE_BUILD_DIR GRTRACE_CONFIG GRTRACE_VERSION WORK_DIR CONSUMER_SOURCE_DIR
 #              CONSUMER_GENERATOR CONSUMER_CXX_COMPILER
 cmake_minimum_required(VERSION 3.25)
@@ -88,3 +89,10 @@ if(NOT EXISTS "${_exe}")
 endif()
 run_step("run consumer" "${_exe}")
 message(STATUS "install test: consumer says:\n${step_output}")
+
+# 5. the testing component's consumer (a GoogleTest suite using grtrace/testing.hpp), when it was built
+get_filename_component(_exe_dir "${_exe}" DIRECTORY)
+if(EXISTS "${_exe_dir}/grtrace_consumer_kit")
+  run_step("run consumer kit suite" "${_exe_dir}/grtrace_consumer_kit" --gtest_brief=1)
+  message(STATUS "install test: kit suite says:\n${step_output}")
+endif()

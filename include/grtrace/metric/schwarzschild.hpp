@@ -81,7 +81,7 @@ struct SchwarzschildMetric {
   /// Total angular momentum |L| (conserved in every plane through the centre, not only the equator).
   double total_angular_momentum(const GeodesicState& y) const {
     const double r2 = y[1] * y[1], st = std::sin(y[2]);
-    return r2 * std::sqrt(y[6] * y[6] + st * st * st * st * y[7] * y[7]);
+    return r2 * std::sqrt(y[6] * y[6] + st * st * y[7] * y[7]);
   }
 };
 

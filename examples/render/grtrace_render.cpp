@@ -6,6 +6,7 @@
 // All input is checked before any ray is traced; bad input exits with code 2 and leaves no file behind.
 #include "command_line.hpp"
 #include "json_writer.hpp"
+#include "render_request.hpp"
 
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/exr_io.hpp"
@@ -13,9 +14,6 @@
 #include "grtrace/render/png_preview.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
-#include "grtrace/trace/scene_tracer.hpp"
-#include "grtrace/trace/straight_line.hpp"
-#include "grtrace/trace/symmetric_scene_tracer.hpp"
 
 #include <chrono>
 #include <iostream>
@@ -29,28 +27,30 @@ using namespace grtrace;
 using tools::CommandLine;
 using tools::JsonObject;
 using tools::UsageError;
-
-struct Request {
-  StandardSceneSpec scene;
-  std::string metric_name, tableau, control, tracer, correction_name, out;
-  SchwarzschildMetric metric;  // mass 0 for flat space
-  TraceSettings settings;
-  AngleCorrection correction = AngleCorrection::exact;
-  std::optional<Camera> camera;
-  int threads = 0;
-  int table_nodes = 1024;
-  bool error_map = false;
-};
+using render_tool::Request;
+using render_tool::SkyDirections;
+using render_tool::TableStats;
 
 CommandLine make_command_line() {
   CommandLine cli("grtrace-render",
-                  "Render a camera's view of a Schwarzschild black hole (or flat space) to OpenEXR + PNG preview;\n"
+                  "Render a camera's view of a black hole (Schwarzschild, Kerr, charged, with a cosmological constant),\n"
+                  "a wormhole or flat space to OpenEXR + PNG preview;\n"
                   "prints one line of JSON. Defaults: the seed report's main frame (static camera at r = 200 M,\n"
                   "fov 90, 1024x1024, sky sphere at 400 M). The default method (tsit5, I control, rtol 2e-9) is\n"
                   "the cheapest whose largest angular error on that frame stays below 1e-6 rad (docs/benchmarks.md).");
   cli.option("scene", "checker", "checker | sky | redshift | disk")
-      .option("metric", "schwarzschild", "schwarzschild | minkowski (flat: straight lines, never integrated)")
+      .option("metric", "schwarzschild",
+              "schwarzschild | minkowski (flat: straight lines, never integrated) | kerr | rn (Reissner-Nordstrom) | "
+              "sds (Schwarzschild-de Sitter) | wormhole (Ellis) | schwarzschild-ef (Eddington-Finkelstein)")
       .option("mass", "1", "black-hole mass M (G = c = 1)")
+      .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)")
+      .option("chart", "bl", "kerr: bl (Boyer-Lindquist) | ks (Kerr-Schild, horizon-penetrating); the camera is "
+                             "placed in Boyer-Lindquist coordinates for both")
+      .option("charge", "0.5", "rn: charge Q, |Q| < M")
+      .option("lambda", "1e-5", "sds: cosmological constant, 0 < Lambda < 1/(9 M^2); the sky sphere must lie "
+                                "inside the cosmological horizon")
+      .option("throat", "1", "wormhole: throat radius b0 (--camera-r is then the proper distance l; l < 0 is "
+                             "the other side)")
       .option("camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)")
       .option("camera-theta", "90", "camera polar angle, degrees, strictly between 0 and 180")
       .option("camera-phi", "0", "camera azimuth, degrees")
@@ -98,14 +98,21 @@ Request read_request(const CommandLine& cli) {
   if (!is_standard_scene(q.scene.name))
     throw UsageError("unknown scene '" + q.scene.name + "'; choose checker, sky, redshift or disk");
   const bool disk = q.scene.name == "disk";
-  q.metric_name = cli.text("metric");
-  if (q.metric_name != "schwarzschild" && q.metric_name != "minkowski")
-    throw UsageError("unknown metric '" + q.metric_name + "'; choose schwarzschild or minkowski");
-  const double mass = cli.number("mass");
-  if (!(mass > 0.0)) throw UsageError("--mass must be > 0");
-  q.metric.mass = q.metric_name == "minkowski" ? 0.0 : mass;
-  if (q.metric_name == "minkowski" && disk)
-    throw UsageError("--scene disk needs --metric schwarzschild (the disk orbits the mass)");
+  MetricSpec& ms = q.metric;
+  ms.name = cli.text("metric");
+  ms.mass = cli.number("mass");
+  ms.spin = cli.number("spin");
+  ms.chart = cli.text("chart");
+  ms.charge = cli.number("charge");
+  ms.lambda = cli.number("lambda");
+  ms.throat = cli.number("throat");
+  try {
+    check_metric_spec(ms);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  if (ms.name == "minkowski" && disk)
+    throw UsageError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
 
   q.tableau = cli.text("tableau");
   q.control = cli.text("control");
@@ -132,11 +139,22 @@ Request read_request(const CommandLine& cli) {
   else throw UsageError("unknown --angle-correction '" + q.correction_name + "'; choose none, flat or exact");
 
   const double r = cli.number("camera-r"), theta = cli.number("camera-theta"), phi = cli.number("camera-phi");
-  const double guard = (1.0 + s.horizon_epsilon) * q.metric.horizon_radius();
-  if (!(r > guard))
+  // In the metric's own radius (Boyer-Lindquist r for Kerr in both charts, the areal radius r(l) of the wormhole):
+  // outside the horizon guard and inside the sky sphere.
+  const auto [camera_radius, guard, sky_ok] = with_named_metric(ms, [&](const auto& m) {
+    const Vec4 x = event_from_spherical(m, Vec4(0.0, r, std::numbers::pi / 2.0, 0.0));
+    const double rh = ms.name == "kerr" ? KerrMetric{ms.mass, ms.spin}.horizon_radius() : m.horizon_radius();
+    const Vec4 sky_event(0.0, s.escape_radius, std::numbers::pi / 2.0, 0.0);  // emitters at rest must exist there
+    const bool ok = static_velocity(m.metric(event_from_spherical(m, sky_event))).has_value();
+    return std::tuple{m.radius(x), (1.0 + s.horizon_epsilon) * rh, ok};
+  });
+  if (!(camera_radius > guard))
     throw UsageError("--camera-r " + cli.text("camera-r") + " is at or inside the horizon (guard r = " +
                      std::to_string(guard) + "); move the camera out");
-  if (!(r < s.escape_radius)) throw UsageError("--camera-r must be inside --sky-radius");
+  if (!(camera_radius < s.escape_radius)) throw UsageError("--camera-r must be inside --sky-radius");
+  if (!sky_ok)
+    throw UsageError("--sky-radius " + cli.text("sky-radius") +
+                     " lies beyond a horizon of this metric (no emitter can be at rest there); lower it");
   if (!(theta > 0.0 && theta < 180.0))
     throw UsageError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
   const long width = cli.integer("width"), height = cli.integer("height");
@@ -151,6 +169,7 @@ Request read_request(const CommandLine& cli) {
 
   CameraSpec spec;
   spec.position = Vec4(0.0, r, theta * std::numbers::pi / 180.0, phi * std::numbers::pi / 180.0);
+  spec.spherical_position = true;  // Boyer-Lindquist (t, r, theta, phi) and (r, theta, phi) axes in every chart
   const auto observer = observer_kind_from_string(cli.text("observer"));
   if (!observer) throw UsageError("unknown --observer '" + cli.text("observer") + "'; choose static or zamo");
   spec.observer = *observer;
@@ -161,7 +180,7 @@ Request read_request(const CommandLine& cli) {
   spec.height = static_cast<int>(height);
   spec.fov_degrees = cli.number("fov");
   try {
-    q.camera.emplace(make_camera(q.metric, spec));
+    q.camera.emplace(with_named_metric(ms, [&](const auto& m) { return make_camera(m, spec); }));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -171,8 +190,10 @@ Request read_request(const CommandLine& cli) {
     throw UsageError("unknown --tracer '" + q.tracer + "'; choose auto, general or symmetric");
   if (q.tracer == "symmetric" && disk)
     throw UsageError("--tracer symmetric cannot draw a disk (it breaks the spherical symmetry); use general");
-  if (q.metric_name == "minkowski") q.tracer = "straight-line";
-  else if (q.tracer == "auto") q.tracer = disk ? "general" : "symmetric";
+  if (q.tracer == "symmetric" && ms.name != "schwarzschild")
+    throw UsageError("--tracer symmetric needs --metric schwarzschild (its table assumes that metric); use general");
+  if (ms.name == "minkowski") q.tracer = "straight-line";
+  else if (q.tracer == "auto") q.tracer = disk || ms.name != "schwarzschild" ? "general" : "symmetric";
 
   const long squares = cli.integer("checker-squares");
   if (squares < 1 || squares > 10000) throw UsageError("--checker-squares must be in 1 .. 10000");
@@ -191,15 +212,21 @@ Request read_request(const CommandLine& cli) {
   }
   q.scene.disk.r_in = cli.number("disk-inner");
   q.scene.disk.r_out = cli.number("disk-outer");
-  if (q.metric_name == "schwarzschild") {
+  if (disk) {
     try {
-      check_disk_orbits(q.metric, q.scene.disk);
+      with_named_metric(ms, [&](const auto& m) {
+        using M = std::remove_cvref_t<decltype(m)>;
+        if constexpr (M::chart == Chart::spherical) check_disk_orbits(m, q.scene.disk);
+        else throw std::invalid_argument("--scene disk needs a spherical chart (the thin disk is theta = pi/2); use --chart bl");
+      });
     } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer: need 3M < inner < outer)");
+      throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer)");
     }
   }
 
   q.error_map = cli.flag_set("error-map");
+  if (q.error_map && ms.name != "schwarzschild" && ms.name != "minkowski")
+    throw UsageError("--error-map needs --metric schwarzschild or minkowski (the exact elliptic-integral reference)");
 
   q.out = cli.text("out");
   if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
@@ -252,7 +279,7 @@ ErrorSummary compute_error_channel(const Request& q, Image& image, const SkyDire
   std::vector<float>& error = image.add_channel("error", std::numeric_limits<float>::quiet_NaN());
   std::vector<double> exact_error(image.pixel_count(), std::numeric_limits<double>::quiet_NaN());
   const long n = static_cast<long>(image.pixel_count());
-  const double mass = q.metric.mass;
+  const double mass = q.metric.name == "minkowski" ? 0.0 : q.metric.mass;
   long mismatches = 0;
 #if defined(_OPENMP)
   const int threads = q.threads > 0 ? q.threads : omp_get_max_threads();
@@ -311,32 +338,6 @@ void write_error_map(const std::string& path, const Image& image) {
   write_png_rgb8(path, image.width(), image.height(), rgb);
 }
 
-struct TableStats {
-  long rays = 0, steps = 0;
-};
-
-/// The frame through the chosen tracer and the preset's scene (render/frame.hpp does the rest).
-template <ExplicitTableau T, StepController C>
-Frame run(const Request& q, SkyDirections* directions, TableStats& table) {
-  RenderOptions options;
-  options.threads = q.threads;
-  const Camera& cam = *q.camera;
-  return with_standard_scene(q.scene, [&]<class Scene>(Scene scene) -> Frame {
-    if (q.tracer == "straight-line")
-      return render_frame(cam, StraightLineTracer(MinkowskiSpherical{}, q.settings.escape_radius, q.correction, scene),
-                          options, directions);
-    if constexpr (Scene::object_count == 0) {
-      if (q.tracer == "symmetric") {
-        const SymmetricSceneTracer<T, C, Scene> tracer(q.metric, q.settings, cam, q.correction, scene, q.table_nodes);
-        table = {tracer.table().table_rays(), tracer.table().table_steps()};
-        return render_frame(cam, tracer, options, directions);
-      }
-    }
-    return render_frame(cam, make_general_tracer<T, C>(q.metric, q.settings, q.correction, scene), options,
-                        directions);
-  });
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -348,7 +349,11 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     std::optional<Frame> frame;
     TableStats table;
-    dispatch_method(q.tableau, q.control, [&]<class T, class C>() { frame.emplace(run<T, C>(q, where, table)); });
+    const std::string& metric = q.metric.name;
+    if (metric == "schwarzschild" || metric == "minkowski") frame.emplace(render_tool::render_schwarzschild(q, where, table));
+    else if (metric == "kerr") frame.emplace(render_tool::render_kerr(q, where));
+    else if (metric == "rn" || metric == "sds") frame.emplace(render_tool::render_rn_sds(q, where));
+    else frame.emplace(render_tool::render_wormhole_ef(q, where));
     // The table (symmetric tracer) is part of the frame's cost: time the whole thing.
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Image& image = frame->image;
@@ -363,8 +368,15 @@ int main(int argc, char** argv) {
     for (const auto& [name, value] : cli.values()) image.metadata["option_" + name] = value;
     auto num = [](double v) { return JsonObject::number(v); };
     image.metadata["scene"] = q.scene.name;
-    image.metadata["metric"] = q.metric_name;
-    image.metadata["mass"] = num(q.metric.mass);
+    image.metadata["metric"] = q.metric.name;
+    image.metadata["mass"] = num(q.metric.name == "minkowski" ? 0.0 : q.metric.mass);
+    if (q.metric.name == "kerr") {
+      image.metadata["spin"] = num(q.metric.spin);
+      image.metadata["chart"] = q.metric.chart;
+    }
+    if (q.metric.name == "rn") image.metadata["charge"] = num(q.metric.charge);
+    if (q.metric.name == "sds") image.metadata["lambda"] = num(q.metric.lambda);
+    if (q.metric.name == "wormhole") image.metadata["throat"] = num(q.metric.throat);
     image.metadata["observer"] = cli.text("observer");
     image.metadata["tracer"] = q.tracer;
     image.metadata["tableau"] = q.tableau;

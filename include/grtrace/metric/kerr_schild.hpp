@@ -187,6 +187,12 @@ struct KerrSchildMetric {
   }
   /// Carter's constant, evaluated at the corresponding Boyer-Lindquist state (valid for r > r_+).
   double carter_constant(const GeodesicState& y) const;
+
+  /// Optional trait (metric/metric_traits.hpp): cameras and tools state events in Boyer-Lindquist (t, r, theta,
+  /// phi); these map an event and the BL coordinate basis into this chart (defined below the free functions).
+  Vec4 event_from_spherical(const Vec4& x_bl) const;
+  Mat4 jacobian_from_spherical(const Vec4& x_bl) const;
+
   /// Kretschmann scalar, the BL formula at r and cos(theta) = z / r.
   double kretschmann(const Vec4& x) const {
     const double r = radius(x);
@@ -271,6 +277,9 @@ inline GeodesicState ks_to_bl(const KerrSchildMetric& m, const GeodesicState& y_
   const Vec4 k_bl(k[0] - e * 2.0 * m.mass * r / delta * kr, kr, kth, kph_ks - e * a / delta * kr);
   return make_state(ks_to_bl_position(m, x), k_bl);
 }
+
+inline Vec4 KerrSchildMetric::event_from_spherical(const Vec4& x_bl) const { return bl_to_ks_position(*this, x_bl); }
+inline Mat4 KerrSchildMetric::jacobian_from_spherical(const Vec4& x_bl) const { return bl_to_ks_jacobian(*this, x_bl); }
 
 inline double KerrSchildMetric::carter_constant(const GeodesicState& y) const {
   return boyer_lindquist().carter_constant(ks_to_bl(*this, y));

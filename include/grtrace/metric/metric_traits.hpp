@@ -9,6 +9,11 @@
 //       The exact sky direction of a ray continued from y to infinity, or nothing if it falls back in.
 //       Used for AngleCorrection::exact. Generic answer: the flat continuation (the direction of the embedded
 //       velocity at y, seed eq. 7-8), exact only where the metric is flat beyond y.
+//   Vec4 event_from_spherical(const Vec4& x) const;  Mat4 jacobian_from_spherical(const Vec4& x) const;
+//       For charts that are not spherical: the event with spherical (Boyer-Lindquist) coordinates x = (t, r, theta,
+//       phi) in this chart, and the Jacobian d(chart)/d(spherical) there. Cameras and tools state positions and
+//       directions in (r, theta, phi) for every chart (KerrSchildMetric). Generic answer: a spherical chart takes
+//       x as it is; a Cartesian chart maps (r, theta, phi) to (x, y, z) by the flat embedding.
 //   static constexpr bool flat = true;
 //       The metric is flat everywhere: light moves on straight lines, so trace/straight_line.hpp follows rays
 //       without integrating (MinkowskiMetric, MinkowskiSpherical). Default: false.
@@ -24,6 +29,7 @@
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -46,6 +52,38 @@ concept HasExactContinuation = requires(const M m, const GeodesicState y) {
 /// True for metrics that declare themselves flat everywhere (the straight-line tracer's precondition).
 template <class M>
 concept FlatMetric = MetricPolicy<M> && requires { requires M::flat; };
+
+template <class M>
+concept HasSphericalMap = requires(const M m, const Vec4 x) {
+  { m.event_from_spherical(x) } -> std::convertible_to<Vec4>;
+  { m.jacobian_from_spherical(x) } -> std::convertible_to<Mat4>;
+};
+
+/// The event with spherical coordinates x = (t, r, theta, phi) in the metric's chart (see the top of this file).
+template <MetricPolicy M>
+Vec4 event_from_spherical(const M& metric, const Vec4& x) {
+  if constexpr (HasSphericalMap<M>) return metric.event_from_spherical(x);
+  else if constexpr (M::chart == Chart::spherical) return x;
+  else {
+    Vec4 y;
+    y << x[0], spherical_to_cartesian(x);
+    return y;
+  }
+}
+
+/// The coordinate vectors d_r, d_theta, d_phi at the spherical event x, as vectors of the metric's chart.
+template <MetricPolicy M>
+std::array<Vec4, 3> spherical_axes(const M& metric, const Vec4& x) {
+  Mat4 j = Mat4::Identity();
+  if constexpr (HasSphericalMap<M>) j = metric.jacobian_from_spherical(x);
+  else if constexpr (M::chart == Chart::cartesian) {
+    const SphericalBasis e = spherical_basis(x[2], x[3]);
+    j.block<3, 1>(1, 1) = e.r;
+    j.block<3, 1>(1, 2) = x[1] * e.theta;
+    j.block<3, 1>(1, 3) = x[1] * e.sin_theta * e.phi;
+  }
+  return {Vec4(j.col(1)), Vec4(j.col(2)), Vec4(j.col(3))};
+}
 
 /// dx/dlambda of a state as a vector of the chart's Euclidean embedding.
 template <MetricPolicy M>

@@ -3,14 +3,17 @@
 // observer/observers.hpp), how fast it moves through that observer's frame, where it looks, which way is up,
 // and the picture's size and field of view.
 //
-// Takes:   a metric policy and a CameraSpec (position in the metric's chart; velocity, look and up as components
-//          along the observer's spatial axes: (r, theta, phi) in a spherical chart, (x, y, z) in a Cartesian one).
+// Takes:   a metric policy and a CameraSpec: the position in the metric's chart, or (with spherical_position) in
+//          spherical / Boyer-Lindquist coordinates (t, r, theta, phi) for any chart; velocity, look and up as
+//          components along the observer's spatial axes, which are the chart's axes ((r, theta, phi) in a
+//          spherical chart, (x, y, z) in a Cartesian one), or (r, theta, phi) when spherical_position is set.
 // Returns: the Camera (observer/camera.hpp), whose tetrad is built by Gram-Schmidt in the metric (tetrad.hpp).
 // Refuses, with std::invalid_argument saying what to change and before any work: a non-finite position, a
 //          camera on or inside the horizon, an observer that cannot exist there (static inside an ergosphere),
 //          |velocity| >= 1, a zero look or up, up parallel to look, a size below one pixel, fov outside (0, 180).
 #pragma once
 
+#include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/observers.hpp"
 #include "grtrace/observer/tetrad.hpp"
@@ -28,16 +31,21 @@ struct CameraSpec {
   Vec3 up{0.0, -1.0, 0.0};       ///< in the observer's frame (default: towards theta = 0, the north pole)
   int width = 1024, height = 1024;
   double fov_degrees = 90.0;
+  /// true: `position` is (t, r, theta, phi) and the axes are r, theta, phi whatever the metric's chart (mapped
+  /// through metric/metric_traits.hpp event_from_spherical / spherical_axes; Kerr-Schild cameras are placed so).
+  bool spherical_position = false;
 };
 
 template <MetricPolicy M>
 Camera make_camera(const M& metric, const CameraSpec& spec) {
-  const Vec4& x = spec.position;
-  if (!x.allFinite()) throw std::invalid_argument("camera: the position must be finite numbers");
+  if (!spec.position.allFinite()) throw std::invalid_argument("camera: the position must be finite numbers");
+  const Vec4 x = spec.spherical_position ? event_from_spherical(metric, spec.position) : spec.position;
   if (const double rh = metric.horizon_radius(); rh > 0.0 && !(metric.radius(x) > rh))
     throw std::invalid_argument("camera: the position r = " + std::to_string(metric.radius(x)) +
                                 " is on or inside the horizon (r = " + std::to_string(rh) + "); move the camera out");
-  const ObserverFrame frame = observer_frame(metric, x, spec.observer);
+  const ObserverFrame frame =
+      spec.spherical_position ? observer_frame(metric, x, spec.observer, spherical_axes(metric, spec.position))
+                              : observer_frame(metric, x, spec.observer);
   const Tetrad tetrad =
       make_tetrad(metric.metric(x), frame.velocity(spec.velocity), frame.spatial(spec.look), frame.spatial(spec.up));
   return Camera(x, tetrad, spec.width, spec.height, spec.fov_degrees);

@@ -14,6 +14,7 @@
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <array>
@@ -64,15 +65,20 @@ Vec4 rest_emitter_velocity(const M& metric, const Vec4& x) {
 struct ObserverFrame {
   std::array<Vec4, 4> e;
 
-  /// Takes g at the event and a future-directed timelike u; throws std::invalid_argument otherwise.
-  ObserverFrame(const Mat4& g, const Vec4& u) {
+  /// Takes g at the event and a future-directed timelike u; throws std::invalid_argument otherwise. The spatial
+  /// axes come from the chart's basis vectors d_1, d_2, d_3.
+  ObserverFrame(const Mat4& g, const Vec4& u) : ObserverFrame(g, u, {Vec4::Unit(1), Vec4::Unit(2), Vec4::Unit(3)}) {}
+
+  /// The same with the spatial axes orthonormalised from the given coordinate vectors (e.g. d_r, d_theta, d_phi of
+  /// another chart mapped into this one, metric/metric_traits.hpp spherical_axes).
+  ObserverFrame(const Mat4& g, const Vec4& u, const std::array<Vec4, 3>& axes) {
     auto dot = [&](const Vec4& a, const Vec4& b) { return a.dot(g * b); };
     const double uu = dot(u, u);
     if (!u.allFinite() || !(uu > 0.0) || !(u[0] > 0.0))
       throw std::invalid_argument("observer frame: the 4-velocity must be finite, timelike and future-directed");
     e[0] = u / std::sqrt(uu);
     for (int a = 1; a <= 3; ++a) {
-      Vec4 v = Vec4::Unit(a);
+      Vec4 v = axes[static_cast<std::size_t>(a - 1)];
       v -= dot(v, e[0]) * e[0];
       for (int b = 1; b < a; ++b) v += dot(v, e[static_cast<std::size_t>(b)]) * e[static_cast<std::size_t>(b)];
       const double n2 = -dot(v, v);
@@ -93,19 +99,25 @@ struct ObserverFrame {
   }
 };
 
-/// The frame of the chosen observer at x. Throws std::invalid_argument, saying what to change, where that
-/// observer does not exist.
+/// The frame of the chosen observer at x, its spatial axes orthonormalised from `axes` (default: the chart's basis
+/// vectors). Throws std::invalid_argument, saying what to change, where that observer does not exist.
 template <MetricPolicy M>
-ObserverFrame observer_frame(const M& metric, const Vec4& x, ObserverKind kind) {
+ObserverFrame observer_frame(const M& metric, const Vec4& x, ObserverKind kind,
+                             const std::array<Vec4, 3>& axes = {Vec4::Unit(1), Vec4::Unit(2), Vec4::Unit(3)}) {
   const Mat4 g = metric.metric(x);
   if (!g.allFinite()) throw std::invalid_argument("observer: the metric is not finite at the camera's position");
+  const Eigen::SelfAdjointEigenSolver<Mat4> spectrum(g, Eigen::EigenvaluesOnly);
+  const Vec4 ev = spectrum.eigenvalues();  // ascending: a Lorentzian g (+,-,-,-) has three negative, one positive
+  if (!(ev[2] < 0.0 && ev[3] > 0.0))
+    throw std::invalid_argument("observer: the metric at the camera's position is singular or not of signature "
+                                "(+,-,-,-); move the camera or check the metric");
   if (kind == ObserverKind::static_observer) {
-    if (auto u = static_velocity(g)) return ObserverFrame(g, *u);
+    if (auto u = static_velocity(g)) return ObserverFrame(g, *u, axes);
     throw std::invalid_argument(
         "observer: no static observer exists at the camera's position (g_tt <= 0: inside a horizon or an "
         "ergosphere); use the ZAMO observer (--observer zamo) or move the camera out");
   }
-  if (auto u = zamo_velocity(g)) return ObserverFrame(g, *u);
+  if (auto u = zamo_velocity(g)) return ObserverFrame(g, *u, axes);
   throw std::invalid_argument(
       "observer: no zero-angular-momentum observer exists at the camera's position (g^tt <= 0: inside a "
       "horizon); move the camera out");

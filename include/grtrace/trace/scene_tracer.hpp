@@ -39,7 +39,19 @@ template <class Metric, class... Objects>
 struct ObjectsFit<Metric, std::tuple<Objects...>> {
   static constexpr bool value = (check_scene_object<Objects, Metric>() && ...);
 };
+
+template <class Metric, class Tuple>
+struct ObjectsIn;
+template <class Metric, class... Objects>
+struct ObjectsIn<Metric, std::tuple<Objects...>> {
+  static constexpr bool value = (SceneObjectIn<Objects, Metric> && ...);
+};
 }  // namespace detail
+
+/// True when every object of the scene can say how its matter moves in the metric (e.g. ThinDisk needs a
+/// spherical chart): programs that choose metric and scene at run time test this before instantiating a tracer.
+template <class Metric, class SceneT>
+inline constexpr bool scene_fits_metric = detail::ObjectsIn<Metric, decltype(SceneT::objects)>::value;
 
 template <MetricPolicy Metric, ExplicitTableau T, StepController C, class SceneT>
 class GeneralSceneTracer {

@@ -1,0 +1,10 @@
+// grtrace-render: Reissner-Nordstrom and Schwarzschild-de Sitter frames (automatic Christoffel symbols) (see render_request.hpp).
+#include "render_request.hpp"
+
+namespace grtrace::render_tool {
+
+Frame render_rn_sds(const Request& q, SkyDirections* directions) {
+  return render_one_of<AutoReissnerNordstrom, AutoSchwarzschildDeSitter>(q, directions);
+}
+
+}  // namespace grtrace::render_tool

@@ -1,0 +1,33 @@
+// grtrace-render: Schwarzschild and flat-space frames (see render_request.hpp).
+#include "render_request.hpp"
+
+#include "grtrace/trace/straight_line.hpp"
+#include "grtrace/trace/symmetric_scene_tracer.hpp"
+
+namespace grtrace::render_tool {
+
+/// Flat space by straight lines; Schwarzschild by one table of rays for the frame when the scene has no objects
+/// (--tracer symmetric, auto's choice), else every pixel integrated.
+Frame render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table) {
+  RenderOptions options;
+  options.threads = q.threads;
+  const Camera& cam = *q.camera;
+  if (q.tracer == "straight-line")
+    return with_standard_scene(q.scene, [&](auto scene) {
+      return render_frame(cam, StraightLineTracer(MinkowskiSpherical{}, q.settings.escape_radius, q.correction, scene),
+                          options, directions);
+    });
+  const SchwarzschildMetric metric{q.metric.mass};
+  if (q.tracer != "symmetric") return render_general(q, metric, directions);
+  std::optional<Frame> frame;
+  dispatch_method(q.tableau, q.control, [&]<class T, class C>() {
+    const BackgroundScene scene = background_scene(q.scene);  // the symmetric tracer draws no objects
+    const SymmetricSceneTracer<T, C, BackgroundScene> tracer(metric, q.settings, cam, q.correction, scene,
+                                                             q.table_nodes);
+    table = {tracer.table().table_rays(), tracer.table().table_steps()};
+    frame.emplace(render_frame(cam, tracer, options, directions));
+  });
+  return std::move(*frame);
+}
+
+}  // namespace grtrace::render_tool

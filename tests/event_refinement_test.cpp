@@ -22,10 +22,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace grtrace {
@@ -168,6 +170,87 @@ TEST(ExactReference, TheInitialStateIsNullAndOnItsPlane) {
 }
 
 // -----------------------------------------------------------------------------------------------------------
+// The pieces: the step map and the secant refinement
+
+/// Kepler problem, y = (x, y, vx, vy): a smooth nonlinear right-hand side for the integrator-level checks.
+struct Kepler {
+  Vector<4> operator()(const Vector<4>& y) const {
+    const double r2 = y[0] * y[0] + y[1] * y[1], r3 = r2 * std::sqrt(r2);
+    Vector<4> d;
+    d << y[2], y[3], -y[0] / r3, -y[1] / r3;
+    return d;
+  }
+};
+
+template <class T, class C>
+void check_step_map(C controller) {
+  SCOPED_TRACE(name_of(T::name) + " + " + name_of(C::name));
+  IntegratorSettings s;
+  s.tolerance = {1e-6, 1e-9};
+  ControlledIntegrator<T, C, 4> integ(s, controller);
+  const Kepler f{};
+  Vector<4> y0;
+  y0 << 0.5, 0.0, 0.0, std::sqrt(3.0);  // eccentricity 0.5 at periapsis
+  integ.start(f, y0, 0.05);
+  for (int i = 0; i < 5; ++i) ASSERT_EQ(integ.advance(f), StepOutcome::ok);
+  const Vector<4> dense_before = integ.dense(0.37);
+  const long evals_before = integ.rhs_evals();
+  // theta = 1 is the accepted step itself, bit for bit.
+  EXPECT_EQ(integ.step_from_previous(f, 1.0), integ.state());
+  // Any other theta is the same method's step theta h from the step's start: as a fresh fixed-step integrator
+  // would take it (for step doubling: its two half steps, extrapolated or not).
+  const double theta = 0.37;
+  const Vector<4> y = integ.step_from_previous(f, theta);
+  using FreshController = std::conditional_t<C::estimate == ErrorEstimate::step_doubling, C, FixedStep>;
+  FreshController fresh_controller{};
+  if constexpr (std::is_same_v<FreshController, C>) fresh_controller = controller;
+  ControlledIntegrator<T, FreshController, 4> fresh(
+      IntegratorSettings{s.tolerance, 0.0, std::numeric_limits<double>::infinity()}, fresh_controller);
+  fresh.start(f, integ.previous_state(), theta * integ.last_step());
+  ASSERT_EQ(fresh.advance(f), StepOutcome::ok);
+  EXPECT_LT((y - fresh.state()).cwiseAbs().maxCoeff(), 1e-15);
+  // The probes are counted, and the dense output still describes the accepted step.
+  EXPECT_GT(integ.rhs_evals(), evals_before);
+  EXPECT_EQ(integ.dense(0.37), dense_before);
+}
+
+TEST(StepMap, ReTakesTheLastStepShortenedWithTheSameMethod) {
+  check_step_map<Fehlberg78, IController>({});
+  check_step_map<Tsitouras54, PIController>({});
+  check_step_map<ClassicRK4, FixedStep>({});
+  check_step_map<ClassicRK4, StepDoubling>({});
+  StepDoubling richardson;
+  richardson.richardson = true;
+  check_step_map<Rule38, StepDoubling>(richardson);
+}
+
+TEST(RefineCrossing, SecantFromAnInterpolantsEstimateConvergesInAFewProbes) {
+  // The "step map" g(theta) = cos(3 theta) - 0.4 crosses at acos(0.4) / 3; the "interpolant" is off by 1e-4.
+  const double root = std::acos(0.4) / 3.0;
+  int calls = 0;
+  auto probe = [&](double t) {
+    ++calls;
+    return std::pair<double, double>{std::cos(3.0 * t) - 0.4, t};
+  };
+  const double theta0 = root + 1e-4, slope0 = -3.0 * std::sin(3.0 * (root - 2e-4));
+  const auto c = refine_crossing(probe, theta0, slope0);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_TRUE(c->converged);
+  EXPECT_EQ(c->probes, calls);
+  EXPECT_LE(c->probes, 3);
+  EXPECT_EQ(c->payload, c->theta);
+  EXPECT_LE(std::abs(c->pending), 1e-7);
+  EXPECT_NEAR(c->theta + c->pending, root, 1e-15);
+  // A non-finite probe at the start gives nothing; a crossing beyond the step is clamped to its end.
+  auto nan_probe = [](double t) { return std::pair<double, double>{std::nan(""), t}; };
+  EXPECT_FALSE(refine_crossing(nan_probe, 0.5, -1.0).has_value());
+  auto late = [](double t) { return std::pair<double, double>{1.5 - t, t}; };
+  const auto e = refine_crossing(late, 0.99, -1.0);
+  ASSERT_TRUE(e.has_value());
+  EXPECT_LE(e->theta + e->pending, 1.0);
+}
+
+// -----------------------------------------------------------------------------------------------------------
 // Convergence of the equator crossing with the tolerance, for every adaptive tableau
 
 struct CrossingErrors {
@@ -242,6 +325,76 @@ TEST(EventRefinement, EquatorCrossingConvergesWithTheToleranceForEveryAdaptiveTa
     }
   });
   check_convergence<ClassicRK4, StepDoubling>(1e-9);  // a tableau without an embedded pair
+}
+
+// -----------------------------------------------------------------------------------------------------------
+// A small ball the ray can enter and leave within one step: interior samples, then refinement
+
+/// A ball of radius rho around the Cartesian point c (of the chart's embedding), with interior samples so that
+/// a step that passes through it is caught.
+struct SmallBall {
+  static constexpr int interior_samples = 8;
+  Vec3 c;
+  double rho;
+  double operator()(const GeodesicState& y) const { return (spherical_to_cartesian(y.head<4>()) - c).norm() - rho; }
+};
+
+/// The exact point (Cartesian) of the first test photon after sweeping psi, and the ball it enters: centred on
+/// its exact equator crossing, radius 0.4. Returns the ball and the exact entry radius (bisection on the swept
+/// angle: the distance to the centre falls monotonically over the last 0.3 rad before it).
+struct BallReference {
+  SmallBall ball;
+  double entry_radius;
+};
+BallReference ball_on_first_photon() {
+  const InclinedPhoton& p = kPhotons[0];
+  const Vec3 n(std::sin(p.theta0), 0.0, std::cos(p.theta0));
+  const Vec3 t(-std::sin(p.alpha) * std::cos(p.theta0), std::cos(p.alpha), std::sin(p.alpha) * std::sin(p.theta0));
+  auto point = [&](double psi) {
+    return exact_radius_after(p, psi, 2.002).value() * (n * std::cos(psi) + t * std::sin(psi));
+  };
+  const double psi_c = p.sweep_to_equator(), rho = 0.4;
+  const Vec3 c = point(psi_c);
+  double lo = psi_c - 0.3, hi = psi_c;  // outside at lo, inside at hi
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    ((point(mid) - c).norm() > rho ? lo : hi) = mid;
+  }
+  return {SmallBall{c, rho}, exact_radius_after(p, 0.5 * (lo + hi), 2.002).value()};
+}
+
+template <class T, class C>
+void check_ball(double rtol, double bound) {
+  SCOPED_TRACE(name_of(T::name) + " + " + name_of(C::name));
+  const BallReference ref = ball_on_first_photon();
+  std::array<double, 2> err{};
+  std::array<double, 2> largest_step{};
+  for (const bool refine : {true, false}) {
+    TraceSettings s;
+    s.integrator.tolerance = {rtol, 1e-3 * rtol};
+    s.refine_events = refine;
+    const GeodesicTracer<SchwarzschildMetric, T, C> tracer(SchwarzschildMetric{}, s);
+    double h = 0.0;
+    const TraceResult r = tracer.trace_observed(
+        kPhotons[0].state(), [&](const auto& integ, double) { h = std::max(h, integ.last_step()); }, ref.ball);
+    ASSERT_EQ(r.status, RayStatus::hit);
+    err[refine ? 0 : 1] = std::abs(r.final_state[1] / ref.entry_radius - 1.0);
+    largest_step[refine ? 0 : 1] = h;
+  }
+  std::printf("%-9s %-8s rtol %.0e: ball entry radius error %.1e (dense only: %.1e), largest step %.1f M "
+              "(the ball is %.1f M across)\n",
+              name_of(T::name).c_str(), name_of(C::name).c_str(), rtol, err[0], err[1], largest_step[0],
+              2.0 * ref.ball.rho);
+  EXPECT_LT(err[0], bound);
+}
+
+TEST(EventRefinement, ABallEnteredAndLeftWithinOneStepIsHitWhereItIs) {
+  // Loose tolerances: steps longer than the ball, so interior samples find it; then refined all the same.
+  check_ball<Fehlberg78, PIController>(1e-6, 1e-6);
+  check_ball<Verner65, PIController>(1e-6, 1e-5);
+  check_ball<Tsitouras54, IController>(1e-6, 1e-5);
+  check_ball<Fehlberg78, PIController>(1e-12, 1e-9);
 }
 
 // -----------------------------------------------------------------------------------------------------------

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -90,9 +91,12 @@ struct RefinedCrossing {
 /// Takes:   probe(theta) -> std::pair<double, Payload> (g and what was computed), for theta in (0, 1];
 ///          theta0, the interpolant's crossing in (0, 1]; slope0, dg/dtheta of the interpolant at theta0;
 ///          linear_limit: a correction this small (as a step fraction) is not probed but returned as `pending`,
-///          for the caller to apply with the payload's derivative (first-order Taylor: its error is
-///          ~ (linear_limit h)^2 |y''| / 2, below round-off of y for the default 1e-7 on any step whose
-///          h |y''| does not exceed about |y|); max_probes >= 1.
+///          for the caller to apply with the payload's derivative, if it is also accurate: a secant iterate
+///          is off by about |g''/2g'| times the product of the last two corrections (the first correction,
+///          with the interpolant's slope, counts as its own predecessor), and that product must not exceed
+///          linear_limit^2. With the default 1e-7 both the iterate's error (~1e-14 of the step) and the
+///          first-order Taylor error ~ (linear_limit h)^2 |y''| / 2 stay below round-off of y on any step whose
+///          h^2 |y''| does not exceed about |y|. max_probes >= 1.
 /// Returns: the last probed point and the correction still pending on it, when the iteration converges; else
 ///          the probed point with the smallest |g| and no pending correction. Nothing if the probe gave a
 ///          non-finite g at theta0. Never probes outside (0, 1]: an iterate beyond 1 is clamped to 1, one at or
@@ -108,6 +112,7 @@ auto refine_crossing(const Probe& probe, double theta0, double slope0, double li
   if (!std::isfinite(g0)) return std::nullopt;
   RefinedCrossing<Payload> best{theta0, g0, std::move(p0), 1, false};
   double t = theta0, g = g0, slope = slope0;
+  double last_correction = std::numeric_limits<double>::quiet_NaN();  // none yet
   bool last_is_best = true;
   while (true) {
     if (g == 0.0 && last_is_best) {
@@ -120,11 +125,14 @@ auto refine_crossing(const Probe& probe, double theta0, double slope0, double li
     // The step being refined is [0, 1]: a crossing the secant puts outside lies at its edge, or the slope is off.
     if (t_next > 1.0) t_next = 1.0;
     if (t_next <= 0.0) t_next = 0.5 * t;
-    if (std::abs(t_next - t) <= linear_limit && last_is_best) {
+    const double correction = std::abs(t_next - t);
+    const double previous = std::isnan(last_correction) ? correction : last_correction;
+    if (correction <= linear_limit && correction * previous <= linear_limit * linear_limit && last_is_best) {
       best.converged = true;
       best.pending = t_next - t;
       break;
     }
+    last_correction = correction;
     if (best.probes >= max_probes) break;
     auto [g_next, p_next] = probe(t_next);
     ++best.probes;

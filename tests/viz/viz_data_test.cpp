@@ -79,7 +79,9 @@ TEST(VizPath, StepEndsAreTheTracersStates) {
     EXPECT_EQ(s.step, static_cast<int>(i));
     EXPECT_LT((s.position - metric.to_cartesian(states[i].head<4>())).norm(), 1e-12);
   }
-  EXPECT_EQ(path.samples.back().state, ref.final_state);
+  // The path ends on the step's dense output at the located crossing; the tracer's final state is that crossing
+  // refined on the step map (geodesic_tracer.hpp): they differ by the interpolant's error only.
+  EXPECT_LT((path.samples.back().state - ref.final_state).cwiseAbs().maxCoeff(), 1e-8);
   EXPECT_NEAR(path.samples.back().lambda, ref.lambda, 1e-9 * std::abs(ref.lambda));
   // lambda grows along the samples, and each sample's h is its step's.
   for (std::size_t i = 1; i < path.samples.size(); ++i) {

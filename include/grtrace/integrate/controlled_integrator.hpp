@@ -6,7 +6,8 @@
 //          step_underflow when the controller asks for h < h_min, non_finite when a fixed-step method
 //          produces NaN/Inf (adaptive methods shrink instead, until they underflow).
 // Assumes: the controller's error estimate is available for the tableau (an embedded pair for I/PI).
-// Dense output on the last accepted step: the tableau's own interpolant where it has one, cubic Hermite otherwise.
+// Dense output on the last accepted step: the tableau's own interpolant where it has one, cubic Hermite otherwise;
+// step_from_previous(theta) re-takes a shortened step from its start, as accurate as the integration itself.
 // Counts right-hand-side evaluations exactly (FSAL stages are reused; stage 1 is always the stored f(y)).
 #pragma once
 
@@ -138,6 +139,50 @@ class ControlledIntegrator {
     } else {
       return hermite_interpolate<N>(y_prev_, f_prev_, y_, f_, h_last_, theta);
     }
+  }
+
+  /// The integrator's own step map on the last accepted step: the state it would have produced with the step
+  /// theta * h from the step's start (the same tableau and propagated weights; for step doubling the same two
+  /// half steps and, if enabled, the same Richardson extrapolation). More accurate than dense(theta) wherever
+  /// the interpolant is of lower order than the method: this is what event location refines hits with.
+  /// Takes:   the right-hand side f and theta in (0, 1]; theta = 1 reproduces state() bit for bit.
+  /// Returns: the state at previous_lambda() + theta * last_step(). No error control: theta * h <= h, and h was
+  ///          accepted. Its right-hand-side evaluations are counted in rhs_evals().
+  /// Assumes: a step was accepted since start() or reseat() (last_step() > 0). Uses a stepper of its own, so
+  ///          dense() still describes the accepted step afterwards.
+  template <class Rhs>
+  State step_from_previous(const Rhs& f, double theta) {
+    const double h = theta * h_last_;
+    Stepper probe;
+    State y_new;
+    if constexpr (Controller::estimate == ErrorEstimate::step_doubling) {
+      State y_mid, y_two;
+      probe.step(f, y_prev_, f_prev_, 0.5 * h, y_mid);
+      const State f_mid = f(y_mid);
+      probe.step(f, y_mid, f_mid, 0.5 * h, y_two);
+      rhs_evals_ += 2 * Stepper::evals_per_step + 1;
+      if (controller_.richardson) {
+        State y_full;
+        probe.step(f, y_prev_, f_prev_, h, y_full);
+        rhs_evals_ += Stepper::evals_per_step;
+        const State err = (y_two - y_full) / (std::pow(2.0, T::order) - 1.0);  // as in doubling_step
+        y_new = y_two + err;
+      } else {
+        y_new = y_two;
+      }
+    } else {
+      probe.step(f, y_prev_, f_prev_, h, y_new);
+      rhs_evals_ += Stepper::evals_per_step;
+    }
+    return y_new;
+  }
+
+  /// f(y), counted in rhs_evals(): for work done on the integration's behalf outside advance() (event
+  /// refinement), so that the count stays the honest total.
+  template <class Rhs>
+  State evaluate(const Rhs& f, const State& y) {
+    ++rhs_evals_;
+    return f(y);
   }
 
   const State& state() const { return y_; }

@@ -7,10 +7,15 @@
 // Returns: the smallest theta in (0, 1] with g(theta) <= 0 to within `theta_tol`, or nothing.
 // Method:  bracket by sampling, then the Illinois variant of regula falsi (Dowell & Jarratt 1971):
 //          superlinear, and never leaves the bracket.
+// The interpolant is only as accurate as its own order (cubic Hermite for tableaux without a continuous
+// extension), so refine_crossing() then moves the crossing onto the integration's own step map (see
+// ControlledIntegrator::step_from_previous) with a secant iteration started from the interpolant's answer.
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <optional>
+#include <utility>
 
 namespace grtrace {
 
@@ -67,6 +72,82 @@ std::optional<EventCrossing> locate_first_crossing(const G& g, double g0, double
     if (gm == 0.0) break;
   }
   return EventCrossing{b, gb};
+}
+
+/// A crossing refined on an accurate but costly probe of the step, with what the probe returned there.
+template <class Payload>
+struct RefinedCrossing {
+  double theta;         ///< step fraction of the probed point (the crossing is at theta + pending)
+  double value;         ///< g at theta (near 0; either sign)
+  Payload payload;      ///< what the probe computed at theta (e.g. the state there)
+  int probes;           ///< probe calls spent
+  bool converged;       ///< the last secant correction was below linear_limit
+  double pending = 0.;  ///< that last correction, not probed: apply it to the payload to first order
+};
+
+/// Refines a crossing found on a step's interpolant with a probe that is more accurate but costs a step each
+/// (the event function on the integrator's step map): a secant iteration on theta started from the
+/// interpolant's crossing, whose first correction uses the interpolant's slope there.
+/// Takes:   probe(theta) -> std::pair<double, Payload> (g and what was computed), for theta in (0, 1];
+///          theta0, the interpolant's crossing in (0, 1]; slope0, dg/dtheta of the interpolant at theta0;
+///          linear_limit: a correction this small (as a step fraction) is not probed but returned as `pending`,
+///          for the caller to apply with the payload's derivative, if it is also accurate: a secant iterate
+///          is off by about |g''/2g'| times the product of the last two corrections (the first correction,
+///          with the interpolant's slope, counts as its own predecessor), and that product must not exceed
+///          linear_limit^2. With the default 1e-7 both the iterate's error (~1e-14 of the step) and the
+///          first-order Taylor error ~ (linear_limit h)^2 |y''| / 2 stay below round-off of y on any step whose
+///          h^2 |y''| does not exceed about |y|. max_probes >= 1.
+/// Returns: the last probed point and the correction still pending on it, when the iteration converges; else
+///          the probed point with the smallest |g| and no pending correction. Nothing if the probe gave a
+///          non-finite g at theta0. Never probes outside (0, 1]: an iterate beyond 1 is clamped to 1, one at or
+///          below 0 halves the current theta.
+/// Assumes: the probe and the interpolant differ by little more than the interpolant's error, so the crossing
+///          sought is the one next to theta0. The secant then converges superlinearly: one probe with a
+///          tableau's own (order >= 4) interpolant, two with cubic Hermite.
+template <class Probe>
+auto refine_crossing(const Probe& probe, double theta0, double slope0, double linear_limit = 1e-7,
+                     int max_probes = 8) -> std::optional<RefinedCrossing<decltype(probe(0.0).second)>> {
+  using Payload = decltype(probe(0.0).second);
+  auto [g0, p0] = probe(theta0);
+  if (!std::isfinite(g0)) return std::nullopt;
+  RefinedCrossing<Payload> best{theta0, g0, std::move(p0), 1, false};
+  double t = theta0, g = g0, slope = slope0;
+  double last_correction = std::numeric_limits<double>::quiet_NaN();  // none yet
+  bool last_is_best = true;
+  while (true) {
+    if (g == 0.0 && last_is_best) {
+      best.converged = true;
+      break;
+    }
+    if (!(std::isfinite(slope) && slope != 0.0)) break;
+    double t_next = t - g / slope;
+    if (!std::isfinite(t_next)) break;
+    // The step being refined is [0, 1]: a crossing the secant puts outside lies at its edge, or the slope is off.
+    if (t_next > 1.0) t_next = 1.0;
+    if (t_next <= 0.0) t_next = 0.5 * t;
+    const double correction = std::abs(t_next - t);
+    const double previous = std::isnan(last_correction) ? correction : last_correction;
+    if (correction <= linear_limit && correction * previous <= linear_limit * linear_limit && last_is_best) {
+      best.converged = true;
+      best.pending = t_next - t;
+      break;
+    }
+    last_correction = correction;
+    if (best.probes >= max_probes) break;
+    auto [g_next, p_next] = probe(t_next);
+    ++best.probes;
+    if (!std::isfinite(g_next)) break;
+    slope = (g_next - g) / (t_next - t);
+    t = t_next;
+    g = g_next;
+    last_is_best = std::abs(g) <= std::abs(best.value);
+    if (last_is_best) {
+      best.theta = t;
+      best.value = g;
+      best.payload = std::move(p_next);
+    }
+  }
+  return best;
 }
 
 }  // namespace grtrace

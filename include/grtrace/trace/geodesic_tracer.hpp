@@ -4,12 +4,14 @@
 // Takes:   the initial state (x^mu, k^mu), settings, and any number of user events: callables
 //          g(const GeodesicState&) -> double that are positive outside a surface and <= 0 on or inside it.
 // Returns: a TraceResult with the status (captured, escaped, hit, max_steps, step_underflow, non_finite),
-//          the final state (on the surface that ended the ray, located on the dense output), the counts of
-//          accepted/rejected steps and right-hand-side evaluations, and the drift of g(k, k).
+//          the final state (on the surface that ended the ray: bracketed on the dense output, then refined on
+//          the integrator's step map, see refine_located), the counts of accepted/rejected steps and
+//          right-hand-side evaluations (refinement steps included), and the drift of g(k, k).
 // Assumes: the ray starts outside the horizon guard and inside the escape sphere (else it ends at once).
 // Termination surfaces are events like any other: horizon guard r = (1 + eps) r_h, escape sphere r = R.
 // An observer, if given, sees every accepted step (and the last, cut at the surface) with the integrator's
-// dense output, so paths can be drawn as smooth curves.
+// dense output, so paths can be drawn as smooth curves (the last drawn point, dense(theta), differs from the
+// refined final state by the interpolant's error).
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
@@ -18,6 +20,7 @@
 #include "grtrace/integrate/event_locator.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -37,6 +40,10 @@ struct TraceSettings {
   /// g(k,k)'s terms (sum |g_mn k^m k^n|). The numbers then no longer describe a geodesic (typically a fixed step
   /// too large near the horizon, where k^t grows without bound). <= 0 switches the guard off.
   double constraint_tolerance = 1e-2;
+  /// Where a surface crossing ends the ray: true, on the integration's own step map (re-taking the step that
+  /// contains it, shortened to end there: as accurate as the integration, a few steps per crossing); false,
+  /// on the step's interpolant only (cheaper, but cubic Hermite for tableaux without their own dense output).
+  bool refine_events = true;
 };
 
 struct TraceResult {
@@ -46,7 +53,8 @@ struct TraceResult {
   double lambda = 0.0;           ///< affine parameter at the end
   int accepted = 0;
   int rejected = 0;
-  long rhs_evals = 0;
+  long rhs_evals = 0;             ///< all of them, the refinement steps' included
+  long refinement_evals = 0;      ///< of rhs_evals, those spent refining crossings (see refine_located)
   double constraint_drift = 0;   ///< g(k,k) at the end minus g(k,k) at the start
   int hit_event = -1;            ///< index of the user event that ended the ray (status hit)
   int chart_wraps = 0;           ///< times the ray crossed the polar axis of a spherical chart (see wrap_polar_axis)
@@ -167,6 +175,7 @@ class GeodesicTracer {
       }
       // The earliest surface crossed inside this step ends the ray.
       double theta_first = std::numeric_limits<double>::infinity();
+      GeodesicState y_first = GeodesicState::Zero();
       std::size_t first = K;
       for_each_event(all, [&](std::size_t i, const auto& e) {
         const double g1 = e(integ.state());
@@ -177,15 +186,23 @@ class GeodesicTracer {
           return;
         }
         auto g_of_theta = [&](double t) { return side * e(integ.dense(t)); };
+        // Bracketed on the dense output (cheap), then refined on the step map (a few steps); a crossing the
+        // dense output puts after an already accepted one is not refined: it cannot end the ray.
         if (auto c = locate_first_crossing(g_of_theta, side * g_prev[i], side * g1, samples[i]);
-            c && c->theta < theta_first && event_accepts(e, integ.dense(c->theta))) {
-          theta_first = c->theta;
-          first = i;
+            c && c->theta < theta_first) {
+          const long evals_before = integ.rhs_evals();
+          const LocatedCrossing hit = refine_located(integ, rhs, g_of_theta, e, side, *c);
+          result.refinement_evals += integ.rhs_evals() - evals_before;
+          if (hit.theta < theta_first && event_accepts(e, hit.state)) {
+            theta_first = hit.theta;
+            y_first = hit.state;
+            first = i;
+          }
         }
         g_prev[i] = g1;
       });
       if (first < K) {
-        const GeodesicState y_hit = integ.dense(theta_first);
+        const GeodesicState& y_hit = y_first;
         observer(integ, theta_first);
         const double lambda_hit = integ.previous_lambda() + theta_first * integ.last_step();
         if (violated(y_hit)) return finish(RayStatus::non_finite, y_hit, lambda_hit, integ);
@@ -206,6 +223,49 @@ class GeodesicTracer {
   }
 
  private:
+  struct LocatedCrossing {
+    double theta;         ///< step fraction
+    GeodesicState state;  ///< the state there
+  };
+
+  // Moves a crossing located on the dense output onto the integrator's own step map, so that a hit is as
+  // accurate as the integration and not only as its interpolant (cubic Hermite for tableaux without their own
+  // is ~1e-5 M off on the long steps of a high-order method at tight tolerance).
+  // Takes:   the integrator right after the accepted step that contains the crossing, the right-hand side, the
+  //          oriented event on the dense output (g_dense(theta) = side * e(dense(theta))), the event e, its
+  //          orientation side (+1 or -1, as for the locator) and the dense crossing c.
+  // Returns: the crossing's step fraction and state on the step map, found by refine_crossing (secant from
+  //          c.theta with g_dense's slope there); its last, tiny correction is applied to first order,
+  //          y + dtheta h f(y), for one right-hand side instead of another step. Typically 1 step + 1 evaluation
+  //          with a tableau's own interpolant, 2 steps + 1 with Hermite; a step costs (stages - 1) right-hand
+  //          sides (3 (stages - 1) + 1 for step doubling); all counted in rhs_evals. The dense crossing itself
+  //          when refinement is off (settings().refine_events) or impossible (c is at theta = 0 or non-finite,
+  //          or the step map is non-finite there).
+  // Assumes: c came from locate_first_crossing on this step.
+  template <class GDense, class Event>
+  LocatedCrossing refine_located(Integrator& integ, const GeodesicEquation<Metric>& rhs, const GDense& g_dense,
+                                 const Event& e, double side, const EventCrossing& c) const {
+    if (!settings_.refine_events || !(c.theta > 0.0) || !std::isfinite(c.value)) {
+      return {c.theta, integ.dense(c.theta)};
+    }
+    // The interpolant's slope at the crossing (central difference; it is a polynomial in theta), for the first
+    // secant correction.
+    constexpr double delta = 1e-4;
+    const double lo = std::max(0.0, c.theta - delta), hi = std::min(1.0, c.theta + delta);
+    const double slope0 = (g_dense(hi) - g_dense(lo)) / (hi - lo);
+    auto probe = [&](double t) {
+      GeodesicState y = integ.step_from_previous(rhs, t);
+      return std::pair<double, GeodesicState>{side * e(y), std::move(y)};
+    };
+    const auto refined = refine_crossing(probe, c.theta, slope0);
+    if (!refined) return {c.theta, integ.dense(c.theta)};
+    if (refined->pending == 0.0) return {refined->theta, refined->payload};
+    const GeodesicState& y_probed = refined->payload;
+    const GeodesicState y = y_probed + (refined->pending * integ.last_step()) * integ.evaluate(rhs, y_probed);
+    if (!y.allFinite()) return {refined->theta, refined->payload};
+    return {refined->theta + refined->pending, y};
+  }
+
   template <class Tuple, class F>
   static void for_each_event(const Tuple& events, F&& f) {
     [&]<std::size_t... I>(std::index_sequence<I...>) {

@@ -44,6 +44,10 @@ struct TraceSettings {
   /// contains it, shortened to end there: as accurate as the integration, a few steps per crossing); false,
   /// on the step's interpolant only (cheaper, but cubic Hermite for tableaux without their own dense output).
   bool refine_events = true;
+  /// The same for the sky sphere alone. A scene tracer that continues escaped rays exactly from the last accepted
+  /// step (AngleCorrection::exact) reads only the redshift at the sphere, for which the interpolant is ample, and
+  /// switches this off to save the refinement steps on every escaping ray.
+  bool refine_escape = true;
 };
 
 struct TraceResult {
@@ -191,7 +195,8 @@ class GeodesicTracer {
         if (auto c = locate_first_crossing(g_of_theta, side * g_prev[i], side * g1, samples[i]);
             c && c->theta < theta_first) {
           const long evals_before = integ.rhs_evals();
-          const LocatedCrossing hit = refine_located(integ, rhs, g_of_theta, e, side, *c);
+          const bool refine = settings_.refine_events && (i != 1 || settings_.refine_escape);  // 1: the sky sphere
+          const LocatedCrossing hit = refine_located(integ, rhs, g_of_theta, e, side, *c, refine);
           result.refinement_evals += integ.rhs_evals() - evals_before;
           if (hit.theta < theta_first && event_accepts(e, hit.state)) {
             theta_first = hit.theta;
@@ -239,13 +244,13 @@ class GeodesicTracer {
   //          y + dtheta h f(y), for one right-hand side instead of another step. Typically 1 step + 1 evaluation
   //          with a tableau's own interpolant, 2 steps + 1 with Hermite; a step costs (stages - 1) right-hand
   //          sides (3 (stages - 1) + 1 for step doubling); all counted in rhs_evals. The dense crossing itself
-  //          when refinement is off (settings().refine_events) or impossible (c is at theta = 0 or non-finite,
+  //          when refinement is off (refine: settings().refine_events, refine_escape) or impossible (c is at theta = 0 or non-finite,
   //          or the step map is non-finite there).
   // Assumes: c came from locate_first_crossing on this step.
   template <class GDense, class Event>
   LocatedCrossing refine_located(Integrator& integ, const GeodesicEquation<Metric>& rhs, const GDense& g_dense,
-                                 const Event& e, double side, const EventCrossing& c) const {
-    if (!settings_.refine_events || !(c.theta > 0.0) || !std::isfinite(c.value)) {
+                                 const Event& e, double side, const EventCrossing& c, bool refine) const {
+    if (!refine || !(c.theta > 0.0) || !std::isfinite(c.value)) {
       return {c.theta, integ.dense(c.theta)};
     }
     // The interpolant's slope at the crossing (central difference; it is a polynomial in theta), for the first

@@ -63,7 +63,8 @@ class GeneralSceneTracer {
   using SceneType = SceneT;
 
   GeneralSceneTracer(Metric metric, TraceSettings settings, C controller, AngleCorrection correction, SceneT scene)
-      : tracer_(metric, settings, controller), correction_(correction), scene_(std::move(scene)) {}
+      : tracer_(metric, with_escape_refinement(settings, metric, correction), controller), correction_(correction),
+        scene_(std::move(scene)) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
     const TraceResult r = std::apply([&](const auto&... o) { return tracer_.trace(y0, o...); }, scene_.objects);
@@ -97,6 +98,13 @@ class GeneralSceneTracer {
   AngleCorrection correction() const { return correction_; }
 
  private:
+  /// The exact continuation starts from the last accepted step, not from the sky sphere: refining the sphere's
+  /// crossing would buy nothing there (TraceSettings::refine_escape).
+  static TraceSettings with_escape_refinement(TraceSettings s, const Metric&, AngleCorrection correction) {
+    if (HasExactContinuation<Metric> && correction == AngleCorrection::exact) s.refine_escape = false;
+    return s;
+  }
+
   GeodesicTracer<Metric, T, C> tracer_;
   AngleCorrection correction_;
   SceneT scene_;

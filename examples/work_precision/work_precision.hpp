@@ -16,7 +16,8 @@
 // A wrong verdict (escaped/captured) or a failed ray (max_steps, step_underflow, non_finite) scores pi, the
 // largest angular error there is, so a method that fails can never look accurate.
 // The exact continuation of an escaped ray starts where the tracer reports its end (ExitPoint::surface, the
-// sky-sphere crossing read from the step's interpolant) or at the last accepted node (ExitPoint::node).
+// sky-sphere crossing, refined on the step map since issue 10's event refinement) or at the last accepted node
+// (ExitPoint::node).
 #pragma once
 
 #include "grtrace/exact/schwarzschild_exact.hpp"
@@ -113,7 +114,7 @@ struct SweepPoint {
 };
 
 /// Where the exact continuation to infinity starts: the located exit point on the sky sphere (what
-/// TraceResult::final_state reports, read from the step's interpolant) or the last accepted node beyond it.
+/// TraceResult::final_state reports, refined on the step map) or the last accepted node beyond it.
 enum class ExitPoint { surface, node };
 
 struct RunOptions {
@@ -158,8 +159,8 @@ inline RayOutcome bookkeeping(const TraceResult& r) {
 }
 
 /// Keeps the last accepted integrator node. The tracer reports the end of a ray on the surface that ended it,
-/// read from the step's interpolant; the node past the surface is a true integration point, and the exact
-/// continuation to infinity is valid from any point of the ray, so it can be applied there instead.
+/// refined on the step map (TraceSettings::refine_events); the node past the surface is a true integration point,
+/// and the exact continuation to infinity is valid from any point of the ray, so it can be applied there instead.
 /// One observer type for both kinds of ray: each method compiles one tracer loop, not two.
 struct LastNode {
   GeodesicState* node;

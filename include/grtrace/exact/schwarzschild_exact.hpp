@@ -15,6 +15,7 @@
 // std::ellint_1(k, psi) and std::comp_ellint_1(k) take the modulus k (not k^2).
 #pragma once
 
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
@@ -35,7 +36,7 @@ inline double periapsis_from_impact(double b, double mass = 1.0) {
 }
 
 /// Impact parameter of the photon whose closest approach is r0 (> 3M).
-inline double impact_from_periapsis(double r0, double mass = 1.0) { return r0 / std::sqrt(1.0 - 2.0 * mass / r0); }
+inline double impact_from_periapsis(double r0, double mass = 1.0) { return r0 / std::sqrt(schwarzschild_f(r0, mass)); }
 
 namespace detail {
 /// Phi(u) for b > b_c, given u2 = 1/periapsis (passed in: near b_c, u2 is better computed from r0 than from b).
@@ -126,7 +127,7 @@ using grtrace::angular_distance;
 inline std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y, double mass = 1.0) {
   const double r = y[1];
   const SphericalBasis e = spherical_basis(y[2], y[3]);
-  const double E = (1.0 - 2.0 * mass / r) * y[4];
+  const double E = schwarzschild_f(r, mass) * y[4];
   const Vec3 tangential = embedded_tangential_velocity(y, e);  // r dOmega/dlambda in the embedding
   const double L = r * tangential.norm();                      // total angular momentum r^2 |dOmega|
   const double b = std::abs(L / E);

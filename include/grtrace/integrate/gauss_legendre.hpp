@@ -50,6 +50,7 @@
 // iteration converges worse; grtrace-orbit-drift reports that variant as gl6-xk.)
 #pragma once
 
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -360,7 +361,7 @@ template <MetricPolicy M>
 double canonical_norm(const M& metric, const GeodesicState& y) {
   const Vec4 x = y.head<4>(), p = y.tail<4>();
   if constexpr (std::derived_from<M, SchwarzschildMetric>) {
-    const double r = x[1], f = 1.0 - 2.0 * metric.mass / r, st = std::sin(x[2]), r2 = r * r;
+    const double r = x[1], f = schwarzschild_f(r, metric.mass), st = std::sin(x[2]), r2 = r * r;
     return p[0] * p[0] / f - f * p[1] * p[1] - p[2] * p[2] / r2 - p[3] * p[3] / (r2 * st * st);
   } else {
     return p.dot(metric.metric(x).inverse() * p);

@@ -6,6 +6,7 @@
 // With mass 0 this is flat space in spherical coordinates (MinkowskiSpherical).
 #pragma once
 
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
@@ -63,7 +64,7 @@ struct SchwarzschildMetric {
   double radius(const Vec4& x) const { return x[1]; }
   double horizon_radius() const { return 2.0 * mass; }
   /// 1 - 2M/r: g_tt, the squared lapse of the static observers.
-  double lapse_squared(double r) const { return 1.0 - 2.0 * mass / r; }
+  double lapse_squared(double r) const { return schwarzschild_f(r, mass); }
 
   /// Optional trait (metric/metric_traits.hpp): the exact continuation of a ray from y to infinity, by elliptic
   /// integrals (exact/schwarzschild_exact.hpp); nothing when it falls into the hole.

@@ -3,6 +3,7 @@
 // Cameras (pixel -> null momentum through a tetrad) live in observer/camera.hpp.
 #pragma once
 
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 
@@ -36,7 +37,7 @@ std::optional<Vec4> complete_time_component(const M& metric, const Vec4& x, cons
 /// starting at phi = 0. Schwarzschild (mass may be 0 for flat space).
 /// Assumes the radius is outside any turning point (1 - (1 - 2M/r) b^2 / r^2 > 0).
 inline GeodesicState incoming_photon(double b, double r, double mass = 1.0) {
-  const double f = 1.0 - 2.0 * mass / r;
+  const double f = schwarzschild_f(r, mass);
   const Vec4 x(0.0, r, std::numbers::pi / 2.0, 0.0);
   const Vec4 k(1.0 / f, -std::sqrt(1.0 - f * b * b / (r * r)), 0.0, b / (r * r));
   return make_state(x, k);

@@ -21,6 +21,7 @@
 // the outward direction); rays with delta > delta_c are captured.
 #pragma once
 
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
@@ -45,7 +46,7 @@ struct PlanarGeometry {
 inline PlanarGeometry planar_geometry(const GeodesicState& y, double mass) {
   const double r = y[1];
   const SphericalBasis e = spherical_basis(y[2], y[3]);
-  const double f = 1.0 - 2.0 * mass / r;
+  const double f = schwarzschild_f(r, mass);
   const Vec3 tangential = embedded_tangential_velocity(y, e);  // orthonormal-frame tangential part of dx/dl
   const double k_radial = y[5] / std::sqrt(f);                      // orthonormal radial part
   const double t_norm = tangential.norm();
@@ -83,7 +84,7 @@ class SymmetricSkyTable {
       throw std::invalid_argument("SymmetricSkyTable: need horizon guard < camera radius < sky radius");
     settings.escape_radius = sky_r;
     tracer_.emplace(metric, settings);
-    const double M = metric.mass, f = 1.0 - 2.0 * M / camera_r;
+    const double M = metric.mass, f = schwarzschild_f(camera_r, M);
     const double a = std::asin(std::min(1.0, exact::critical_impact_parameter(M) / camera_r * std::sqrt(f)));
     delta_c_ = camera_r >= 3.0 * M ? std::numbers::pi - a : a;
     delta_min = std::clamp(delta_min, 0.0, std::numbers::pi);
@@ -177,7 +178,7 @@ class SymmetricSkyTable {
 
   // One planar ray in the equatorial plane, starting at phi = 0 with angle delta to the outward radial.
   Entry trace_one(double delta) const {
-    const double M = metric_.mass, r = camera_r_, f = 1.0 - 2.0 * M / r;
+    const double M = metric_.mass, r = camera_r_, f = schwarzschild_f(r, M);
     const Vec4 x(0.0, r, std::numbers::pi / 2.0, 0.0);
     // Unit-energy null vector in the static frame, moving at angle delta from e_r towards +phi.
     const Vec4 k(1.0 / std::sqrt(f), std::sqrt(f) * std::cos(delta), 0.0, std::sin(delta) / r);

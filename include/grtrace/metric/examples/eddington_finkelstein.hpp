@@ -17,6 +17,7 @@
 // Assumes: theta away from the axis; k^v > 0 (ingoing chart) for rays meant to cross the horizon.
 #pragma once
 
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/metric/auto_metric.hpp"
 
 #include <array>
@@ -37,7 +38,7 @@ struct EddingtonFinkelstein {
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
     using std::sin;
     const S r = x[1], rs = r * sin(x[2]);
-    Mat4Of<S> g = diagonal_metric<S>(1.0 - 2.0 * mass / r, S(0.0), -r * r, -rs * rs);
+    Mat4Of<S> g = diagonal_metric<S>(schwarzschild_f(r, mass), S(0.0), -r * r, -rs * rs);
     g(0, 1) = g(1, 0) = S(outgoing ? 1.0 : -1.0);
     return g;
   }
@@ -53,21 +54,21 @@ struct EddingtonFinkelstein {
   /// A state (t, r, theta, phi | k) in Schwarzschild coordinates (r > 2M) in this chart, and back.
   GeodesicState from_schwarzschild(const GeodesicState& y) const {
     GeodesicState z = y;
-    const double f = 1.0 - 2.0 * mass / y[1];
+    const double f = schwarzschild_f(y[1], mass);
     z[0] = y[0] + sign() * tortoise(y[1]);
     z[4] = y[4] + sign() * y[5] / f;
     return z;
   }
   GeodesicState to_schwarzschild(const GeodesicState& z) const {
     GeodesicState y = z;
-    const double f = 1.0 - 2.0 * mass / z[1];
+    const double f = schwarzschild_f(z[1], mass);
     y[0] = z[0] - sign() * tortoise(z[1]);
     y[4] = z[4] - sign() * z[5] / f;
     return y;
   }
 
   /// Killing energy E = g_(v) mu k^mu = f k^v - sign k^r, and L_z = r^2 sin^2(theta) k^phi.
-  double energy(const GeodesicState& y) const { return (1.0 - 2.0 * mass / y[1]) * y[4] - sign() * y[5]; }
+  double energy(const GeodesicState& y) const { return schwarzschild_f(y[1], mass) * y[4] - sign() * y[5]; }
   double angular_momentum(const GeodesicState& y) const {
     const double rs = y[1] * std::sin(y[2]);
     return rs * rs * y[7];

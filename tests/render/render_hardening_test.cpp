@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -28,6 +29,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -254,6 +256,37 @@ TEST_F(Hardening, TemporariesAreRemovedOnSigtermAndSigint) {
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "the signal is re-raised, status " << status;
     EXPECT_TRUE(listing(dir_ / "shared").empty()) << "temporaries left: " << listing(dir_ / "shared").size();
   }
+}
+
+TEST_F(Hardening, SignalInAnotherThreadDuringCommitLeavesTheWholeNewSet) {
+  const fs::path a = dir_ / "shared" / "a.exr", b = dir_ / "shared" / "a.png";
+  std::ofstream(a) << "old";
+  std::ofstream(b) << "old";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    grtrace::OutputSet set;
+    grtrace::write_file_atomically(set, a, [](std::ostream& os) { os << "new"; });
+    grtrace::write_file_atomically(set, b, [](std::ostream& os) { os << "new"; });
+    // Another thread (as OpenMP workers would be) receives SIGTERM as soon as the renames start.
+    // (If the renames finish before it looks, the signal comes after them: the same set either way.)
+    std::atomic<bool> done{false};
+    std::thread killer([&done] {
+      while (grtrace::detail::g_committing.load() == 0 && !done.load()) std::this_thread::yield();
+      ::raise(SIGTERM);  // to this thread, which does not block it
+    });
+    set.commit();
+    done = true;
+    killer.join();
+    ::pause();  // the deferred signal is delivered at the end of commit(); never reached otherwise
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  EXPECT_EQ(slurp(a), "new");
+  EXPECT_EQ(slurp(b), "new");
+  EXPECT_EQ(listing(dir_ / "shared"), (std::vector<std::string>{"a.exr", "a.png"}));
 }
 
 TEST_F(Hardening, OutputPathChecks) {

@@ -22,7 +22,8 @@
 // - check_output_path() refuses, before anything is created: a missing or unwritable directory, a target that
 //   is a directory, an empty name.
 // - A set is committed by writing every temporary first and then renaming them one after the other with
-//   SIGINT, SIGTERM, SIGHUP and SIGQUIT blocked, so those signals see either the old set or the new one.
+//   SIGINT, SIGTERM, SIGHUP and SIGQUIT blocked in the committing thread and deferred by the handler in any
+//   other thread, so those signals see either the old set or the new one.
 //   What POSIX does not allow us to close: SIGKILL, a crash or a power loss between two renames leaves the
 //   first files new and the others old (the window is a few rename() calls, microseconds); and if one rename
 //   fails (it should not: the targets were checked), the ones before it are already new (the error says which).
@@ -116,6 +117,10 @@ struct TemporarySlot {
 };
 inline std::array<TemporarySlot, kMaxRegisteredTemporaries> g_temporary_slots{};
 inline constexpr std::array<int, 4> kCleanupSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+// While an OutputSet renames its files: a cleanup signal delivered to any thread is only noted here, and acted on
+// (removal, re-raise) once the whole set is in place.
+inline std::atomic<int> g_committing{0};
+inline std::atomic<int> g_pending_signal{0};
 
 }  // namespace detail
 
@@ -129,7 +134,23 @@ inline void remove_registered_temporaries() noexcept {
 
 namespace detail {
 
+extern "C" inline void grtrace_temporary_cleanup_handler(int sig);
+
+inline void install_cleanup_handler(int sig) {
+  struct sigaction sa{};
+  sa.sa_handler = &grtrace_temporary_cleanup_handler;
+  ::sigemptyset(&sa.sa_mask);
+  for (const int other : kCleanupSignals) ::sigaddset(&sa.sa_mask, other);
+  sa.sa_flags = static_cast<int>(SA_RESETHAND);
+  ::sigaction(sig, &sa, nullptr);
+}
+
 extern "C" inline void grtrace_temporary_cleanup_handler(int sig) {
+  if (g_committing.load(std::memory_order_acquire) != 0) {  // a set is being renamed: finish it first
+    g_pending_signal.store(sig, std::memory_order_release);
+    install_cleanup_handler(sig);  // SA_RESETHAND removed it
+    return;
+  }
   remove_registered_temporaries();
   // SA_RESETHAND restored the default action; the signal is blocked until we return, then it kills us.
   ::raise(sig);
@@ -142,12 +163,7 @@ inline void install_temporary_cleanup_handlers() {
       struct sigaction old{};
       if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL || (old.sa_flags & SA_SIGINFO) != 0)
         continue;  // ignored (e.g. nohup) or handled by the program: leave it alone
-      struct sigaction sa{};
-      sa.sa_handler = &grtrace_temporary_cleanup_handler;
-      ::sigemptyset(&sa.sa_mask);
-      for (const int other : kCleanupSignals) ::sigaddset(&sa.sa_mask, other);
-      sa.sa_flags = static_cast<int>(SA_RESETHAND);
-      ::sigaction(sig, &sa, nullptr);
+      install_cleanup_handler(sig);
     }
   });
 }
@@ -393,20 +409,27 @@ class OutputSet {
     ::sigemptyset(&block);
     for (const int sig : detail::kCleanupSignals) ::sigaddset(&block, sig);
     ::pthread_sigmask(SIG_BLOCK, &block, &old);
+    detail::g_committing.fetch_add(1, std::memory_order_acq_rel);  // other threads' signals wait too
     std::string renamed;
+    std::string error;
     try {
       for (auto& o : outputs_) {
         o->commit();
         renamed += (renamed.empty() ? "" : ", ") + o->target().string();
       }
     } catch (const std::exception& e) {
-      outputs_.clear();
-      ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
-      throw std::runtime_error(std::string(e.what()) +
-                               (renamed.empty() ? "" : " (already replaced: " + renamed + ")"));
+      error = std::string(e.what()) + (renamed.empty() ? "" : " (already replaced: " + renamed + ")");
     }
     outputs_.clear();
-    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+    if (detail::g_committing.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      if (const int sig = detail::g_pending_signal.exchange(0)) {  // the signal that came during the renames
+        remove_registered_temporaries();
+        ::signal(sig, SIG_DFL);
+        ::raise(sig);
+      }
+    }
+    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);  // a signal raised above is delivered here
+    if (!error.empty()) throw std::runtime_error(error);
   }
 
   std::size_t size() const { return outputs_.size(); }

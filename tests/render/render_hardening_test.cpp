@@ -324,6 +324,25 @@ TEST_F(Hardening, ForgedExrHeaderIsRefusedBeforeAllocating) {
   }
 }
 
+TEST_F(Hardening, HeaderAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+  // Found by tests/fuzz/exr_fuzz (corpus/exr/hang_huge_string_attribute.exr): OpenEXR allocated the 1.7 GB a
+  // 201-byte file's string attribute claimed before noticing the file ends.
+  std::string bytes("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+  bytes += std::string("owner\0string\0", 13);
+  bytes += std::string("\x07\x00\x00\x65", 4);  // 0x65000007 bytes
+  bytes += "not much more";
+  const fs::path file = dir_ / "attr.exr";
+  std::ofstream(file, std::ios::binary) << bytes;
+  try {
+    (void)grtrace::read_exr(file);
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("header attribute 'owner' (string) claims 1694498823 bytes"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(Hardening, MemoryLimitComesFromTheEnvironment) {
   ::setenv("GRTRACE_MEMORY_LIMIT", "1K", 1);
   EXPECT_EQ(grtrace::memory_limit_bytes(), 1024u);

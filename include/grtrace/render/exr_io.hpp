@@ -26,7 +26,8 @@
 // - Limits, checked before any pixel is allocated: the channels (as floats) must fit memory_limit_bytes()
 //   (image.hpp: 4 GiB unless GRTRACE_MEMORY_LIMIT says otherwise; MemoryLimitError, which names the limit and
 //   the variable), and the file must be large enough for the offset table its data window needs (a forged
-//   header claiming 12000 x 12000 pixels in a few kB is refused as "forged or truncated header").
+//   header claiming 12000 x 12000 pixels in a few kB is refused as "forged or truncated header"); before
+//   OpenEXR parses the header, every attribute's byte count must fit in the file (OpenEXR allocates it first).
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
@@ -165,6 +166,51 @@ inline int exr_lines_per_chunk(Imf::Compression c) {
   }
 }
 
+/// Walks the header attributes (name, type, byte count) without OpenEXR and refuses any whose byte count exceeds
+/// what is left of the file: OpenEXR allocates an attribute's claimed size before reading it, so a 200-byte file
+/// claiming a 1.7 GB string attribute would otherwise cost 1.7 GB (found by tests/fuzz/exr_fuzz).
+inline void check_exr_attribute_sizes(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::error_code ec;
+  const auto file_size = static_cast<long long>(std::filesystem::file_size(path, ec));
+  if (!file || ec) throw std::runtime_error("cannot open the file");
+  unsigned char start[8] = {};
+  file.read(reinterpret_cast<char*>(start), sizeof start);
+  if (file.gcount() != 8) throw std::runtime_error("too short for an OpenEXR file");
+  const bool multi_part = (start[5] & 0x10) != 0;  // version flags: bit 12 = multi-part
+  auto read_name = [&](std::string& out) {
+    out.clear();
+    for (int c = file.get(); c != 0; c = file.get()) {
+      if (c == std::char_traits<char>::eof()) throw std::runtime_error("the header ends early (truncated file)");
+      if (out.size() >= 255) throw std::runtime_error("a header attribute name is longer than 255 characters");
+      out += static_cast<char>(c);
+    }
+  };
+  std::string name, type;
+  for (;;) {
+    read_name(name);
+    if (name.empty()) return;  // the empty header that ends a multi-part file's list (or an empty one)
+    for (;;) {
+      read_name(type);
+      unsigned char size_bytes[4] = {};
+      file.read(reinterpret_cast<char*>(size_bytes), 4);
+      if (file.gcount() != 4) throw std::runtime_error("the header ends early (truncated file)");
+      const long long size = static_cast<std::int32_t>(
+          static_cast<std::uint32_t>(size_bytes[0]) | static_cast<std::uint32_t>(size_bytes[1]) << 8 |
+          static_cast<std::uint32_t>(size_bytes[2]) << 16 | static_cast<std::uint32_t>(size_bytes[3]) << 24);
+      const long long left = file_size - static_cast<long long>(file.tellg());
+      if (size < 0 || size > left)
+        throw std::runtime_error("header attribute '" + name + "' (" + type + ") claims " + std::to_string(size) +
+                                 " bytes but only " + std::to_string(left) +
+                                 " are left in the file: forged or truncated header");
+      file.seekg(size, std::ios::cur);
+      read_name(name);
+      if (name.empty()) break;  // end of this header
+    }
+    if (!multi_part) return;
+  }
+}
+
 /// The header of part 0, read without the rest of the file (so a forged data window is seen before OpenEXR
 /// reads offset tables or pixels).
 inline Imf::Header read_exr_header(const std::filesystem::path& path) {
@@ -244,6 +290,7 @@ inline Image read_exr(const std::filesystem::path& path) {
     }();
     (void)limited;
     // The header alone first: the size checks below run before OpenEXR reads (or trips over) anything else.
+    detail::check_exr_attribute_sizes(path);
     detail::check_exr_header(path, detail::read_exr_header(path));
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();

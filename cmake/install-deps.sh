@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages grtrace needs, skipping those already present.
 # Idempotent: a second run with everything installed does not touch apt.
-# Usage (as root): bash cmake/install-deps.sh
+# Usage (as root): bash cmake/install-deps.sh          (GRTRACE_FUZZ=1 bash cmake/install-deps.sh: + afl++)
 set -euo pipefail
 
 packages=(
@@ -12,6 +12,10 @@ packages=(
   libgtest-dev libbenchmark-dev       # tests and benchmarks
   xvfb xauth                          # headless VTK rendering in tests
 )
+# Optional, not part of CI: GRTRACE_FUZZ=1 also installs AFL++ for the fuzz targets in tests/fuzz/.
+if [ "${GRTRACE_FUZZ:-0}" = 1 ]; then
+  packages+=(afl++)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,10 +1,18 @@
 // examples/common/command_line.hpp
-// Minimal, strict option parsing shared by the grtrace tools: `--name value` and `--flag`.
+// Minimal, strict option parsing shared by the grtrace tools: `--name value`, `--name=value`, `--flag` and
+// `--flag=BOOL` (true/false, yes/no, on/off, 1/0; anything else is refused).
 // Every option is declared with its default and help text, so --help lists all of them; unknown options,
 // missing values and malformed or non-finite numbers raise UsageError with a message that says what to change.
 #pragma once
 
+#include "grtrace/core/memory_limit.hpp"
+#include "grtrace/render/output_file.hpp"
+
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <new>
+#include <optional>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -56,6 +64,7 @@ class CommandLine {
       }
       if (arg.rfind("--", 0) != 0) throw UsageError("unexpected argument '" + arg + "' (options start with --)");
       std::string name = arg.substr(2), value;
+      const bool inline_value = name.find('=') != std::string::npos;
       if (auto eq = name.find('='); eq != std::string::npos) {
         value = name.substr(eq + 1);
         name = name.substr(0, eq);
@@ -63,13 +72,20 @@ class CommandLine {
       const Spec* spec = find(name);
       if (!spec) throw UsageError("unknown option '--" + name + "' (see --help for the list)");
       if (spec->takes_value) {
-        if (value.empty()) {
+        if (!inline_value) {  // "--name=" is an explicit empty value, never the next argument
           if (i + 1 >= argc) throw UsageError("option --" + name + " needs a value");
           value = argv[++i];
         }
         values_[name] = value;
-      } else {
+      } else if (!inline_value) {
         values_[name] = "1";
+      } else {
+        const auto b = parse_bool(value);
+        if (!b)
+          throw UsageError("--" + name + "=" + value +
+                           ": a flag takes true/false, yes/no, on/off or 1/0 (or no value at all)");
+        if (*b) values_[name] = "1";
+        else values_.erase(name);
       }
     }
     return true;
@@ -77,6 +93,14 @@ class CommandLine {
 
   bool given(const std::string& name) const { return values_.count(name) > 0; }
   bool flag_set(const std::string& name) const { return given(name); }
+
+  /// "true"/"yes"/"on"/"1" -> true, "false"/"no"/"off"/"0" -> false (any case), anything else -> nullopt.
+  static std::optional<bool> parse_bool(std::string v) {
+    for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (v == "true" || v == "yes" || v == "on" || v == "1") return true;
+    if (v == "false" || v == "no" || v == "off" || v == "0") return false;
+    return std::nullopt;
+  }
 
   std::string text(const std::string& name) const {
     if (auto it = values_.find(name); it != values_.end()) return it->second;
@@ -155,8 +179,28 @@ class CommandLine {
   std::map<std::string, std::string> values_;
 };
 
+/// Refuses (UsageError naming --option) an output path that cannot be written: empty, in a missing or
+/// unwritable directory, or a directory itself (check_output_path). Creates nothing.
+inline void check_output_option(const std::string& option, const std::filesystem::path& path) {
+  if (path.empty()) throw UsageError("--" + option + " needs a file name, got ''");
+  try {
+    check_output_path(path);
+  } catch (const std::runtime_error& e) {
+    throw UsageError("--" + option + ": " + e.what());
+  }
+}
+
+/// Refuses an output that would replace one of the inputs (the same file, or the same path before it exists).
+inline void check_not_input(const std::string& option, const std::filesystem::path& output,
+                            const std::string& input_option, const std::filesystem::path& input) {
+  if (!input.empty() && same_file(output, input))
+    throw UsageError("--" + option + " '" + output.string() + "' is the input given as --" + input_option +
+                     "; choose another output file");
+}
+
 /// Runs a tool's body with the exit-code convention every grtrace tool shares: 0 when done (or after --help),
-/// 2 for bad input (UsageError, before any work), 1 for any other failure; errors go to stderr as
+/// 2 for bad input (UsageError, before any work; MemoryLimitError: a size from input above the memory limit),
+/// 1 for any other failure (std::bad_alloc included, with a message instead of an abort); errors go to stderr as
 /// "<program>: error: <what to change>". The body returns the exit code.
 template <class Body>
 int run_tool(CommandLine& cli, int argc, char** argv, Body&& body) {
@@ -166,6 +210,13 @@ int run_tool(CommandLine& cli, int argc, char** argv, Body&& body) {
   } catch (const UsageError& e) {
     std::cerr << cli.program() << ": error: " << e.what() << "\n";
     return 2;
+  } catch (const MemoryLimitError& e) {  // a size that came from input (options or a file)
+    std::cerr << cli.program() << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << cli.program() << ": error: out of memory; use a smaller size (image, grid, step count) or a "
+              << "machine with more memory\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << cli.program() << ": error: " << e.what() << "\n";
     return 1;

@@ -4,7 +4,6 @@
 // --impact B traces a photon from far away with impact parameter B; "deflection" is the total bending from
 // infinity to infinity (the legs outside the integrated region are added exactly), with the exact value
 // and the error beside it. --path FILE.csv writes every accepted step (lambda, x^mu, k^mu, h).
-#include "atomic_file.hpp"
 #include "command_line.hpp"
 #include "json_writer.hpp"
 
@@ -14,6 +13,7 @@
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -89,8 +89,10 @@ Request read_request(const CommandLine& cli) {
   TraceSettings& s = q.settings;
   s.integrator.tolerance.rtol = cli.number("rtol");
   s.integrator.tolerance.atol = cli.number("atol");
-  if (s.integrator.tolerance.rtol <= 0.0 || s.integrator.tolerance.atol < 0.0)
-    throw UsageError("tolerances must be --rtol > 0 and --atol >= 0");
+  if (!(s.integrator.tolerance.rtol > 0.0 && s.integrator.tolerance.rtol < 1.0))
+    throw UsageError("--rtol must lie in (0, 1) (a relative error; e.g. 1e-8), got " + cli.text("rtol"));
+  if (!(s.integrator.tolerance.atol >= 0.0 && s.integrator.tolerance.atol < 1.0))
+    throw UsageError("--atol must lie in [0, 1) (e.g. 1e-10), got " + cli.text("atol"));
   s.initial_step = cli.number("step");
   if (s.initial_step < 0.0) throw UsageError("--step must be >= 0");
   if (cli.text("control") == "fixed" && s.initial_step <= 0.0)
@@ -101,8 +103,16 @@ Request read_request(const CommandLine& cli) {
   if (max_steps <= 0 || max_steps > 1'000'000'000) throw UsageError("--max-steps must be in 1 .. 1e9");
   s.max_steps = static_cast<int>(max_steps);
   s.horizon_epsilon = cli.number("horizon-eps");
-  if (!(s.horizon_epsilon > 0.0)) throw UsageError("--horizon-eps must be > 0");
+  if (!(s.horizon_epsilon > 0.0 && s.horizon_epsilon < 0.5))
+    throw UsageError("--horizon-eps must lie in (0, 0.5) (the capture sphere (1 + eps) 2M must stay inside the "
+                     "photon sphere 3M; e.g. 1e-3), got " + cli.text("horizon-eps"));
   s.escape_radius = cli.number("escape-radius");
+  if (!(s.escape_radius > 0.0 && s.escape_radius <= 1e100))
+    throw UsageError("--escape-radius must lie in (0, 1e100] (r^2 must not overflow), got " +
+                     cli.text("escape-radius"));
+  if (s.initial_step > 2.0 * s.escape_radius && !cli.given("impact"))
+    throw UsageError("--step " + cli.text("step") + " is longer than the escape sphere's diameter (2 x " +
+                     "--escape-radius); use a step in (0, " + JsonObject::number(2.0 * s.escape_radius) + "]");
   q.richardson = cli.flag_set("richardson");
   if (q.richardson && cli.text("control") != "doubling") throw UsageError("--richardson goes with --control doubling");
 
@@ -112,7 +122,11 @@ Request read_request(const CommandLine& cli) {
       throw UsageError("give either --impact or --position/--velocity, not both");
     q.impact_run = true;
     q.impact = cli.number("impact");
-    if (!(q.impact > 0.0)) throw UsageError("--impact must be > 0, got " + cli.text("impact"));
+    const double b_max = 1e10 * std::max(q.metric.mass, 1.0);
+    if (!(q.impact > 0.0 && q.impact <= b_max))
+      throw UsageError("--impact must lie in (0, " + JsonObject::number(b_max) + "] (1e10 M: beyond, the deflection " +
+                       "4M/b is below what the tolerances resolve and the start sphere 4b overflows r^2), got " +
+                       cli.text("impact"));
     return q;
   }
   if (!cli.given("position") || !cli.given("velocity"))
@@ -128,6 +142,9 @@ Request read_request(const CommandLine& cli) {
   const std::string kind = cli.text("kind");
   if (kind != "null" && kind != "timelike") throw UsageError("--kind must be null or timelike, got '" + kind + "'");
   q.timelike = kind == "timelike";
+  if (!q.timelike && v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
+    throw UsageError("--velocity 0,0,0 gives a null ray zero momentum (k = 0 is no direction); give a nonzero "
+                     "spatial direction, e.g. -1,0,0.01");
   const auto k = complete_time_component(q.metric, x, Vec4(0.0, v[0], v[1], v[2]), q.timelike ? 1.0 : 0.0);
   if (!k) throw UsageError("--velocity: no real k^t makes this vector " + kind + " (spatial speed too large?)");
   Vec4 kk = *k;
@@ -137,7 +154,7 @@ Request read_request(const CommandLine& cli) {
 }
 
 void write_path(const std::string& file, const std::vector<PathRow>& rows) {
-  tools::write_text_atomically(file, [&](std::ostream& out) {
+  write_file_atomically(file, [&](std::ostream& out) {
     out << "lambda,t,r,theta,phi,kt,kr,ktheta,kphi,h\n";
     out.precision(17);
     for (const auto& row : rows) {
@@ -203,7 +220,7 @@ int main(int argc, char** argv) {
   return tools::run_tool(cli, argc, argv, [&] {
     const Request q = read_request(cli);
     const std::string path_file = cli.text("path");
-    if (!path_file.empty()) tools::check_writable_target(path_file);
+    if (cli.given("path")) tools::check_output_option("path", path_file);  // --path "" is refused
     JsonObject json;
     const auto error = dispatch_method(cli.text("tableau"), cli.text("control"),
                                        [&]<class T, class C>() { json = run<T, C>(q, path_file); });

@@ -24,7 +24,6 @@
 // Writes a CSV (orbit, then <method>_norm_drift, <method>_energy_drift), a log-scale PNG chart of both drifts
 // against orbit number (VTK charts; needs an X display: run under xvfb-run -a -s "-screen 0 1280x1024x24", or
 // pass --no-png), and prints ONE line of JSON with the per-method summary.
-#include "atomic_file.hpp"
 #include "command_line.hpp"
 #include "grtrace/viz/viewer_window.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
@@ -306,8 +305,8 @@ JsonObject method_json(const Drift& d, long budget) {
   return o;
 }
 
-void write_csv(const std::filesystem::path& file, const std::vector<Drift>& runs, int orbits) {
-  tools::write_text_atomically(file, [&](std::ostream& out) {
+void write_csv(OutputSet& set, const std::filesystem::path& file, const std::vector<Drift>& runs, int orbits) {
+  write_file_atomically(set, file, [&](std::ostream& out) {
     out << "orbit";
     for (const auto& d : runs) out << ',' << d.name << "_norm_drift," << d.name << "_energy_drift";
     out << '\n';
@@ -378,7 +377,8 @@ void style_chart(vtkChartXY* chart, const std::string& title, const std::string&
   chart->GetLegend()->GetLabelProperties()->SetFontSize(12);
 }
 
-void write_png(const std::filesystem::path& file, const std::vector<Drift>& runs, const Setup& s, long budget) {
+void write_png(OutputSet& set, const std::filesystem::path& file, const std::vector<Drift>& runs, const Setup& s,
+               long budget) {
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(1100, 1100);
@@ -410,7 +410,7 @@ void write_png(const std::filesystem::path& file, const std::vector<Drift>& runs
               "|E/E0 - 1|");
 
   view->GetRenderWindow()->Render();
-  viz::save_window_png(view->GetRenderWindow(), file.string());
+  viz::save_window_png(set, view->GetRenderWindow(), file.string());
 }
 
 // ---- command line ----------------------------------------------------------------------------------------
@@ -430,8 +430,10 @@ Setup read_setup(const CommandLine& cli) {
   s.orbits = static_cast<int>(orbits);
   s.tolerance.rtol = cli.number("rtol");
   s.tolerance.atol = cli.number("atol");
-  if (!(s.tolerance.rtol > 0.0) || s.tolerance.atol < 0.0)
-    throw UsageError("tolerances must be --rtol > 0, --atol >= 0");
+  if (!(s.tolerance.rtol > 0.0 && s.tolerance.rtol < 1.0))
+    throw UsageError("--rtol must lie in (0, 1) (a relative error; e.g. 1e-8), got " + cli.text("rtol"));
+  if (!(s.tolerance.atol >= 0.0 && s.tolerance.atol < 1.0))
+    throw UsageError("--atol must lie in [0, 1) (e.g. 1e-10), got " + cli.text("atol"));
   const long iterations = cli.integer("max-iterations");
   if (iterations < 2 || iterations > 1000) throw UsageError("--max-iterations must be in 2 .. 1000");
   s.solver.max_iterations = static_cast<int>(iterations);
@@ -469,14 +471,15 @@ int main(int argc, char** argv) {
     const Setup s = read_setup(cli);
     const std::filesystem::path csv = cli.text("csv"), png = cli.text("png");
     const bool draw = !cli.flag_set("no-png");
-    tools::check_writable_target(csv);
+    tools::check_output_option("csv", csv);
     if (draw) {
-      tools::check_writable_target(png);
-      const char* display = std::getenv("DISPLAY");
-      if (display == nullptr || *display == '\0')
-        throw std::runtime_error(
-            "drawing the PNG needs an X display (Debian's VTK renders only through X); run under\n"
-            "  xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-orbit-drift ...\nor pass --no-png");
+      tools::check_output_option("png", png);
+      if (same_file(csv, png)) throw UsageError("--csv and --png name the same file '" + csv.string() + "'");
+      try {
+        viz::require_display("grtrace-orbit-drift", "pass --no-png");
+      } catch (const viz::NoDisplayError& e) {
+        throw UsageError(std::string("drawing the PNG: ") + e.what());
+      }
     }
     const auto t0 = std::chrono::steady_clock::now();
 
@@ -496,8 +499,10 @@ int main(int argc, char** argv) {
     runs.push_back(run_rk4(s, h_rk4, false));
     runs.push_back(run_rk4(s, h_rk4, true));
 
-    write_csv(csv, runs, s.orbits);
-    if (draw) write_png(png, runs, s, budget);
+    OutputSet outputs;  // the CSV and the PNG: both new or both as they were
+    write_csv(outputs, csv, runs, s.orbits);
+    if (draw) write_png(outputs, png, runs, s, budget);
+    outputs.commit();
 
     JsonObject methods;
     for (const auto& d : runs) methods.add(d.name, method_json(d, budget));

@@ -87,6 +87,18 @@ CommandLine make_command_line() {
   return cli;
 }
 
+std::string png_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + ".png"; }
+std::string status_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-status.png"; }
+std::string error_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-error.png"; }
+
+/// Every file a run writes: the EXR, its PNG preview, and the maps asked for.
+std::vector<std::string> output_paths(const std::string& exr, bool status_map, bool error_map) {
+  std::vector<std::string> out{exr, png_path(exr)};
+  if (status_map) out.push_back(status_map_path(exr));
+  if (error_map) out.push_back(error_map_path(exr));
+  return out;
+}
+
 Vec3 triple(const CommandLine& cli, const std::string& name) {
   const auto v = cli.numbers(name, 3);
   return Vec3(v[0], v[1], v[2]);
@@ -122,8 +134,10 @@ Request read_request(const CommandLine& cli) {
   }
   TraceSettings& s = q.settings;
   s.integrator.tolerance = {cli.number("rtol"), cli.number("atol")};
-  if (!(s.integrator.tolerance.rtol > 0.0) || s.integrator.tolerance.atol < 0.0)
-    throw UsageError("tolerances must be --rtol > 0 and --atol >= 0");
+  if (!(s.integrator.tolerance.rtol > 0.0 && s.integrator.tolerance.rtol < 1.0))
+    throw UsageError("--rtol must lie in (0, 1) (a relative error; e.g. 1e-9), got " + cli.text("rtol"));
+  if (!(s.integrator.tolerance.atol >= 0.0 && s.integrator.tolerance.atol < 1.0))
+    throw UsageError("--atol must lie in [0, 1) (e.g. 1e-11), got " + cli.text("atol"));
   s.initial_step = cli.number("step");
   if (s.initial_step < 0.0) throw UsageError("--step must be >= 0");
   if (q.control == "fixed" && s.initial_step <= 0.0) throw UsageError("--control fixed needs --step H > 0");
@@ -131,6 +145,13 @@ Request read_request(const CommandLine& cli) {
   if (max_steps < 1 || max_steps > 100'000'000) throw UsageError("--max-steps must be in 1 .. 1e8");
   s.max_steps = static_cast<int>(max_steps);
   s.escape_radius = cli.number("sky-radius");
+  if (!(s.escape_radius > 0.0 && s.escape_radius <= 1e100))
+    throw UsageError("--sky-radius must lie in (0, 1e100] (r^2 must not overflow), got " + cli.text("sky-radius"));
+  // A step longer than the sky's diameter crosses the whole scene in one go: meaningless, not just coarse.
+  if (s.initial_step > 2.0 * s.escape_radius)
+    throw UsageError("--step " + cli.text("step") + " is longer than the sky's diameter (2 x --sky-radius = " +
+                     JsonObject::number(2.0 * s.escape_radius) + "); use a step in (0, " +
+                     JsonObject::number(2.0 * s.escape_radius) + "]");
 
   q.correction_name = cli.text("angle-correction");
   if (q.correction_name == "none") q.correction = AngleCorrection::none;
@@ -160,6 +181,19 @@ Request read_request(const CommandLine& cli) {
   const long width = cli.integer("width"), height = cli.integer("height");
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw UsageError("--width and --height must be between 1 and 16384 pixels");
+  {  // the image's memory, before anything is allocated: the channels (+ error channel and double directions
+     // with --error-map) and the 8-bit previews
+    const bool error_map = cli.flag_set("error-map");
+    const double pixels = static_cast<double>(width) * static_cast<double>(height);
+    const double bytes = image_bytes(static_cast<double>(width), static_cast<double>(height),
+                                     static_cast<double>(Image::kStandardChannels.size() + (error_map ? 1 : 0))) +
+                         pixels * (3.0 + (error_map ? 2.0 * sizeof(double) * 2.0 : 0.0));
+    try {
+      check_memory(bytes, "--width " + std::to_string(width) + " --height " + std::to_string(height));
+    } catch (const MemoryLimitError& e) {
+      throw UsageError(std::string(e.what()) + "; or choose a smaller --width/--height");
+    }
+  }
   const long threads = cli.integer("threads");
   if (threads < 0 || threads > 1024) throw UsageError("--threads must be 0 (all cores) .. 1024");
   q.threads = static_cast<int>(threads);
@@ -204,6 +238,7 @@ Request read_request(const CommandLine& cli) {
       if (!img.has_channel("R") || !img.has_channel("G") || !img.has_channel("B"))
         throw UsageError("--sky-texture '" + tex + "' has no R, G, B channels");
       q.scene.texture = TextureSky{img.width(), img.height(), img.channel("R"), img.channel("G"), img.channel("B")};
+      check_texture(*q.scene.texture);  // a NaN texel would make every ray that sees it non_finite
     } catch (const UsageError&) {
       throw;
     } catch (const std::exception& e) {
@@ -231,38 +266,33 @@ Request read_request(const CommandLine& cli) {
   q.out = cli.text("out");
   if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
     throw UsageError("--out must name an .exr file, got '" + q.out + "'");
-  try {
-    check_output_path(q.out);
-  } catch (const std::exception& e) {
-    throw UsageError(e.what());
+  // Every file this run writes, checked before any work: writable, not a directory, not the input texture.
+  for (const std::string& path : output_paths(q.out, cli.flag_set("status-map"), q.error_map)) {
+    tools::check_output_option("out", path);
+    tools::check_not_input("out", path, "sky-texture", cli.text("sky-texture"));
   }
   return q;
 }
-
-std::string png_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + ".png"; }
-std::string status_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-status.png"; }
 
 /// Status colours of the failure map: escaped light grey, captured black, hit blue, max_steps orange,
 /// step_underflow red, non_finite magenta.
 constexpr std::array<std::array<std::uint8_t, 3>, kRayStatusCount> kStatusColours = {
     {{200, 200, 200}, {0, 0, 0}, {40, 90, 220}, {255, 150, 0}, {220, 20, 20}, {230, 0, 230}}};
 
-void write_status_map(const std::string& path, const Image& image) {
+void write_status_map(OutputSet& set, const std::string& path, const Image& image) {
   const auto& status = image.channel("status");
   std::vector<std::uint8_t> rgb(status.size() * 3);
   for (std::size_t i = 0; i < status.size(); ++i) {
     const auto s = static_cast<std::size_t>(std::clamp(static_cast<int>(status[i]), 0, static_cast<int>(kRayStatusCount) - 1));
     for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = kStatusColours[s][c];
   }
-  write_png_rgb8(path, image.width(), image.height(), rgb);
+  write_png_rgb8(set, path, image.width(), image.height(), rgb);
 }
 
 /// Sky direction of every pixel in double precision (the EXR channels are float), kept for --error-map.
 using SkyDirections = std::vector<exact::SkyDirection>;
 
 // ---- --error-map: every escaped pixel against the exact answer ------------------------------------------
-
-std::string error_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-error.png"; }
 
 struct ErrorSummary {
   double max = std::numeric_limits<double>::quiet_NaN();
@@ -316,7 +346,7 @@ ErrorSummary compute_error_channel(const Request& q, Image& image, const SkyDire
 
 /// Heat map of log10(error) from 1e-12 (dark blue) to 1e-2 rad (yellow); pixels not judged dark grey,
 /// verdict mismatches white.
-void write_error_map(const std::string& path, const Image& image) {
+void write_error_map(OutputSet& set, const std::string& path, const Image& image) {
   const auto& error = image.channel("error");
   std::vector<std::uint8_t> rgb(error.size() * 3);
   // A perceptual ramp (viridis, 5 stops) from 1e-12 to 1e-2 rad.
@@ -335,7 +365,7 @@ void write_error_map(const std::string& path, const Image& image) {
     }
     for (std::size_t ch = 0; ch < 3; ++ch) rgb[3 * i + ch] = static_cast<std::uint8_t>(std::lround(c[ch]));
   }
-  write_png_rgb8(path, image.width(), image.height(), rgb);
+  write_png_rgb8(set, path, image.width(), image.height(), rgb);
 }
 
 }  // namespace
@@ -392,12 +422,16 @@ int main(int argc, char** argv) {
       image.metadata["error_mismatches"] = std::to_string(errors.mismatches);
     }
     record_render_stats(image, st);
-    write_exr(q.out, image);
+    // The EXR, its preview and the maps: all written to temporaries first, then renamed together (all new or
+    // all as they were; output_file.hpp).
+    OutputSet outputs;
+    write_exr(outputs, q.out, image);
     const std::string png = png_path(q.out);
-    write_png_preview(png, image);
+    write_png_preview(outputs, png, image);
     const bool status_map = cli.flag_set("status-map");
-    if (status_map) write_status_map(status_map_path(q.out), image);
-    if (q.error_map) write_error_map(error_map_path(q.out), image);
+    if (status_map) write_status_map(outputs, status_map_path(q.out), image);
+    if (q.error_map) write_error_map(outputs, error_map_path(q.out), image);
+    outputs.commit();
 
     JsonObject counts;
     for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.add(kRayStatusNames[i], st.status_counts[i]);

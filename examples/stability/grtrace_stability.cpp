@@ -7,7 +7,6 @@
 //                                 boundaries, in --out-dir. Draws with VTK charts offscreen, which on Debian's
 //                                 VTK needs an X display: run under  xvfb-run -a -s "-screen 0 1280x1024x24".
 // R(z) = 1 + z b^T (I - zA)^-1 1 and the contour come from grtrace/tableau/stability.hpp (Hairer & Wanner II, IV.2).
-#include "atomic_file.hpp"
 #include "command_line.hpp"
 #include "grtrace/viz/viewer_window.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
@@ -39,6 +38,8 @@
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace {
 
@@ -161,7 +162,7 @@ void add_series(vtkChartXY* chart, const Series& s) {
 }
 
 /// Draws the series in a vtkChartXY offscreen and writes an RGB PNG atomically (temporary name, then rename).
-void write_chart_png(const std::filesystem::path& file, const std::string& title, const std::vector<Series>& series,
+void write_chart_png(OutputSet& set, const std::filesystem::path& file, const std::string& title, const std::vector<Series>& series,
                      const ComplexBox& box, int width) {
   // Roughly equal scales on both axes: plot area ~ width - 130 px wide, margins ~ 120 px vertically.
   const double plot_w = width - 130.0;
@@ -199,7 +200,7 @@ void write_chart_png(const std::filesystem::path& file, const std::string& title
   chart->GetLegend()->GetLabelProperties()->SetFontSize(13);
 
   view->GetRenderWindow()->Render();
-  viz::save_window_png(view->GetRenderWindow(), file.string());
+  viz::save_window_png(set, view->GetRenderWindow(), file.string());
 }
 
 std::vector<Series> boundary_series(const MethodStability& m, Rgb color) {
@@ -233,7 +234,10 @@ std::string same_function_as(const std::vector<MethodStability>& methods, std::s
   return {};
 }
 
+/// Every PNG is written to its temporary first and all are renamed together at the end: all new or all old.
 void write_pngs(const std::vector<MethodStability>& methods, const std::filesystem::path& dir, int width) {
+  OutputSet set;
+  std::vector<std::string> written;
   ComplexBox all{0.0, 0.0, 0.0, 0.0};
   std::vector<Series> overview;
   for (std::size_t i = 0; i < methods.size(); ++i) {
@@ -254,8 +258,8 @@ void write_pngs(const std::vector<MethodStability>& methods, const std::filesyst
                               " stages): stability region |R(z)| <= 1, " + interval_label(m.interval) +
                               (twin.empty() ? "" : " (same R as " + twin + ")");
     const auto file = dir / (m.name + ".png");
-    write_chart_png(file, title, series, m.box, 900);
-    std::cerr << "wrote " << file.string() << "\n";
+    write_chart_png(set, file, title, series, m.box, 900);
+    written.push_back(file.string());
 
     all.re_min = std::min(all.re_min, m.box.re_min);
     all.re_max = std::max(all.re_max, m.box.re_max);
@@ -267,8 +271,10 @@ void write_pngs(const std::vector<MethodStability>& methods, const std::filesyst
     }
   }
   const auto file = dir / "overview.png";
-  write_chart_png(file, "Stability region boundaries |R(z)| = 1 of all tableaux", overview, all, width);
-  std::cerr << "wrote " << file.string() << "\n";
+  write_chart_png(set, file, "Stability region boundaries |R(z)| = 1 of all tableaux", overview, all, width);
+  written.push_back(file.string());
+  set.commit();
+  for (const auto& w : written) std::cerr << "wrote " << w << "\n";
 }
 
 }  // namespace
@@ -291,13 +297,32 @@ int main(int argc, char** argv) {
     const std::filesystem::path dir = cli.text("out-dir");
     if (dir.empty()) throw UsageError("--out-dir must not be empty");
     if (!json_only) {
-      const char* display = std::getenv("DISPLAY");
-      if (display == nullptr || *display == '\0')
-        throw std::runtime_error(
-            "drawing the PNGs needs an X display (Debian's VTK renders only through X); run under\n"
-            "  xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-stability ...\nor use --json for the intervals only");
-      std::filesystem::create_directories(dir);
-      tools::check_writable_target(dir / "overview.png");
+      std::error_code ec;
+      if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+        throw UsageError("--out-dir '" + dir.string() + "' exists and is not a directory");
+      if (!std::filesystem::exists(dir, ec)) {
+        std::filesystem::path existing = std::filesystem::absolute(dir, ec);
+        while (!existing.empty() && existing != existing.root_path() && !std::filesystem::exists(existing, ec))
+          existing = existing.parent_path();
+        if (!std::filesystem::is_directory(existing, ec))
+          throw UsageError("--out-dir '" + dir.string() + "': '" + existing.string() + "' is not a directory");
+        if (::access(existing.c_str(), W_OK | X_OK) != 0)
+          throw UsageError("--out-dir '" + dir.string() + "': cannot create it, '" + existing.string() +
+                           "' is not writable");
+      }
+      try {
+        viz::require_display("grtrace-stability", "use --json for the intervals only");
+      } catch (const viz::NoDisplayError& e) {
+        throw UsageError(std::string("drawing the PNGs: ") + e.what());
+      }
+      if (!std::filesystem::exists(dir, ec)) {
+        std::filesystem::create_directories(dir, ec);
+        if (ec) throw UsageError("--out-dir: cannot create '" + dir.string() + "': " + ec.message());
+      }
+      for_each_tableau([&](auto tag) {
+        tools::check_output_option("out-dir", dir / (std::string(decltype(tag)::type::name) + ".png"));
+      });
+      tools::check_output_option("out-dir", dir / "overview.png");
     }
 
     std::vector<MethodStability> methods;

@@ -184,8 +184,11 @@ double positive(const Params& p, const std::string& name) {
 MethodChoice read_method(const Params& p, const std::string& prefix, double escape_radius) {
   MethodChoice m{p.text(prefix + "tableau"), p.text(prefix + "control"), {}};
   m.settings.integrator.tolerance.rtol = positive(p, prefix + "rtol");
+  if (!(m.settings.integrator.tolerance.rtol < 1.0))
+    throw UsageError("--" + prefix + "rtol must lie in (0, 1) (a relative error), got " + p.text(prefix + "rtol"));
   m.settings.integrator.tolerance.atol = p.number(prefix + "atol");
-  if (m.settings.integrator.tolerance.atol < 0.0) throw UsageError("--" + prefix + "atol must be >= 0");
+  if (!(m.settings.integrator.tolerance.atol >= 0.0 && m.settings.integrator.tolerance.atol < 1.0))
+    throw UsageError("--" + prefix + "atol must lie in [0, 1), got " + p.text(prefix + "atol"));
   m.settings.escape_radius = escape_radius;
   const auto error = dispatch_method(m.tableau, m.control, []<class T, class C>() {});
   if (error != DispatchError::none)
@@ -247,19 +250,45 @@ Vec4 header_vec4(const std::map<std::string, std::string>& meta, const std::stri
   std::stringstream ss(it->second);
   Vec4 v;
   int n = 0;
-  for (std::string item; std::getline(ss, item, ',') && n < 4; ++n) v[n] = std::strtod(item.c_str(), nullptr);
-  if (n != 4 || !v.allFinite()) throw UsageError("--frame: header '" + key + "' is not 4 numbers: " + it->second);
+  bool numeric = true;
+  std::string item;
+  for (; n < 4 && std::getline(ss, item, ','); ++n) {
+    char* end = nullptr;
+    v[n] = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0') numeric = false;
+  }
+  if (n != 4 || !numeric || std::getline(ss, item, ',') || !v.allFinite())
+    throw UsageError("--frame: header '" + key + "' is not 4 finite numbers: '" + it->second + "'");
   return v;
 }
 
 /// The camera grtrace-render recorded: camera_position (t, r, theta, phi), tetrad_e0..3, fov_degrees.
 Camera camera_from_header(const std::map<std::string, std::string>& meta, int width, int height) {
   Tetrad t;
-  for (int a = 0; a < 4; ++a) t.e[static_cast<std::size_t>(a)] = header_vec4(meta, "tetrad_e" + std::to_string(a));
+  for (int a = 0; a < 4; ++a) {
+    t.e[static_cast<std::size_t>(a)] = header_vec4(meta, "tetrad_e" + std::to_string(a));
+    if (t.e[static_cast<std::size_t>(a)].isZero())
+      throw UsageError("--frame: header 'tetrad_e" + std::to_string(a) + "' is the zero vector (not a camera frame)");
+  }
   const auto fov = meta.find("fov_degrees");
-  if (fov == meta.end()) throw UsageError("--frame: the header has no 'fov_degrees'");
+  if (fov == meta.end()) throw UsageError("--frame: the header has no 'fov_degrees' (not written by grtrace-render?)");
+  char* end = nullptr;
+  const double fov_degrees = std::strtod(fov->second.c_str(), &end);
+  if (fov->second.empty() || *end != '\0' || !(fov_degrees > 0.0 && fov_degrees < 180.0))
+    throw UsageError("--frame: header 'fov_degrees' must be a number in (0, 180), got '" + fov->second + "'");
+  const Vec4 x = header_vec4(meta, "camera_position");
+  double mass = 1.0;
+  if (const auto m = meta.find("mass"); m != meta.end()) {
+    mass = std::strtod(m->second.c_str(), &end);
+    if (m->second.empty() || *end != '\0' || !std::isfinite(mass) || mass < 0.0)
+      throw UsageError("--frame: header 'mass' must be a number >= 0, got '" + m->second + "'");
+  }
+  if (!(x[1] > 2.0 * mass) || !(x[2] > 0.0 && x[2] < std::numbers::pi))
+    throw UsageError("--frame: header 'camera_position' puts the camera at r = " + std::to_string(x[1]) +
+                     ", theta = " + std::to_string(x[2]) + " rad: it must be outside the horizon r = 2M = " +
+                     std::to_string(2.0 * mass) + " and off the polar axis");
   try {
-    return Camera(header_vec4(meta, "camera_position"), t, width, height, std::stod(fov->second));
+    return Camera(x, t, width, height, fov_degrees);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--frame: ") + e.what());
   }
@@ -268,11 +297,9 @@ Camera camera_from_header(const std::map<std::string, std::string>& meta, int wi
 Request read_request(const CommandLine& cli) {
   Request q;
   q.screenshot = cli.text("screenshot");
-  if (!q.screenshot.empty()) {
-    const std::filesystem::path p(q.screenshot);
-    const auto dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(dir))
-      throw UsageError("--screenshot: directory '" + dir.string() + "' does not exist");
+  if (cli.given("screenshot")) {  // "" is refused, not taken as "interactive"
+    tools::check_output_option("screenshot", q.screenshot);
+    if (!cli.text("frame").empty()) tools::check_not_input("screenshot", q.screenshot, "frame", cli.text("frame"));
   }
   q.chart = cli.text("chart");
   if (!q.chart.empty() && q.chart != "orbit" && q.chart != "norm" && q.chart != "step")
@@ -292,6 +319,12 @@ Request read_request(const CommandLine& cli) {
     }
     for (const char* c : {"R", "G", "B"})
       if (!q.frame->has_channel(c)) throw UsageError("--frame: '" + q.frame_file + "' has no '" + c + "' channel");
+    std::string missing;  // a grtrace-render frame records its camera; anything else would be drawn wrongly
+    for (const char* key : {"camera_position", "tetrad_e0", "tetrad_e1", "tetrad_e2", "tetrad_e3", "fov_degrees"})
+      if (!q.frame->metadata.count(key)) missing += (missing.empty() ? "" : ", ") + std::string(key);
+    if (!missing.empty())
+      throw UsageError("--frame: '" + q.frame_file + "' is not a grtrace-render frame: its header has no " + missing +
+                       " (render the frame with grtrace-render)");
   }
   const Params p(cli, q.frame ? &q.frame->metadata : nullptr);
   if (q.frame && q.frame->metadata.count("metric") && q.frame->metadata.at("metric") != "schwarzschild")
@@ -532,12 +565,10 @@ int main(int argc, char** argv) {
   try {
     if (!cli.parse(argc, argv)) return 0;
     const Request q = read_request(cli);
-    if (!viz::display_available()) {
-      std::cerr << cli.program()
-                << ": error: no X display (DISPLAY is not set). VTK here renders only through X; run headless as\n"
-                   "  xvfb-run -a -s \"-screen 0 1280x1024x24\" "
-                << cli.program() << " ... --screenshot FILE.png\n";
-      return 1;
+    try {
+      viz::require_display(cli.program(), "");
+    } catch (const viz::NoDisplayError& e) {
+      throw UsageError(std::string(e.what()) + " --screenshot FILE.png");
     }
     return q.chart.empty() ? run_view(q) : run_chart(q);
   } catch (const UsageError& e) {
@@ -546,6 +577,12 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {  // refusals from the library (camera, tetrad, surfaces)
     std::cerr << cli.program() << ": error: " << e.what() << "\n";
     return 2;
+  } catch (const MemoryLimitError& e) {  // a size from input (--frame's data window, --size) above the limit
+    std::cerr << cli.program() << ": error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << cli.program() << ": error: out of memory; use a smaller --size, frame or bundle\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << cli.program() << ": error: " << e.what() << "\n";
     return 1;

@@ -1,7 +1,8 @@
 // examples/work_precision/chart.cpp: VTK log-log line charts (see chart.hpp).
 #include "chart.hpp"
 
-#include "atomic_file.hpp"
+#include "grtrace/render/output_file.hpp"
+#include "grtrace/viz/viewer_window.hpp"
 
 #include <vtkAxis.h>
 #include <vtkChartLegend.h>
@@ -10,7 +11,6 @@
 #include <vtkContextView.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotPoints.h>
@@ -18,7 +18,6 @@
 #include <vtkRenderer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +27,8 @@
 namespace grtrace::work_precision {
 
 bool charts_available() { return true; }
+
+void require_chart_display() { viz::require_display("grtrace-work-precision", "leave out --out-png"); }
 
 namespace {
 
@@ -82,7 +83,7 @@ std::pair<double, double> decades(double lo, double hi) {
 
 }  // namespace
 
-void write_loglog_chart(const std::string& png, const ChartSpec& spec, const std::vector<ChartSeries>& series) {
+void write_loglog_chart(OutputSet& set, const std::string& png, const ChartSpec& spec, const std::vector<ChartSeries>& series) {
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(spec.width, spec.height);
@@ -139,20 +140,7 @@ void write_loglog_chart(const std::string& png, const ChartSpec& spec, const std
   style_axis(chart->GetAxis(vtkAxis::LEFT), spec.y_label, ya, yb);
 
   view->GetRenderWindow()->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(view->GetRenderWindow());
-  grab->SetInputBufferTypeToRGB();  // RGB, not RGBA: an RGBA grab has a transparent background
-  grab->ReadFrontBufferOff();
-  grab->Update();
-
-  tools::write_atomically(png, [&](const std::filesystem::path& tmp) {
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(tmp.c_str());
-    writer->SetInputConnection(grab->GetOutputPort());
-    writer->Write();
-    if (writer->GetErrorCode() != 0 || !std::filesystem::exists(tmp))
-      throw std::runtime_error("cannot write '" + png + "'");
-  });
+  viz::save_window_png(set, view->GetRenderWindow(), png);  // RGB grab (an RGBA one is transparent)
 }
 
 }  // namespace grtrace::work_precision

@@ -2,12 +2,16 @@
 // Log-log line charts for grtrace-work-precision, drawn with VTK's charts (vtkChartXY) into a PNG.
 // Implemented in chart.cpp (the only VTK translation unit of the tool); built only when VTK is found.
 // VTK on Debian renders through X only: run the tool under `xvfb-run -a -s "-screen 0 1280x1024x24"` when
-// there is no display (the tool checks DISPLAY before any work starts).
+// there is no display (the tool asks for an X server, require_chart_display(), before any work starts).
 #pragma once
 
 #include <array>
 #include <string>
 #include <vector>
+
+namespace grtrace {
+class OutputSet;
+}
 
 namespace grtrace::work_precision {
 
@@ -30,7 +34,11 @@ struct ChartSpec {
 /// True when this build can draw charts (VTK was found at configure time).
 bool charts_available();
 
-/// Writes the chart to `png` (whole or not at all). Throws std::runtime_error on failure.
-void write_loglog_chart(const std::string& png, const ChartSpec& spec, const std::vector<ChartSeries>& series);
+/// Throws (viz::NoDisplayError, a std::runtime_error) when no X server answers: call before any work.
+void require_chart_display();
+
+/// Writes the chart to `png` into a set of outputs (renamed into place by set.commit()). Throws
+/// std::runtime_error on failure.
+void write_loglog_chart(OutputSet& set, const std::string& png, const ChartSpec& spec, const std::vector<ChartSeries>& series);
 
 }  // namespace grtrace::work_precision

@@ -7,7 +7,9 @@ namespace grtrace::work_precision {
 
 bool charts_available() { return false; }
 
-void write_loglog_chart(const std::string& png, const ChartSpec&, const std::vector<ChartSeries>&) {
+void require_chart_display() {}
+
+void write_loglog_chart(OutputSet&, const std::string& png, const ChartSpec&, const std::vector<ChartSeries>&) {
   throw std::runtime_error("cannot draw '" + png + "': this build has no VTK (configure with VTK to get charts)");
 }
 

@@ -8,7 +8,6 @@
 // Writes a CSV (--out-csv), log-log PNG charts drawn with VTK (--out-png), a table or ONE line of JSON (--json).
 // --exit node continues escaped rays exactly from the last accepted step instead of the interpolated sky-sphere
 // crossing (which limits tableaux without their own dense output; see docs/benchmarks.md).
-#include "atomic_file.hpp"
 #include "chart.hpp"
 #include "command_line.hpp"
 #include "json_writer.hpp"
@@ -152,7 +151,8 @@ Plan read_plan(const CommandLine& cli) {
     if (!(h > 0.0)) throw UsageError("every --steps value must be > 0");
   std::sort(p.steps.begin(), p.steps.end(), std::greater<>());
   p.atol_ratio = cli.number("atol-ratio");
-  if (!(p.atol_ratio >= 0.0)) throw UsageError("--atol-ratio must be >= 0");
+  if (!(p.atol_ratio >= 0.0 && p.atol_ratio <= 1.0))
+    throw UsageError("--atol-ratio must lie in [0, 1] (atol = ratio x rtol < 1), got " + cli.text("atol-ratio"));
 
   // Rays.
   std::vector<double> impacts;
@@ -173,6 +173,7 @@ Plan read_plan(const CommandLine& cli) {
     if (!(cam.radius > guard))
       throw UsageError("--camera-r must be outside the horizon guard r = " + std::to_string(guard) + " M");
     if (!(sky > cam.radius)) throw UsageError("--sky-r must be larger than --camera-r");
+    if (!(sky <= 1e100)) throw UsageError("--sky-r must be at most 1e100 (r^2 must not overflow), got " + cli.text("sky-r"));
     if (!(cam.fov_degrees > 0.0 && cam.fov_degrees < 180.0)) throw UsageError("--fov must lie in (0, 180) degrees");
   }
   if (impacts.empty() && grid == 0) throw UsageError("no rays: give --impacts or --grid > 0");
@@ -200,22 +201,21 @@ Plan read_plan(const CommandLine& cli) {
   p.chart_cpu = chart_time == "cpu";
   p.out_csv = cli.text("out-csv");
   p.out_png = cli.text("out-png");
-  auto writable = [](const std::string& path, const char* option) {
-    try {
-      tools::check_writable_target(path);
-    } catch (const std::exception& e) {
-      throw UsageError(std::string(option) + ": " + e.what());
-    }
-  };
-  if (!p.out_csv.empty()) writable(p.out_csv, "--out-csv");
-  if (!p.out_png.empty()) {
+  if (cli.given("out-csv")) tools::check_output_option("out-csv", p.out_csv);
+  if (cli.given("out-png")) {
+    if (p.out_png.empty()) throw UsageError("--out-png needs a file name prefix, got ''");
     if (!charts_available()) throw UsageError("--out-png: this build has no VTK, so it cannot draw charts");
-    const char* display = std::getenv("DISPLAY");
-    if (!display || !*display)
-      throw UsageError(
-          "--out-png needs an X display (VTK renders through X): run under "
-          "xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-work-precision ...");
-    writable(p.out_png + "-time.png", "--out-png");
+    try {
+      require_chart_display();
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("--out-png: ") + e.what());
+    }
+    tools::check_output_option("out-png", p.out_png + "-time.png");
+    tools::check_output_option("out-png", p.out_png + "-evals.png");
+    if (!p.out_csv.empty())
+      for (const char* suffix : {"-time.png", "-evals.png"})
+        if (same_file(p.out_csv, p.out_png + suffix))
+          throw UsageError("--out-csv and --out-png name the same file '" + p.out_csv + "'");
   }
   return p;
 }
@@ -250,7 +250,7 @@ LineStyle controller_style(std::string_view c) {
   return LineStyle::dash_dot;
 }
 
-void write_charts(const Plan& plan, const std::vector<Record>& records) {
+void write_charts(OutputSet& set, const Plan& plan, const std::vector<Record>& records) {
   std::vector<ChartSeries> by_time, by_evals;
   for (const Method& m : plan.methods) {
     ChartSeries t, e;
@@ -280,9 +280,9 @@ void write_charts(const Plan& plan, const std::vector<Record>& records) {
   spec.title = "Work-precision, Schwarzschild: " + rays.str();
   spec.x_label = std::string(plan.chart_cpu ? "processor" : "wall") + " time per ray (microseconds, " +
                  std::to_string(plan.run.threads) + (plan.run.threads > 1 ? " threads)" : " thread)");
-  write_loglog_chart(plan.out_png + "-time.png", spec, by_time);
+  write_loglog_chart(set, plan.out_png + "-time.png", spec, by_time);
   spec.x_label = "right-hand-side evaluations per ray";
-  write_loglog_chart(plan.out_png + "-evals.png", spec, by_evals);
+  write_loglog_chart(set, plan.out_png + "-evals.png", spec, by_evals);
 }
 
 // ---- reporting -------------------------------------------------------------------------------------------
@@ -357,9 +357,11 @@ int main(int argc, char** argv) {
     }
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 
+    OutputSet outputs;  // the CSV and both charts: all new or all as they were
     if (!plan.out_csv.empty())
-      tools::write_text_atomically(plan.out_csv, [&](std::ostream& out) { write_csv(out, records); });
-    if (!plan.out_png.empty()) write_charts(plan, records);
+      write_file_atomically(outputs, plan.out_csv, [&](std::ostream& out) { write_csv(out, records); });
+    if (!plan.out_png.empty()) write_charts(outputs, plan, records);
+    outputs.commit();
 
     const Record* by_time = nullptr;
     const Record* by_evals = nullptr;

@@ -152,8 +152,8 @@ TEST_F(AtomicWrite, FailingWriterLeavesOldFileAndNoTemporary) {
   const fs::path target = dir_ / "out.txt";
   { std::ofstream(target) << "old"; }
   EXPECT_THROW(grtrace::write_file_atomically(target,
-                                              [](const fs::path& tmp) {
-                                                std::ofstream(tmp) << "partial";
+                                              [](std::ostream& out) {
+                                                out << "partial";
                                                 throw std::runtime_error("disk on fire");
                                               }),
                std::runtime_error);
@@ -167,7 +167,7 @@ TEST_F(AtomicWrite, FailingWriterLeavesOldFileAndNoTemporary) {
 TEST_F(AtomicWrite, ReplacesExistingFile) {
   const fs::path target = dir_ / "out.txt";
   { std::ofstream(target) << "old"; }
-  grtrace::write_file_atomically(target, [](const fs::path& tmp) { std::ofstream(tmp) << "new"; });
+  grtrace::write_file_atomically(target, [](std::ostream& out) { out << "new"; });
   std::ifstream in(target);
   std::string content;
   in >> content;

@@ -3,6 +3,7 @@
 
 #include "grtrace/viz/frame_view.hpp"
 #include "grtrace/viz/scene_view.hpp"
+#include "grtrace/render/output_file.hpp"
 
 #include <vtkCallbackCommand.h>
 #include <vtkImageData.h>
@@ -15,6 +16,7 @@
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <cstdio>
@@ -25,12 +27,32 @@
 #include <stdexcept>
 #include <string>
 #include <unistd.h>
+#include <vector>
+
+#include <X11/Xlib.h>
 
 namespace grtrace::viz {
 
 bool display_available() {
+  // Cached: connecting to the X server once per process is enough (and tests call this per case).
+  static const bool available = [] {
+    const char* d = std::getenv("DISPLAY");
+    if (d == nullptr || *d == '\0') return false;
+    Display* display = XOpenDisplay(nullptr);
+    if (display == nullptr) return false;
+    XCloseDisplay(display);
+    return true;
+  }();
+  return available;
+}
+
+void require_display(const std::string& program, const std::string& alternative) {
+  if (display_available()) return;
   const char* d = std::getenv("DISPLAY");
-  return d != nullptr && *d != '\0';
+  const std::string why = d == nullptr || *d == '\0' ? std::string("no X display (DISPLAY is not set)")
+                                                     : "no X server answers at DISPLAY='" + std::string(d) + "'";
+  throw NoDisplayError(why + "; VTK here renders only through X. Run headless as\n  xvfb-run -a -s \"-screen 0 " +
+                       "1280x1024x24\" " + program + " ..." + (alternative.empty() ? "" : "\nor " + alternative));
 }
 
 namespace {
@@ -64,18 +86,9 @@ Rgb8Image from_vtk_image(vtkImageData* data) {
   return out;
 }
 
-std::filesystem::path temporary_sibling(const std::filesystem::path& target) {
-  return target.string() + ".tmp-" + std::to_string(::getpid()) + ".png";
-}
-
-}  // namespace
-
-void write_png(const Rgb8Image& image, const std::string& path) {
+/// The PNG file (bytes) of an RGB8 image, encoded by VTK in memory.
+std::vector<unsigned char> encode_png(const Rgb8Image& image, const std::string& path) {
   if (image.empty()) throw std::runtime_error("cannot write an empty image to '" + path + "'");
-  const std::filesystem::path target(path);
-  const auto dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(dir))
-    throw std::runtime_error("cannot write '" + path + "': directory '" + dir.string() + "' does not exist");
   vtkNew<vtkImageData> data;
   data->SetDimensions(image.width, image.height, 1);
   data->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
@@ -83,21 +96,31 @@ void write_png(const Rgb8Image& image, const std::string& path) {
   const auto row = static_cast<std::size_t>(image.width) * 3;
   for (int y = 0; y < image.height; ++y)
     std::memcpy(dst + static_cast<std::size_t>(image.height - 1 - y) * row, image.rgb.data() + image.offset(0, y), row);
-  const auto tmp = temporary_sibling(target);
   vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(tmp.c_str());
+  writer->WriteToMemoryOn();
   writer->SetInputData(data);
   writer->Write();
-  std::error_code ec;
-  if (writer->GetErrorCode() != 0 || !std::filesystem::exists(tmp, ec)) {
-    std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("failed to write '" + path + "' (is the directory writable?)");
-  }
-  std::filesystem::rename(tmp, target, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("failed to write '" + path + "': " + ec.message());
-  }
+  vtkUnsignedCharArray* result = writer->GetResult();
+  if (writer->GetErrorCode() != 0 || result == nullptr || result->GetNumberOfValues() <= 0)
+    throw std::runtime_error("cannot encode the PNG for '" + path + "'");
+  const auto* bytes = result->GetPointer(0);
+  return std::vector<unsigned char>(bytes, bytes + result->GetNumberOfValues());
+}
+
+}  // namespace
+
+void write_png(const Rgb8Image& image, const std::string& path) {
+  const std::vector<unsigned char> bytes = encode_png(image, path);
+  TemporaryOutput out(path);
+  out.write(bytes.data(), bytes.size());
+  out.commit();
+}
+
+void write_png(OutputSet& set, const Rgb8Image& image, const std::string& path) {
+  const std::vector<unsigned char> bytes = encode_png(image, path);
+  TemporaryOutput& out = set.add(path);
+  out.write(bytes.data(), bytes.size());
+  out.finish();
 }
 
 Rgb8Image read_png(const std::string& path) {
@@ -196,6 +219,10 @@ Rgb8Image capture_window(vtkRenderWindow* window) {
 }
 
 void save_window_png(vtkRenderWindow* window, const std::string& path) { write_png(capture_window(window), path); }
+
+void save_window_png(OutputSet& set, vtkRenderWindow* window, const std::string& path) {
+  write_png(set, capture_window(window), path);
+}
 
 Rgb8Image ViewerWindow::capture() {
   render();

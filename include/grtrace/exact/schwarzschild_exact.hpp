@@ -124,7 +124,14 @@ using grtrace::angular_distance;
 /// Exact asymptotic direction of a null ray in Schwarzschild coordinates (t, r, theta, phi | k^mu), traced
 /// forward in its affine parameter from the state y to infinity; nothing if it is captured.
 /// Used at the camera (the exact answer for a whole ray) and at the escape sphere (exact angle correction).
+/// Input that is not a ray also gives nothing (never a NaN direction), so callers must not read nullopt as
+/// "captured" unless they know the state is valid: a non-finite state or mass, mass < 0, r <= 2M (or r <= 0),
+/// zero momentum (k = 0) or k^t = 0 (E = 0: no impact parameter). A state on the polar axis (theta = 0 or pi) is
+/// valid: the basis there is the limit along phi.
 inline std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y, double mass = 1.0) {
+  if (!y.allFinite() || !std::isfinite(mass) || mass < 0.0) return std::nullopt;
+  if (!(y[1] > 2.0 * mass && y[1] > 0.0)) return std::nullopt;
+  if (y.tail<4>().isZero(0.0) || y[4] == 0.0) return std::nullopt;
   const double r = y[1];
   const SphericalBasis e = spherical_basis(y[2], y[3]);
   const double E = schwarzschild_f(r, mass) * y[4];

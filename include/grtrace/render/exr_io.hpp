@@ -13,9 +13,9 @@
 // - It also adds, unless metadata already has them: "software" = "grtrace", and legends that make the file
 //   self-describing: "status_names" ("0=escaped 1=captured ...") when there is a "status" channel and
 //   "object_names" ("0=sky 1=horizon 2=disk 3=star") when there is an "object" channel.
-// - Written to a temporary sibling and renamed over `path` (write_file_atomically in image.hpp): on any failure
-//   (missing or unwritable directory, full disk, OpenEXR error) nothing is left behind and std::runtime_error
-//   says which path failed and why.
+// - Written to an exclusively created temporary sibling and renamed over `path` (output_file.hpp): on any
+//   failure (missing or unwritable directory, full disk, OpenEXR error) nothing is left behind and
+//   std::runtime_error says which path failed and why. write_exr(set, path, image) writes into an OutputSet.
 // read_exr
 // - Any scanline or tiled single-part EXR (part 0 of a multi-part file). Every channel is converted to float
 //   (HALF and UINT channels too). Channel order: the standard grtrace channels first, in Image's order, then
@@ -23,6 +23,11 @@
 //   Image with only its own channels (see Image::with_channels). The data window's size is the image size.
 // - Every string attribute goes into Image::metadata (other attribute types are skipped).
 // - Subsampled channels are refused; failures throw std::runtime_error naming the file.
+// - Limits, checked before any pixel is allocated: the channels (as floats) must fit memory_limit_bytes()
+//   (image.hpp: 4 GiB unless GRTRACE_MEMORY_LIMIT says otherwise; MemoryLimitError, which names the limit and
+//   the variable), and the file must be large enough for the offset table its data window needs (a forged
+//   header claiming 12000 x 12000 pixels in a few kB is refused as "forged or truncated header"); before
+//   OpenEXR parses the header, every attribute's byte count must fit in the file (OpenEXR allocates it first).
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
@@ -32,16 +37,22 @@
 #include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfTileDescription.h>
+#include <OpenEXR/ImfVersion.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -63,8 +74,34 @@ inline std::string exr_status_legend() {
   return s;
 }
 
-/// Writes the file at `file` directly (no temporary); the caller makes it atomic.
-inline void write_exr_direct(const std::filesystem::path& file, const Image& image, const ExrWriteOptions& options) {
+/// An Imf::OStream on any seekable std::ostream (Imf::StdOFStream wants an std::ofstream).
+class ExrOStream : public Imf::OStream {
+ public:
+  ExrOStream(std::ostream& os, const char* name) : Imf::OStream(name), os_(os) {}
+  void write(const char c[], int n) override {
+    os_.write(c, n);
+    check();
+  }
+  uint64_t tellp() override {
+    const auto p = os_.tellp();
+    check();
+    return static_cast<uint64_t>(static_cast<std::streamoff>(p));
+  }
+  void seekp(uint64_t pos) override {
+    os_.seekp(static_cast<std::streamoff>(pos));
+    check();
+  }
+
+ private:
+  void check() const {
+    if (!os_) throw std::runtime_error(std::string("write error on '") + fileName() + "' (disk full?)");
+  }
+  std::ostream& os_;
+};
+
+/// Writes the EXR into `os` (seekable; OpenEXR seeks back for its offset table); `name` for messages.
+inline void write_exr_stream(std::ostream& os, const std::string& name, const Image& image,
+                             const ExrWriteOptions& options) {
   Imf::Header header(image.width(), image.height());
   header.compression() = options.compression;
 
@@ -85,24 +122,144 @@ inline void write_exr_direct(const std::filesystem::path& file, const Image& ima
   Imf::FrameBuffer frame;
   const std::size_t x_stride = sizeof(float);
   const std::size_t y_stride = sizeof(float) * static_cast<std::size_t>(image.width());
-  for (const auto& name : image.channel_names()) {
-    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  for (const auto& channel : image.channel_names()) {
+    header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
     // OpenEXR only reads through the pointer while writing; the cast drops const for its API.
-    const float* data = image.channel(name).data();
-    frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(data)), x_stride, y_stride));
+    const float* data = image.channel(channel).data();
+    frame.insert(channel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(data)), x_stride, y_stride));
   }
 
-  std::ofstream os(file, std::ios::binary | std::ios::trunc);
-  if (!os) throw std::runtime_error("cannot open '" + file.string() + "' for writing");
   {
-    Imf::StdOFStream stream(os, file.c_str());
+    ExrOStream stream(os, name.c_str());
     Imf::OutputFile out(stream, header);
     out.setFrameBuffer(frame);
     out.writePixels(image.height());
   }  // the OutputFile destructor writes the line offset table: check the stream only after it
   os.flush();
-  os.close();
-  if (os.fail()) throw std::runtime_error("failed while writing '" + file.string() + "' (disk full?)");
+  if (!os) throw std::runtime_error("failed while writing '" + name + "' (disk full?)");
+}
+
+inline void write_exr_into(TemporaryOutput& out, const Image& image, const ExrWriteOptions& options) {
+  try {
+    write_exr_stream(out.stream(), out.target().string(), image, options);
+    out.finish();
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot write EXR '" + out.target().string() + "': " + e.what());
+  }
+}
+
+/// Scanlines per chunk of a compression (the offset table has one 8-byte entry per chunk).
+inline int exr_lines_per_chunk(Imf::Compression c) {
+  switch (c) {
+    case Imf::NO_COMPRESSION:
+    case Imf::RLE_COMPRESSION:
+    case Imf::ZIPS_COMPRESSION: return 1;
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION: return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION: return 32;
+    default: return 256;  // DWAB and anything newer: the largest chunk
+  }
+}
+
+/// Walks the header attributes (name, type, byte count) without OpenEXR and refuses any whose byte count exceeds
+/// what is left of the file: OpenEXR allocates an attribute's claimed size before reading it, so a 200-byte file
+/// claiming a 1.7 GB string attribute would otherwise cost 1.7 GB (found by tests/fuzz/exr_fuzz).
+inline void check_exr_attribute_sizes(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::error_code ec;
+  const auto file_size = static_cast<long long>(std::filesystem::file_size(path, ec));
+  if (!file || ec) throw std::runtime_error("cannot open the file");
+  unsigned char start[8] = {};
+  file.read(reinterpret_cast<char*>(start), sizeof start);
+  if (file.gcount() != 8) throw std::runtime_error("too short for an OpenEXR file");
+  const bool multi_part = (start[5] & 0x10) != 0;  // version flags: bit 12 = multi-part
+  auto read_name = [&](std::string& out) {
+    out.clear();
+    for (int c = file.get(); c != 0; c = file.get()) {
+      if (c == std::char_traits<char>::eof()) throw std::runtime_error("the header ends early (truncated file)");
+      if (out.size() >= 255) throw std::runtime_error("a header attribute name is longer than 255 characters");
+      out += static_cast<char>(c);
+    }
+  };
+  std::string name, type;
+  for (;;) {
+    read_name(name);
+    if (name.empty()) return;  // the empty header that ends a multi-part file's list (or an empty one)
+    for (;;) {
+      read_name(type);
+      unsigned char size_bytes[4] = {};
+      file.read(reinterpret_cast<char*>(size_bytes), 4);
+      if (file.gcount() != 4) throw std::runtime_error("the header ends early (truncated file)");
+      const long long size = static_cast<std::int32_t>(
+          static_cast<std::uint32_t>(size_bytes[0]) | static_cast<std::uint32_t>(size_bytes[1]) << 8 |
+          static_cast<std::uint32_t>(size_bytes[2]) << 16 | static_cast<std::uint32_t>(size_bytes[3]) << 24);
+      const long long left = file_size - static_cast<long long>(file.tellg());
+      if (size < 0 || size > left)
+        throw std::runtime_error("header attribute '" + name + "' (" + type + ") claims " + std::to_string(size) +
+                                 " bytes but only " + std::to_string(left) +
+                                 " are left in the file: forged or truncated header");
+      file.seekg(size, std::ios::cur);
+      read_name(name);
+      if (name.empty()) break;  // end of this header
+    }
+    if (!multi_part) return;
+  }
+}
+
+/// The header of part 0, read without the rest of the file (so a forged data window is seen before OpenEXR
+/// reads offset tables or pixels).
+inline Imf::Header read_exr_header(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw std::runtime_error("cannot open the file");
+  unsigned char start[8] = {};
+  file.read(reinterpret_cast<char*>(start), sizeof start);
+  if (file.gcount() != 8) throw std::runtime_error("too short for an OpenEXR file");
+  auto le32 = [&](int at) {
+    return static_cast<int>(static_cast<std::uint32_t>(start[at]) | static_cast<std::uint32_t>(start[at + 1]) << 8 |
+                            static_cast<std::uint32_t>(start[at + 2]) << 16 |
+                            static_cast<std::uint32_t>(start[at + 3]) << 24);
+  };
+  if (le32(0) != Imf::MAGIC) throw std::runtime_error("not an OpenEXR file (wrong magic number)");
+  int version = le32(4);
+  Imf::StdIFStream stream(file, path.c_str());
+  Imf::Header header;
+  header.readFrom(stream, version);
+  return header;
+}
+
+/// The limits every read_exr() applies before allocating pixels: the data window's size, its channels (as
+/// floats) against memory_limit_bytes(), and the smallest file that can hold that window (one 8-byte
+/// offset-table entry per chunk).
+inline void check_exr_header(const std::filesystem::path& path, const Imf::Header& header) {
+  const Imath::Box2i window = header.dataWindow();
+  const long w = static_cast<long>(window.max.x) - window.min.x + 1;
+  const long h = static_cast<long>(window.max.y) - window.min.y + 1;
+  if (w <= 0 || h <= 0 || w > 1L << 30 || h > 1L << 30)
+    throw std::runtime_error("unsupported data window " + std::to_string(w) + " x " + std::to_string(h));
+  long channel_count = 0;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channel_count;
+  const std::string size_text = std::to_string(w) + " x " + std::to_string(h);
+  check_memory(image_bytes(static_cast<double>(w), static_cast<double>(h), static_cast<double>(channel_count)),
+               "its data window of " + size_text + " pixels with " + std::to_string(channel_count) + " channels");
+  double chunks = 0.0;
+  if (header.hasTileDescription()) {
+    const Imf::TileDescription& t = header.tileDescription();
+    chunks = std::ceil(static_cast<double>(w) / std::max(1u, t.xSize)) *
+             std::ceil(static_cast<double>(h) / std::max(1u, t.ySize));
+  } else {
+    chunks = std::ceil(static_cast<double>(h) / exr_lines_per_chunk(header.compression()));
+  }
+  std::error_code size_ec;
+  const auto file_size = static_cast<double>(std::filesystem::file_size(path, size_ec));
+  if (!size_ec && file_size < 8.0 * chunks)
+    throw std::runtime_error("the header claims " + size_text + " pixels, which needs at least " +
+                             describe_bytes(8.0 * chunks) + " of chunk offsets, but the file has only " +
+                             describe_bytes(file_size) + ": forged or truncated header");
 }
 
 }  // namespace detail
@@ -110,28 +267,37 @@ inline void write_exr_direct(const std::filesystem::path& file, const Image& ima
 /// Writes all channels (FLOAT) and all metadata (string attributes) of `image` to `path`, whole or not at all.
 /// Throws std::invalid_argument for unusable metadata keys, std::runtime_error for I/O failures.
 inline void write_exr(const std::filesystem::path& path, const Image& image, const ExrWriteOptions& options = {}) {
-  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    try {
-      detail::write_exr_direct(tmp, image, options);
-    } catch (const std::invalid_argument&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw std::runtime_error("cannot write EXR '" + path.string() + "': " + e.what());
-    }
-  });
+  TemporaryOutput out(path);
+  detail::write_exr_into(out, image, options);
+  out.commit();
+}
+
+/// The same as part of a set of outputs (written now, renamed into place by set.commit()).
+inline void write_exr(OutputSet& set, const std::filesystem::path& path, const Image& image,
+                      const ExrWriteOptions& options = {}) {
+  detail::write_exr_into(set.add(path), image, options);
 }
 
 /// Reads every channel (as float) and every string attribute of an EXR file. Throws std::runtime_error.
 inline Image read_exr(const std::filesystem::path& path) {
   try {
     if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("no such file");
+    // Protects OpenEXR's own allocations (offset tables) from absurd data windows: refused by the header check.
+    static const bool limited = [] {
+      Imf::Header::setMaxImageSize(1 << 20, 1 << 20);
+      Imf::Header::setMaxTileSize(1 << 16, 1 << 16);
+      return true;
+    }();
+    (void)limited;
+    // The header alone first: the size checks below run before OpenEXR reads (or trips over) anything else.
+    detail::check_exr_attribute_sizes(path);
+    detail::check_exr_header(path, detail::read_exr_header(path));
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
     const Imath::Box2i window = header.dataWindow();
+    detail::check_exr_header(path, header);
     const long w = static_cast<long>(window.max.x) - window.min.x + 1;
     const long h = static_cast<long>(window.max.y) - window.min.y + 1;
-    if (w <= 0 || h <= 0 || w > 1L << 30 || h > 1L << 30 || w * h > 1L << 34)
-      throw std::runtime_error("unsupported data window " + std::to_string(w) + " x " + std::to_string(h));
 
     std::vector<std::string> names;
     for (const char* standard : Image::kStandardChannels)
@@ -153,6 +319,10 @@ inline Image read_exr(const std::filesystem::path& path) {
       if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
         image.metadata[it.name()] = s->value();
     return image;
+  } catch (const MemoryLimitError& e) {
+    throw MemoryLimitError("cannot read EXR '" + path.string() + "': " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw MemoryLimitError("cannot read EXR '" + path.string() + "': out of memory");
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot read EXR '" + path.string() + "': " + e.what());
   }

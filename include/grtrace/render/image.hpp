@@ -16,23 +16,20 @@
 // Threads: writing distinct pixels from several threads is safe through set(), a PixelWriter or raw channel
 // pointers taken before the parallel loop; adding channels or metadata while other threads work is not.
 //
-// Also here (no third-party dependency): write_file_atomically(), which every image writer uses so that an
-// output file is written whole or not at all.
+// Included from here (no third-party dependency): output_file.hpp (write_file_atomically, OutputSet), which every
+// image writer uses so that output files are created safely and written whole or not at all.
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
-
-#include <unistd.h>
+#include "grtrace/core/memory_limit.hpp"
+#include "grtrace/render/output_file.hpp"
 
 #include <array>
-#include <atomic>
 #include <cstddef>
-#include <filesystem>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -56,7 +53,11 @@ class Image {
       "R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"};
 
   /// An image with the nine standard channels, all zero until set().
+  /// Throws MemoryLimitError (before allocating) when the channels would exceed memory_limit_bytes().
   Image(int width, int height) : Image(width, height, NoChannels{}) {
+    check_memory(image_bytes(width, height, kStandardChannels.size()),
+                 "a " + std::to_string(width) + " x " + std::to_string(height) + " image with " +
+                     std::to_string(kStandardChannels.size()) + " channels");
     for (const char* name : kStandardChannels) add_channel(name);
   }
 
@@ -65,6 +66,9 @@ class Image {
   /// channels and throw std::out_of_range without them.
   static Image with_channels(int width, int height, const std::vector<std::string>& names, float fill = 0.0f) {
     Image image(width, height, NoChannels{});
+    check_memory(image_bytes(width, height, static_cast<double>(names.size())),
+                 "a " + std::to_string(width) + " x " + std::to_string(height) + " image with " +
+                     std::to_string(names.size()) + " channels");
     for (const auto& name : names) image.add_channel(name, fill);
     return image;
   }
@@ -78,6 +82,10 @@ class Image {
 
   /// Adds a channel filled with `fill` (no-op if it exists); returns its data.
   std::vector<float>& add_channel(const std::string& name, float fill = 0.0f) {
+    if (!has_channel(name))
+      check_memory(image_bytes(width_, height_, static_cast<double>(order_.size() + 1)),
+                   "a " + std::to_string(width_) + " x " + std::to_string(height_) + " image with " +
+                       std::to_string(order_.size() + 1) + " channels");
     auto [it, inserted] = channels_.try_emplace(name);
     if (inserted) {
       it->second.assign(pixel_count(), fill);
@@ -150,55 +158,5 @@ class Image {
   std::map<std::string, std::vector<float>> channels_;
   std::vector<std::string> order_;
 };
-
-// ---- whole-or-nothing output files --------------------------------------------------------------------
-
-/// "<target>.tmp-<pid>-<n>": a sibling of `target` (same directory, so the final rename is atomic), unique per
-/// process and call.
-inline std::filesystem::path temporary_output_path(const std::filesystem::path& target) {
-  static std::atomic<unsigned long> counter{0};
-  return std::filesystem::path(target.string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(counter.fetch_add(1)));
-}
-
-/// Throws std::runtime_error with a message naming the path when `target` cannot be created: its directory
-/// is missing, is not a directory, or is not writable, or `target` itself is a directory. Creates nothing.
-inline void check_output_path(const std::filesystem::path& target) {
-  namespace fs = std::filesystem;
-  if (target.empty() || !target.has_filename())
-    throw std::runtime_error("cannot write '" + target.string() + "': not a file name");
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::exists(dir, ec))
-    throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() + "' does not exist");
-  if (!fs::is_directory(dir, ec))
-    throw std::runtime_error("cannot write '" + target.string() + "': '" + dir.string() + "' is not a directory");
-  if (::access(dir.c_str(), W_OK | X_OK) != 0)
-    throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() +
-                             "' is not writable");
-  if (fs::is_directory(target, ec))
-    throw std::runtime_error("cannot write '" + target.string() + "': it is a directory");
-}
-
-/// Writes `target` whole or not at all: checks the target (check_output_path), calls write(temporary path),
-/// then renames the temporary over `target`. On any failure (an exception from `write` or the rename) the
-/// temporary is removed, `target` is left as it was, and the exception propagates (a failed rename becomes a
-/// std::runtime_error naming both paths). `write` must throw if it could not write the whole file.
-template <class WriteFn>
-void write_file_atomically(const std::filesystem::path& target, WriteFn&& write) {
-  check_output_path(target);
-  const std::filesystem::path tmp = temporary_output_path(target);
-  try {
-    std::forward<WriteFn>(write)(tmp);
-    std::error_code ec;
-    std::filesystem::rename(tmp, target, ec);
-    if (ec)
-      throw std::runtime_error("cannot rename '" + tmp.string() + "' to '" + target.string() + "': " + ec.message());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
-}
 
 }  // namespace grtrace

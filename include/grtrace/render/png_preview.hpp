@@ -10,7 +10,8 @@
 //   1 -> 255, 0.5 -> 188, 0.18 -> 118. NaN and negative values give 0.
 // - The files carry an sRGB chunk (libpng's simplified writer adds it), so viewers show them as intended.
 // - Row 0 is the top of the picture, as in Image; pixels are RGB triplets, row-major, no padding.
-// - Written to a temporary sibling and renamed (write_file_atomically in image.hpp): whole or not at all.
+// - Encoded in memory, written to an exclusively created temporary sibling and renamed (output_file.hpp): whole
+//   or not at all. The overloads taking an OutputSet& write into a set committed together.
 //   Failures throw std::runtime_error naming the file; bad arguments throw std::invalid_argument.
 #pragma once
 
@@ -49,34 +50,41 @@ inline double srgb_decode8(std::uint8_t code) {
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
-/// Writes an 8-bit RGB PNG (rgb: 3 * width * height bytes, row-major, top row first), whole or not at all.
-inline void write_png_rgb8(const std::filesystem::path& path, int width, int height,
-                           const std::vector<std::uint8_t>& rgb) {
+namespace detail {
+
+/// The PNG file (bytes) of an 8-bit RGB picture; `name` for messages.
+inline std::vector<std::uint8_t> encode_png_rgb8(const std::string& name, int width, int height,
+                                                 const std::vector<std::uint8_t>& rgb) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("write_png_rgb8: image size must be positive");
   const std::size_t expected = 3u * static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   if (rgb.size() != expected)
     throw std::invalid_argument("write_png_rgb8: expected " + std::to_string(expected) + " bytes (3 * " +
                                 std::to_string(width) + " * " + std::to_string(height) + "), got " +
                                 std::to_string(rgb.size()));
-  write_file_atomically(path, [&](const std::filesystem::path& tmp) {
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    image.width = static_cast<png_uint_32>(width);
-    image.height = static_cast<png_uint_32>(height);
-    image.format = PNG_FORMAT_RGB;
-    const auto row_stride = static_cast<png_int_32>(3 * width);
-    // png_image_write_to_file checks fflush/fclose and removes its file on failure.
-    if (png_image_write_to_file(&image, tmp.c_str(), 0, rgb.data(), row_stride, nullptr) == 0) {
-      const std::string message = image.message;
-      png_image_free(&image);
-      throw std::runtime_error("cannot write PNG '" + path.string() + "': " + message);
-    }
-  });
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = PNG_FORMAT_RGB;
+  const auto row_stride = static_cast<png_int_32>(3 * width);
+  png_alloc_size_t size = 0;
+  // First call: the size; second: the bytes (libpng's simplified in-memory writer).
+  if (png_image_write_to_memory(&image, nullptr, &size, 0, rgb.data(), row_stride, nullptr) == 0) {
+    const std::string message = image.message;
+    png_image_free(&image);
+    throw std::runtime_error("cannot write PNG '" + name + "': " + message);
+  }
+  std::vector<std::uint8_t> bytes(size);
+  if (png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb.data(), row_stride, nullptr) == 0) {
+    const std::string message = image.message;
+    png_image_free(&image);
+    throw std::runtime_error("cannot write PNG '" + name + "': " + message);
+  }
+  bytes.resize(size);
+  return bytes;
 }
 
-/// Writes an 8-bit sRGB PNG preview of the linear R, G, B channels of `image`, each multiplied by `exposure`
-/// (a linear factor: 2 is one stop brighter) before encoding. Whole or not at all.
-inline void write_png_preview(const std::filesystem::path& path, const Image& image, float exposure = 1.0f) {
+inline std::vector<std::uint8_t> preview_rgb8(const Image& image, float exposure) {
   if (!std::isfinite(exposure) || exposure < 0.0f)
     throw std::invalid_argument("write_png_preview: exposure must be finite and >= 0");
   for (const char* c : {"R", "G", "B"})
@@ -92,7 +100,39 @@ inline void write_png_preview(const std::filesystem::path& path, const Image& im
     rgb[3 * i + 1] = srgb_encode8(scale * static_cast<double>(g[i]));
     rgb[3 * i + 2] = srgb_encode8(scale * static_cast<double>(b[i]));
   }
-  write_png_rgb8(path, image.width(), image.height(), rgb);
+  return rgb;
+}
+
+}  // namespace detail
+
+/// Writes an 8-bit RGB PNG (rgb: 3 * width * height bytes, row-major, top row first), whole or not at all.
+inline void write_png_rgb8(const std::filesystem::path& path, int width, int height,
+                           const std::vector<std::uint8_t>& rgb) {
+  const std::vector<std::uint8_t> bytes = detail::encode_png_rgb8(path.string(), width, height, rgb);
+  TemporaryOutput out(path);
+  out.write(bytes.data(), bytes.size());
+  out.commit();
+}
+
+/// The same as part of a set of outputs (written now, renamed into place by set.commit()).
+inline void write_png_rgb8(OutputSet& set, const std::filesystem::path& path, int width, int height,
+                           const std::vector<std::uint8_t>& rgb) {
+  const std::vector<std::uint8_t> bytes = detail::encode_png_rgb8(path.string(), width, height, rgb);
+  TemporaryOutput& out = set.add(path);
+  out.write(bytes.data(), bytes.size());
+  out.finish();
+}
+
+/// Writes an 8-bit sRGB PNG preview of the linear R, G, B channels of `image`, each multiplied by `exposure`
+/// (a linear factor: 2 is one stop brighter) before encoding. Whole or not at all.
+inline void write_png_preview(const std::filesystem::path& path, const Image& image, float exposure = 1.0f) {
+  write_png_rgb8(path, image.width(), image.height(), detail::preview_rgb8(image, exposure));
+}
+
+/// The same as part of a set of outputs.
+inline void write_png_preview(OutputSet& set, const std::filesystem::path& path, const Image& image,
+                              float exposure = 1.0f) {
+  write_png_rgb8(set, path, image.width(), image.height(), detail::preview_rgb8(image, exposure));
 }
 
 /// Reads any PNG as 8-bit sRGB RGB (libpng converts grey, palette and 16-bit; alpha is composited onto black).
@@ -106,6 +146,13 @@ inline PngRgb8 read_png_rgb8(const std::filesystem::path& path) {
     throw std::runtime_error("cannot read PNG '" + path.string() + "': " + message);
   }
   image.format = PNG_FORMAT_RGB;
+  try {
+    check_memory(3.0 * image.width * image.height,
+                 "its " + std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels");
+  } catch (const MemoryLimitError& e) {
+    png_image_free(&image);
+    throw MemoryLimitError("cannot read PNG '" + path.string() + "': " + e.what());
+  }
   const std::size_t bytes = 3u * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
   if (bytes == 0 || image.width > 1u << 30 || image.height > 1u << 30) {
     png_image_free(&image);

@@ -7,7 +7,10 @@
 
 #include "grtrace/scene/colour_maps.hpp"
 
+#include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <cstdint>
 #include <numbers>
 #include <variant>
@@ -68,6 +71,21 @@ struct TextureSky {
     return {sample(r), sample(g), sample(b)};
   }
 };
+
+/// Refuses (std::invalid_argument, naming the texel and the channel) a texture whose planes do not match its size
+/// or hold a non-finite value: a NaN texel would make every ray that sees it non_finite.
+inline void check_texture(const TextureSky& t) {
+  const auto n = static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
+  if (t.width < 1 || t.height < 1 || t.r.size() != n || t.g.size() != n || t.b.size() != n)
+    throw std::invalid_argument("sky texture: the R, G, B planes do not match its size");
+  const std::array<const std::vector<float>*, 3> planes{&t.r, &t.g, &t.b};
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite((*planes[c])[i]))
+        throw std::invalid_argument("sky texture: texel (x " + std::to_string(i % static_cast<std::size_t>(t.width)) +
+                                    ", y " + std::to_string(i / static_cast<std::size_t>(t.width)) + ") of channel " +
+                                    "RGB"[c] + " is not finite; fix the texture");
+}
 
 /// A sky chosen at run time (a command-line flag): one of the three above. Painting runs once per pixel after the
 /// integration, so the visit costs nothing that matters.

@@ -174,8 +174,11 @@ class GeodesicTracer {
     for (int step = 0; step < settings_.max_steps; ++step) {
       const StepOutcome outcome = integ.advance(rhs);
       if (outcome != StepOutcome::ok) {
-        return finish(outcome == StepOutcome::step_underflow ? RayStatus::step_underflow : RayStatus::non_finite,
-                      integ.state(), integ.lambda(), integ);
+        // An underflow where the right-hand side itself is not finite (e.g. a start on the polar axis of a
+        // spherical chart, where cot(theta) diverges) is a non-finite ray, not a step-size problem.
+        const bool rhs_finite = outcome == StepOutcome::step_underflow && rhs(integ.state()).allFinite();
+        return finish(rhs_finite ? RayStatus::step_underflow : RayStatus::non_finite, integ.state(), integ.lambda(),
+                      integ);
       }
       // The earliest surface crossed inside this step ends the ray.
       double theta_first = std::numeric_limits<double>::infinity();

@@ -15,18 +15,34 @@
 
 #include <array>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 class vtkRenderWindow;
 class vtkRenderWindowInteractor;
+
+namespace grtrace {
+class OutputSet;
+}
 
 namespace grtrace::viz {
 
 class SceneView;
 class FrameView;
 
-/// True when an X display is named (DISPLAY set and non-empty).
+/// True when an X server answers at DISPLAY (checked once with XOpenDisplay, then cached). Without one, VTK
+/// here (Debian: X only, no EGL/OSMesa) crashes on the first render, offscreen or not.
 bool display_available();
+
+/// Thrown by require_display(); tools report it as bad input (exit 2).
+struct NoDisplayError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The one display check of every tool that draws (charts, screenshots, the window): call it before any work.
+/// Throws NoDisplayError with a message that says to run under xvfb-run (`program` is the tool's name) and,
+/// if `alternative` is not empty, "or <alternative>" (e.g. "pass --no-png").
+void require_display(const std::string& program, const std::string& alternative = "");
 
 struct WindowOptions {
   int width = 1600, height = 800;
@@ -72,13 +88,17 @@ class ViewerWindow {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Writes an RGB8 image as PNG, whole or not at all. Throws std::runtime_error on failure.
+/// Writes an RGB8 image as PNG, whole or not at all (grtrace/render/output_file.hpp: an exclusively created
+/// temporary, then rename). Throws std::runtime_error on failure.
 void write_png(const Rgb8Image& image, const std::string& path);
+/// The same as part of a set of outputs, renamed into place by set.commit().
+void write_png(OutputSet& set, const Rgb8Image& image, const std::string& path);
 /// What a rendered window shows (RGB: an RGBA grab would make the background transparent), row 0 at the top.
 /// Assumes the window has been rendered (offscreen or on screen).
 Rgb8Image capture_window(vtkRenderWindow* window);
 /// capture_window + write_png: every tool's "--screenshot" / chart PNG goes through here.
 void save_window_png(vtkRenderWindow* window, const std::string& path);
+void save_window_png(OutputSet& set, vtkRenderWindow* window, const std::string& path);
 /// Reads an 8-bit PNG (RGB or RGBA; alpha dropped). Throws std::runtime_error on failure.
 Rgb8Image read_png(const std::string& path);
 

@@ -4,10 +4,18 @@
 // --impact B traces a photon from far away with impact parameter B; "deflection" is the total bending from
 // infinity to infinity (the legs outside the integrated region are added exactly), with the exact value
 // and the error beside it. --path FILE.csv writes every accepted step (lambda, x^mu, k^mu, h).
+// --metric kerr --spin A [--chart bl|ks]: Kerr in Boyer-Lindquist or Kerr-Schild coordinates. Positions and
+// velocities are given in Boyer-Lindquist (t, r, theta, phi) for both charts; the JSON adds the conserved energy
+// E, axial angular momentum L_z and Carter constant Q at the start and their drifts; --impact B traces an
+// equatorial photon with E = 1, L_z = B (B > 0: towards +phi, prograde for A > 0) and compares its deflection with
+// the exact equatorial result (Iyer & Hansen 2009, exact/kerr_exact.hpp).
 #include "command_line.hpp"
 #include "json_writer.hpp"
 
+#include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/observer/initial_data.hpp"
 #include "grtrace/trace/deflection.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
@@ -15,9 +23,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <numbers>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -46,6 +57,9 @@ struct PathRecorder {
 
 struct Request {
   SchwarzschildMetric metric;  // mass 0 = flat space (spherical chart)
+  bool kerr = false;           // --metric kerr: the fields below, and `initial` is in Boyer-Lindquist coordinates
+  double spin = 0.0;
+  std::string chart = "bl";
   TraceSettings settings;
   bool richardson = false;
   bool impact_run = false;
@@ -56,8 +70,11 @@ struct Request {
 
 CommandLine make_command_line() {
   CommandLine cli("grtrace-geodesic", "Trace one geodesic and print one line of JSON.");
-  cli.option("metric", "schwarzschild", "spacetime: schwarzschild | minkowski (flat, spherical chart)")
+  cli.option("metric", "schwarzschild", "spacetime: schwarzschild | minkowski (flat, spherical chart) | kerr")
       .option("mass", "1", "black-hole mass M (G = c = 1)")
+      .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)")
+      .option("chart", "bl", "kerr: bl (Boyer-Lindquist) | ks (Kerr-Schild); --position/--velocity are Boyer-Lindquist "
+                             "for both")
       .option("tableau", "dopri5", "Runge-Kutta tableau: " + tools::join(tableau_names(), "|"))
       .option("control", "pi", "step control: fixed | doubling | i | pi")
       .flag("richardson", "with --control doubling: propagate the Richardson-extrapolated value")
@@ -67,7 +84,7 @@ CommandLine make_command_line() {
       .option("min-step", "1e-12", "smallest step before the ray ends as step_underflow")
       .option("max-steps", "100000", "accepted steps before the ray ends as max_steps")
       .option("escape-radius", "1000", "the ray has escaped at this radius (ignored with --impact)")
-      .option("horizon-eps", "1e-3", "captured at r <= (1 + eps) 2M")
+      .option("horizon-eps", "1e-3", "captured at r <= (1 + eps) r_h (2M; kerr: r_+, or inside it for ks)")
       .option("impact", "", "photon from infinity with this impact parameter (reports the total deflection)")
       .option("kind", "null", "with --position: null | timelike")
       .option("position", "", "initial event t,r,theta,phi (radians)")
@@ -80,11 +97,24 @@ CommandLine make_command_line() {
 Request read_request(const CommandLine& cli) {
   Request q;
   const std::string metric = cli.text("metric");
-  if (metric != "schwarzschild" && metric != "minkowski")
-    throw UsageError("unknown metric '" + metric + "'; choose schwarzschild or minkowski");
+  if (metric != "schwarzschild" && metric != "minkowski" && metric != "kerr")
+    throw UsageError("unknown metric '" + metric + "'; choose schwarzschild, minkowski or kerr");
   const double mass = cli.number("mass");
-  if (mass <= 0.0 && metric == "schwarzschild") throw UsageError("--mass must be > 0, got " + cli.text("mass"));
+  if (!(mass > 0.0) && metric != "minkowski") throw UsageError("--mass must be > 0, got " + cli.text("mass"));
   q.metric.mass = metric == "minkowski" ? 0.0 : mass;
+  if (metric == "kerr") {
+    q.kerr = true;
+    q.spin = cli.number("spin");
+    q.chart = cli.text("chart");
+    try {
+      (void)KerrMetric::checked(mass, q.spin);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--spin: ") + e.what());
+    }
+    if (q.chart != "bl" && q.chart != "ks") throw UsageError("--chart must be bl or ks, got '" + q.chart + "'");
+  } else if (cli.given("spin") || cli.given("chart")) {
+    throw UsageError("--spin and --chart go with --metric kerr");
+  }
 
   TraceSettings& s = q.settings;
   s.integrator.tolerance.rtol = cli.number("rtol");
@@ -116,7 +146,9 @@ Request read_request(const CommandLine& cli) {
   q.richardson = cli.flag_set("richardson");
   if (q.richardson && cli.text("control") != "doubling") throw UsageError("--richardson goes with --control doubling");
 
-  const double r_guard = (1.0 + s.horizon_epsilon) * q.metric.horizon_radius();
+  // Kerr: the Boyer-Lindquist guard at r_+ (the start must be outside the horizon in both charts).
+  const double r_guard = (1.0 + s.horizon_epsilon) * (q.kerr ? KerrMetric{mass, q.spin}.horizon_radius()
+                                                              : q.metric.horizon_radius());
   if (cli.given("impact")) {
     if (cli.given("position") || cli.given("velocity"))
       throw UsageError("give either --impact or --position/--velocity, not both");
@@ -145,7 +177,9 @@ Request read_request(const CommandLine& cli) {
   if (!q.timelike && v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
     throw UsageError("--velocity 0,0,0 gives a null ray zero momentum (k = 0 is no direction); give a nonzero "
                      "spatial direction, e.g. -1,0,0.01");
-  const auto k = complete_time_component(q.metric, x, Vec4(0.0, v[0], v[1], v[2]), q.timelike ? 1.0 : 0.0);
+  const auto k = q.kerr ? complete_time_component(KerrMetric{mass, q.spin}, x, Vec4(0.0, v[0], v[1], v[2]),
+                                                  q.timelike ? 1.0 : 0.0)
+                         : complete_time_component(q.metric, x, Vec4(0.0, v[0], v[1], v[2]), q.timelike ? 1.0 : 0.0);
   if (!k) throw UsageError("--velocity: no real k^t makes this vector " + kind + " (spatial speed too large?)");
   Vec4 kk = *k;
   if (cli.flag_set("past-directed")) kk[0] = -kk[0];
@@ -153,9 +187,10 @@ Request read_request(const CommandLine& cli) {
   return q;
 }
 
-void write_path(const std::string& file, const std::vector<PathRow>& rows) {
+/// Writes the accepted steps as CSV; `cartesian` names the columns of a Cartesian chart (Kerr-Schild).
+void write_path(const std::string& file, const std::vector<PathRow>& rows, bool cartesian = false) {
   write_file_atomically(file, [&](std::ostream& out) {
-    out << "lambda,t,r,theta,phi,kt,kr,ktheta,kphi,h\n";
+    out << (cartesian ? "lambda,t,x,y,z,kt,kx,ky,kz,h\n" : "lambda,t,r,theta,phi,kt,kr,ktheta,kphi,h\n");
     out.precision(17);
     for (const auto& row : rows) {
       out << row.lambda;
@@ -213,6 +248,122 @@ JsonObject run(const Request& q, const std::string& path_file) {
   return json;
 }
 
+// ---- Kerr ---------------------------------------------------------------------------------------------------
+
+/// The Boyer-Lindquist state of an equatorial photon at radius r moving inward with E = 1 and L_z = b (future-
+/// directed): p_t = 1, p_phi = -b, k = g^{-1} p, k^r < 0 from g(k, k) = 0.
+GeodesicState kerr_equatorial_photon(const KerrMetric& m, double r, double b) {
+  const Vec4 x(0.0, r, std::numbers::pi / 2.0, 0.0);
+  const Mat4 gi = m.inverse_metric(x), g = m.metric(x);
+  Vec4 k = gi * Vec4(1.0, 0.0, 0.0, -b);
+  k[1] = 0.0;
+  const double rest = k.dot(g * k);  // g(k, k) without the radial part
+  k[1] = -std::sqrt(std::max(0.0, -rest / g(1, 1)));
+  return make_state(x, k);
+}
+
+/// The chart's state for a Boyer-Lindquist one (Kerr-Schild: the slicing the ray's time direction crosses).
+template <class Metric>
+GeodesicState to_chart(const Metric& m, const GeodesicState& y_bl) {
+  if constexpr (std::is_same_v<Metric, KerrSchildMetric>) return bl_to_ks(m, y_bl);
+  else return y_bl;
+}
+
+/// Boyer-Lindquist phi of a state (KS: from its Cartesian position; valid outside r_+).
+template <class Metric>
+double bl_phi(const Metric& m, const GeodesicState& y) {
+  if constexpr (std::is_same_v<Metric, KerrSchildMetric>) return ks_to_bl_position(m, y.head<4>())[3];
+  else return y[3];
+}
+
+/// Traces the request in Kerr (Boyer-Lindquist or Kerr-Schild `metric`) and returns the JSON of the contract plus
+/// E, L_z, Q at the start and their drifts. Assumes q.kerr, the request checked, q.initial in BL coordinates.
+template <ExplicitTableau T, StepController C, class Metric>
+JsonObject run_kerr(const Request& q, const Metric& metric, const std::string& path_file) {
+  C controller{};
+  if constexpr (std::is_same_v<C, StepDoubling>) controller.richardson = q.richardson;
+  const KerrMetric bl{q.metric.mass, q.spin};
+  TraceSettings settings = q.settings;
+  GeodesicState start_bl = q.initial;
+  double start_radius = 0.0;
+  if (q.impact_run) {
+    // Start at half the escape radius (default 500 M), end on the escape sphere; the legs beyond are added exactly.
+    start_radius = 0.5 * settings.escape_radius;
+    start_bl = kerr_equatorial_photon(bl, start_radius, q.impact);
+  }
+  const GeodesicState start = to_chart(metric, start_bl);
+  const GeodesicTracer<Metric, T, C> tracer(metric, settings, controller);
+  std::vector<PathRow> rows;
+  const PathRecorder recorder{&rows};
+  const auto t0 = std::chrono::steady_clock::now();
+  const TraceResult r = tracer.trace_observed(start, recorder);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!path_file.empty()) write_path(path_file, rows, std::is_same_v<Metric, KerrSchildMetric>);
+
+  JsonObject json;
+  json.add("status", to_string(r.status));
+  if (q.impact_run && r.status == RayStatus::escaped) {
+    // Angle swept in phi (unwrapped step by step: the KS chart gives phi modulo 2 pi), plus the exact legs from
+    // infinity to the start radius and from the escape sphere to infinity.
+    double swept = 0.0, last = bl_phi(metric, rows.front().y);
+    for (const PathRow& row : rows) {
+      const double now = bl_phi(metric, row.y);
+      swept += std::remainder(now - last, 2.0 * std::numbers::pi);
+      last = now;
+    }
+    const double legs = exact::equatorial_phi_from_infinity(q.impact, 1.0 / start_radius, q.spin, q.metric.mass) +
+                        exact::equatorial_phi_from_infinity(q.impact, 1.0 / metric.radius(r.final_state.head<4>()),
+                                                            q.spin, q.metric.mass);
+    const double deflection = std::abs(swept + legs) - std::numbers::pi;
+    const double exact_value = exact::equatorial_deflection(q.impact, q.spin, q.metric.mass, 256);
+    json.add("deflection", deflection).add("deflection_exact", exact_value);
+    json.add("deflection_error", deflection - exact_value);
+  } else {
+    json.add_null("deflection");
+  }
+  json.add("steps", r.accepted).add("rejected", r.rejected).add("rhs_evals", r.rhs_evals);
+  json.add("constraint_drift", r.constraint_drift);
+  const double e0 = metric.energy(start), l0 = metric.angular_momentum(start);
+  const double q0 = metric.carter_constant(start);
+  const GeodesicState& y = r.final_state;
+  json.add("energy_drift", metric.energy(y) / e0 - 1.0);
+  json.add("angular_momentum_drift", l0 != 0.0 ? metric.angular_momentum(y) / l0 - 1.0 : metric.angular_momentum(y));
+  json.add("energy", e0).add("angular_momentum", l0).add("carter_q", q0);
+  // Q changes sign and vanishes for equatorial rays: its drift is relative to max(|Q|, (E M)^2).
+  const double q_scale = std::max(std::abs(q0), e0 * e0 * q.metric.mass * q.metric.mass);
+  if (std::is_same_v<Metric, KerrSchildMetric> && !(metric.radius(y.head<4>()) > bl.outer_horizon())) {
+    json.add_null("carter_drift");  // Q is computed through Boyer-Lindquist coordinates: not inside r_+
+  } else {
+    json.add("carter_drift", (metric.carter_constant(y) - q0) / q_scale);
+  }
+  JsonObject fin;
+  fin.add("lambda", r.lambda).add("t", y[0]);
+  if constexpr (std::is_same_v<Metric, KerrSchildMetric>) {
+    fin.add("x", y[1]).add("y", y[2]).add("z", y[3]).add("r", metric.radius(y.head<4>()));
+    fin.add("kt", y[4]).add("kx", y[5]).add("ky", y[6]).add("kz", y[7]);
+  } else {
+    fin.add("r", y[1]).add("theta", y[2]).add("phi", y[3]);
+    fin.add("kt", y[4]).add("kr", y[5]).add("ktheta", y[6]).add("kphi", y[7]);
+  }
+  json.add("final", fin);
+  json.add("metric", "kerr").add("spin", q.spin).add("chart", q.chart);
+  json.add("tableau", T::name).add("control", C::name);
+  json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
+  json.add("seconds", seconds);
+  return json;
+}
+
+/// run_kerr in the requested chart (KS: the slicing whose horizon the ray's time direction crosses).
+template <ExplicitTableau T, StepController C>
+JsonObject run_kerr_chart(const Request& q, const std::string& path_file) {
+  if (q.chart == "ks") {
+    KerrSchildMetric ks = KerrSchildMetric::checked(q.metric.mass, q.spin);
+    ks.slicing = slicing_crossed_by(q.impact_run ? 1.0 : q.initial[4]);
+    return run_kerr<T, C>(q, ks, path_file);
+  }
+  return run_kerr<T, C>(q, KerrMetric::checked(q.metric.mass, q.spin), path_file);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -223,7 +374,9 @@ int main(int argc, char** argv) {
     if (cli.given("path")) tools::check_output_option("path", path_file);  // --path "" is refused
     JsonObject json;
     const auto error = dispatch_method(cli.text("tableau"), cli.text("control"),
-                                       [&]<class T, class C>() { json = run<T, C>(q, path_file); });
+                                       [&]<class T, class C>() {
+                                         json = q.kerr ? run_kerr_chart<T, C>(q, path_file) : run<T, C>(q, path_file);
+                                       });
     if (error != DispatchError::none) throw UsageError(describe(error, cli.text("tableau"), cli.text("control")));
     std::cout << json.str() << std::endl;
     return 0;

@@ -8,6 +8,7 @@
 #include "json_writer.hpp"
 #include "render_request.hpp"
 
+#include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/frame.hpp"
@@ -55,7 +56,7 @@ CommandLine make_command_line() {
       .option("camera-theta", "90", "camera polar angle, degrees, strictly between 0 and 180")
       .option("camera-phi", "0", "camera azimuth, degrees")
       .option("observer", "static", "static | zamo: the observer whose frame carries the camera (same for a "
-                                    "non-rotating hole)")
+                                    "non-rotating hole); --metric kerr defaults to zamo (valid in the ergosphere)")
       .option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)")
       .option("look", "-1,0,0", "look direction r,theta,phi in the observer's frame (default: at the hole)")
       .option("up", "0,-1,0", "up direction r,theta,phi in the observer's frame (default: the north pole)")
@@ -75,7 +76,8 @@ CommandLine make_command_line() {
       .option("table-rays", "1024", "symmetric tracer: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
       .option("checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)")
-      .option("disk-inner", "6", "disk inner radius (disk scene)")
+      .option("disk-inner", "6", "disk inner radius (disk scene); kerr: default and lower bound the ISCO of the "
+                                 "disk's sense (BPT 1972), e.g. 2.32 for a = 0.9 prograde")
       .option("disk-outer", "20", "disk outer radius (disk scene)")
       .option("threads", "0", "OpenMP threads (0 = all cores)")
       .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
@@ -83,6 +85,8 @@ CommandLine make_command_line() {
             "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
             "elliptic-integral direction from the camera (Schwarzschild/flat only); write <out>-error.png "
             "(heat map, log scale 1e-12 .. 1e-2 rad) and report max_error/median_error in the JSON")
+      .flag("disk-retrograde", "disk scene: the gas turns against the hole's rotation (default: with it; "
+                               "towards +phi for a non-rotating hole)")
       .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
   return cli;
 }
@@ -102,6 +106,36 @@ std::vector<std::string> output_paths(const std::string& exr, bool status_map, b
 Vec3 triple(const CommandLine& cli, const std::string& name) {
   const auto v = cli.numbers(name, 3);
   return Vec3(v[0], v[1], v[2]);
+}
+
+/// The observer carrying the camera: --observer as given, else the ZAMO for Kerr (it exists everywhere outside the
+/// horizon, the static observer not inside the ergosphere) and the static observer for the other metrics.
+std::string observer_name(const CommandLine& cli, const MetricSpec& ms) {
+  if (cli.given("observer")) return cli.text("observer");
+  return ms.name == "kerr" ? "zamo" : "static";
+}
+
+/// The disk's sense of rotation (--disk-retrograde) and, for Kerr, its inner edge: the ISCO of that sense when
+/// --disk-inner is not given, and a refusal (UsageError naming the ISCO) when it is given inside the ISCO, where no
+/// stable circular orbit exists. Takes the checked metric spec; sets disk.sense (+1: towards +phi) and disk.r_in.
+/// Prograde follows the sign of the spin (towards +phi for a = 0).
+void set_disk_sense_and_isco(const CommandLine& cli, const MetricSpec& ms, ThinDisk& disk) {
+  const bool retrograde = cli.flag_set("disk-retrograde");
+  const int hole = ms.name == "kerr" && ms.spin < 0.0 ? -1 : +1;
+  disk.sense = retrograde ? -hole : hole;
+  if (ms.name != "kerr") return;  // Schwarzschild and the others keep --disk-inner as given (default 6)
+  const exact::Orbit orbit = retrograde ? exact::Orbit::retrograde : exact::Orbit::prograde;
+  const double isco = exact::isco_radius(ms.spin, orbit, ms.mass);
+  if (!cli.given("disk-inner")) {
+    disk.r_in = isco;
+  } else if (!(disk.r_in >= isco * (1.0 - 1e-12))) {  // the printed ISCO itself is accepted
+    std::ostringstream msg;
+    msg.precision(10);
+    msg << "--disk-inner " << cli.text("disk-inner") << " is inside the ISCO r_isco = " << isco << " M of this "
+        << (retrograde ? "retrograde" : "prograde") << " disk (a = " << ms.spin
+        << "): no stable circular orbit exists there; raise --disk-inner to at least the ISCO or leave it out";
+    throw UsageError(msg.str());
+  }
 }
 
 Request read_request(const CommandLine& cli) {
@@ -204,7 +238,7 @@ Request read_request(const CommandLine& cli) {
   CameraSpec spec;
   spec.position = Vec4(0.0, r, theta * std::numbers::pi / 180.0, phi * std::numbers::pi / 180.0);
   spec.spherical_position = true;  // Boyer-Lindquist (t, r, theta, phi) and (r, theta, phi) axes in every chart
-  const auto observer = observer_kind_from_string(cli.text("observer"));
+  const auto observer = observer_kind_from_string(observer_name(cli, ms));
   if (!observer) throw UsageError("unknown --observer '" + cli.text("observer") + "'; choose static or zamo");
   spec.observer = *observer;
   spec.velocity = triple(cli, "velocity");
@@ -247,6 +281,7 @@ Request read_request(const CommandLine& cli) {
   }
   q.scene.disk.r_in = cli.number("disk-inner");
   q.scene.disk.r_out = cli.number("disk-outer");
+  if (disk) set_disk_sense_and_isco(cli, ms, q.scene.disk);
   if (disk) {
     try {
       with_named_metric(ms, [&](const auto& m) {
@@ -407,7 +442,12 @@ int main(int argc, char** argv) {
     if (q.metric.name == "rn") image.metadata["charge"] = num(q.metric.charge);
     if (q.metric.name == "sds") image.metadata["lambda"] = num(q.metric.lambda);
     if (q.metric.name == "wormhole") image.metadata["throat"] = num(q.metric.throat);
-    image.metadata["observer"] = cli.text("observer");
+    image.metadata["observer"] = observer_name(cli, q.metric);
+    if (q.scene.name == "disk") {
+      image.metadata["disk_sense"] = cli.flag_set("disk-retrograde") ? "retrograde" : "prograde";
+      image.metadata["disk_inner"] = num(q.scene.disk.r_in);
+      image.metadata["disk_outer"] = num(q.scene.disk.r_out);
+    }
     image.metadata["tracer"] = q.tracer;
     image.metadata["tableau"] = q.tableau;
     image.metadata["control"] = q.control;

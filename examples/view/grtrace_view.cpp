@@ -16,6 +16,8 @@
 #include "json_writer.hpp"
 #include "view_request.hpp"
 
+#include "grtrace/exact/kerr_exact.hpp"
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/camera_spec.hpp"
@@ -74,6 +76,9 @@ CommandLine make_command_line() {
       // scene (as grtrace-render)
       .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)")
       .option("mass", "1", "black-hole mass M (G = c = 1)")
+      .option("metric", "schwarzschild", "schwarzschild | kerr (Boyer-Lindquist; the camera is carried by the ZAMO; "
+                                         "draws the outer horizon, the ergosphere and the prograde ISCO)")
+      .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)")
       .option("camera-r", "35", "camera radius r (Schwarzschild coordinates, units of M)")
       .option("camera-theta", "84", "camera polar angle theta in degrees (90 = equatorial plane)")
       .option("camera-phi", "0", "camera azimuth phi in degrees")
@@ -212,9 +217,12 @@ Vec3 triple(const Params& p, const std::string& name) {
 
 /// The camera of grtrace-render's options: event (r, theta, phi in degrees), static-frame velocity, look, up.
 /// width/height < 0: from --width/--height.
-Camera camera_from_options(const Params& p, double mass, double sky_radius, int width, int height) {
+/// Kerr (kerr = true, spin a): the camera is placed in Boyer-Lindquist coordinates and carried by the ZAMO.
+Camera camera_from_options(const Params& p, double mass, double sky_radius, int width, int height, bool kerr = false,
+                           double spin = 0.0) {
   const double r = p.number("camera-r"), theta = p.number("camera-theta"), phi = p.number("camera-phi");
-  const double guard = 2.0 * mass * (1.0 + TraceSettings{}.horizon_epsilon);
+  const double r_h = kerr ? KerrMetric{mass, spin}.outer_horizon() : 2.0 * mass;
+  const double guard = r_h * (1.0 + TraceSettings{}.horizon_epsilon);
   if (!(r > guard))
     throw UsageError("--camera-r " + p.text("camera-r") + " is at or inside the horizon (guard r = " +
                      tools::JsonObject::number(guard) + "); move the camera out");
@@ -238,6 +246,10 @@ Camera camera_from_options(const Params& p, double mass, double sky_radius, int 
   spec.height = height;
   spec.fov_degrees = fov;
   try {
+    if (kerr) {
+      spec.observer = ObserverKind::zamo;  // exists everywhere outside the horizon, unlike the static observer
+      return make_camera(KerrMetric{mass, spin}, spec);
+    }
     return make_camera(SchwarzschildMetric{mass}, spec);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
@@ -327,14 +339,34 @@ Request read_request(const CommandLine& cli) {
                        " (render the frame with grtrace-render)");
   }
   const Params p(cli, q.frame ? &q.frame->metadata : nullptr);
-  if (q.frame && q.frame->metadata.count("metric") && q.frame->metadata.at("metric") != "schwarzschild")
+  if (q.frame && q.frame->metadata.count("metric") && q.frame->metadata.at("metric") != "schwarzschild" &&
+      !(q.frame->metadata.at("metric") == "kerr" && q.frame->metadata.count("chart") &&
+        q.frame->metadata.at("chart") == "bl"))
     throw UsageError("--frame: the frame was rendered with --metric " + q.frame->metadata.at("metric") +
-                     "; the viewer draws Schwarzschild scenes only");
+                     "; the viewer draws Schwarzschild and Kerr (--chart bl) scenes only");
 
   q.scene = p.text("scene");
   if (!is_standard_scene(q.scene))
     throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");
   q.mass = positive(p, "mass");
+  const std::string metric = p.text("metric");
+  if (metric != "schwarzschild" && metric != "kerr")
+    throw UsageError("--metric must be schwarzschild or kerr, got '" + metric + "'");
+  q.kerr = metric == "kerr";
+  if (q.kerr) {
+    q.spin = p.number("spin");
+    try {
+      (void)KerrMetric::checked(q.mass, q.spin);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--spin: ") + e.what());
+    }
+    // The frame's disk turned as grtrace-render was told (--disk-retrograde); prograde follows the spin's sign.
+    const bool retro = q.frame && q.frame->metadata.count("disk_sense") &&
+                       q.frame->metadata.at("disk_sense") == "retrograde";
+    const int hole = q.spin < 0.0 ? -1 : 1;
+    q.disk_sense = retro ? -hole : hole;
+    if (!q.chart.empty()) throw UsageError("--chart draws Schwarzschild orbits; not with --metric kerr");
+  }
   q.sky_radius = positive(p, "sky-radius");
   if (q.frame && q.frame->metadata.count("camera_position")) {
     for (const char* o : {"camera-r", "camera-theta", "camera-phi", "velocity", "look", "up", "fov", "width", "height"})
@@ -345,15 +377,22 @@ Request read_request(const CommandLine& cli) {
     q.fov = p.number("fov");
   } else {
     q.camera = camera_from_options(p, q.mass, q.sky_radius, q.frame ? q.frame->width() : -1,
-                                   q.frame ? q.frame->height() : -1);
+                                   q.frame ? q.frame->height() : -1, q.kerr, q.spin);
     q.fov = p.number("fov");
   }
   q.width = q.camera->width();
   q.height = q.camera->height();
   q.disk = {p.number("disk-inner"), p.number("disk-outer")};
+  if (q.kerr && !cli.given("disk-inner")) {  // Kerr: the frame's inner edge, else the ISCO of the disk's sense
+    const bool pro = q.disk_sense == (q.spin < 0.0 ? -1 : 1);
+    q.disk[0] = q.frame && q.frame->metadata.count("disk_inner")
+                    ? std::stod(q.frame->metadata.at("disk_inner"))
+                    : exact::isco_radius(q.spin, pro ? exact::Orbit::prograde : exact::Orbit::retrograde, q.mass);
+  }
   if (q.scene == "disk") {
     try {
-      check_disk_orbits(SchwarzschildMetric{q.mass}, make_scene_spec(q).disk);
+      if (q.kerr) check_disk_orbits(KerrMetric{q.mass, q.spin}, make_scene_spec(q).disk);
+      else check_disk_orbits(SchwarzschildMetric{q.mass}, make_scene_spec(q).disk);
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer: need 3M < inner < outer)");
     }
@@ -391,6 +430,8 @@ Request read_request(const CommandLine& cli) {
     q.bundle_size = parse_size("bundle-size", bs);
     if (q.bundle_size[0] * q.bundle_size[1] > 10000) throw UsageError("--bundle-size: at most 10000 rays");
   }
+  if (q.kerr && q.bundle == "beam")
+    throw UsageError("--bundle beam starts Schwarzschild photons from afar; with --metric kerr use grid, row or column");
   q.beam_width = cli.given("beam-width") ? positive(p, "beam-width") : 9.0 * std::sqrt(3.0) * q.mass;
   if (q.bundle == "beam" && !(view::beam_start_radius(q) < q.sky_radius))
     throw UsageError("--bundle beam starts at r = " + tools::JsonObject::number(view::beam_start_radius(q)) +
@@ -406,6 +447,7 @@ Request read_request(const CommandLine& cli) {
     throw UsageError("--color-by redshift needs camera rays (a beam has no observer); use --bundle grid, row or column");
 
   q.show_orbit = cli.flag_set("orbit");
+  if (q.kerr && q.show_orbit) throw UsageError("--orbit traces a Schwarzschild orbit; not with --metric kerr");
   q.orbit.mass = q.mass;
   q.orbit.r0 = cli.number("orbit-r");
   q.orbit.dphi_dtau = cli.number("orbit-dphi");
@@ -499,7 +541,15 @@ int run_view(const Request& q) {
   layout.checker_a = encode(paint.dark);  // parity 0 (see checker_parity)
   layout.checker_b = encode(paint.light);
   const SchwarzschildMetric metric{q.mass};
-  layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
+  if (q.kerr) {
+    layout.spin = q.spin;
+    const bool pro = q.disk_sense == (q.spin < 0.0 ? -1 : 1);
+    layout.isco_radius = exact::isco_radius(q.spin, pro ? exact::Orbit::prograde : exact::Orbit::retrograde, q.mass);
+    layout.camera = viz::make_camera_glyph(KerrMetric{q.mass, q.spin}, camera.position(), camera.tetrad().e, q.fov,
+                                           q.width, q.height);
+  } else {
+    layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
+  }
   viz::SceneView scene(layout);
 
   const auto pixels = bundle_pixels(q);

@@ -1,6 +1,7 @@
 // grtrace-view: the frame rendered in-process (see view_request.hpp).
 #include "view_request.hpp"
 
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
@@ -20,12 +21,19 @@ Image render_frame(const Request& q) {
   std::optional<Frame> frame;
   dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
     with_standard_scene(make_scene_spec(q), [&]<class Scene>(Scene scene) {
-      if constexpr (Scene::object_count == 0)
+      if (q.kerr)  // Kerr: the general tracer for every scene (no table: the sky is not spherically symmetric)
         frame.emplace(grtrace::render_frame(
-            camera, SymmetricSceneTracer<T, C, Scene>(metric, q.rays.settings, camera, q.correction, scene), options));
-      else
-        frame.emplace(grtrace::render_frame(
-            camera, make_general_tracer<T, C>(metric, q.rays.settings, q.correction, scene), options));
+            camera, make_general_tracer<T, C>(KerrMetric{q.mass, q.spin}, q.rays.settings, q.correction, scene),
+            options));
+      else {
+        if constexpr (Scene::object_count == 0)
+          frame.emplace(grtrace::render_frame(
+              camera, SymmetricSceneTracer<T, C, Scene>(metric, q.rays.settings, camera, q.correction, scene),
+              options));
+        else
+          frame.emplace(grtrace::render_frame(
+              camera, make_general_tracer<T, C>(metric, q.rays.settings, q.correction, scene), options));
+      }
     });
   });
   return std::move(frame->image);

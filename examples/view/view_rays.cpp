@@ -1,6 +1,7 @@
 // grtrace-view: the bundle's rays (see view_request.hpp).
 #include "view_request.hpp"
 
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 #include "grtrace/viz/bundles.hpp"
@@ -15,9 +16,12 @@ namespace {
 template <class F>
 void with_scene_tracer(const Request& q, F&& f) {
   dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
-    const GeodesicTracer<SchwarzschildMetric, T, C> tracer(SchwarzschildMetric{q.mass}, q.rays.settings);
-    if (q.scene == "disk") f(tracer, make_scene_spec(q).disk);
-    else f(tracer);
+    auto run = [&](const auto& tracer) {
+      if (q.scene == "disk") f(tracer, make_scene_spec(q).disk);
+      else f(tracer);
+    };
+    if (q.kerr) run(GeodesicTracer<KerrMetric, T, C>(KerrMetric{q.mass, q.spin}, q.rays.settings));
+    else run(GeodesicTracer<SchwarzschildMetric, T, C>(SchwarzschildMetric{q.mass}, q.rays.settings));
   });
 }
 

@@ -37,6 +37,9 @@ struct Request {
   std::string chart;
   std::string scene = "disk";  ///< a preset of scene/standard_scenes.hpp
   double mass = 1.0;
+  bool kerr = false;   ///< --metric kerr: Kerr in Boyer-Lindquist coordinates with spin `spin`
+  double spin = 0.0;
+  int disk_sense = +1;  ///< +1: the disk turns towards +phi (scene/thin_disk.hpp)
   std::optional<Camera> camera;
   double fov = 55.0;
   int width = 0, height = 0;
@@ -69,6 +72,7 @@ inline StandardSceneSpec make_scene_spec(const Request& q) {
   s.name = q.scene;
   s.disk.r_in = q.disk[0];
   s.disk.r_out = q.disk[1];
+  s.disk.sense = q.disk_sense;
   return s;
 }
 

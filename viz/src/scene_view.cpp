@@ -42,6 +42,7 @@ std::string_view to_string(Layer layer) {
     case Layer::rays: return "rays";
     case Layer::orbit: return "orbit";
     case Layer::colorbar: return "colorbar";
+    case Layer::ergosphere: return "ergosphere";
   }
   return "";
 }
@@ -105,9 +106,12 @@ struct SceneView::Impl {
     auto line = [&](Layer l, const std::string& what) {
       if (props.count(l) && wanted[l]) text += what + "\n";
     };
-    line(Layer::horizon, layout.horizon_checkerboard ? "horizon r = 2M (renderer's checkerboard)" : "horizon r = 2M (black)");
+    const std::string rh = layout.spin != 0.0 ? "r_+" : "2M";
+    line(Layer::horizon, layout.horizon_checkerboard ? "horizon r = " + rh + " (renderer's checkerboard)"
+                                                     : "horizon r = " + rh + " (black)");
     line(Layer::photon_sphere, "photon sphere r = 3M (translucent)");
-    line(Layer::isco, "ISCO r = 6M (orange ring)");
+    line(Layer::ergosphere, "ergosphere: static limit r_E(theta) (translucent magenta)");
+    line(Layer::isco, layout.isco_radius > 0.0 ? "ISCO (orange ring)" : "ISCO r = 6M (orange ring)");
     line(Layer::disk, "disk (amber)");
     line(Layer::sky, "sky sphere (grey wireframe)");
     line(Layer::camera, "camera: frustum; axes forward red, up green, right blue");
@@ -184,21 +188,33 @@ SceneView::SceneView(const SceneLayout& layout) : impl_(std::make_unique<Impl>()
   m.layout = layout;
   if (!(layout.mass > 0.0) || !std::isfinite(layout.mass)) throw std::invalid_argument("SceneView: mass must be > 0");
   const double M = layout.mass;
+  if (!std::isfinite(layout.spin) || !(std::abs(layout.spin) < M))
+    throw std::invalid_argument("SceneView: the spin must satisfy |a| < M");
+  const bool kerr = layout.spin != 0.0;
+  // Boyer-Lindquist outer horizon r_+ = M + sqrt(M^2 - a^2) (2M without spin).
+  const double r_horizon = M + std::sqrt(M * M - layout.spin * layout.spin);
   m.renderer->SetBackground(kBackground[0] / 255.0, kBackground[1] / 255.0, kBackground[2] / 255.0);
 
   if (layout.horizon_checkerboard) {
-    m.add(Layer::horizon, make_direct_color_actor(make_checkered_sphere(2.0 * M, layout.checker_theta,
+    m.add(Layer::horizon, make_direct_color_actor(make_checkered_sphere(r_horizon, layout.checker_theta,
                                                                         layout.checker_phi, layout.checker_a,
                                                                         layout.checker_b)));
   } else {
-    auto horizon = make_actor(make_sphere(2.0 * M), {0.0, 0.0, 0.0});
+    auto horizon = make_actor(make_sphere(r_horizon), {0.0, 0.0, 0.0});
     horizon->GetProperty()->SetSpecular(0.0);
     m.add(Layer::horizon, horizon);
   }
-  auto photon = make_actor(make_sphere(3.0 * M), {0.35, 0.8, 0.95}, 0.12);
-  photon->GetProperty()->SetSpecular(0.0);
-  m.add(Layer::photon_sphere, photon);
-  m.add(Layer::isco, make_actor(tube(make_ring(6.0 * M), 0.06 * M, 10), {1.0, 0.55, 0.1}));
+  if (kerr) {  // no single photon sphere in Kerr; the static limit instead
+    auto ergo = make_actor(make_ergosphere(M, layout.spin), {0.85, 0.3, 0.85}, 0.18);
+    ergo->GetProperty()->SetSpecular(0.0);
+    m.add(Layer::ergosphere, ergo);
+  } else {
+    auto photon = make_actor(make_sphere(3.0 * M), {0.35, 0.8, 0.95}, 0.12);
+    photon->GetProperty()->SetSpecular(0.0);
+    m.add(Layer::photon_sphere, photon);
+  }
+  const double isco = layout.isco_radius > 0.0 ? layout.isco_radius : 6.0 * M;
+  m.add(Layer::isco, make_actor(tube(make_ring(isco), 0.06 * M, 10), {1.0, 0.55, 0.1}));
   if (layout.disk) {
     auto disk = make_actor(make_annulus((*layout.disk)[0], (*layout.disk)[1]), {0.95, 0.7, 0.3}, 0.35);
     disk->GetProperty()->SetSpecular(0.0);

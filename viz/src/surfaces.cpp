@@ -73,6 +73,36 @@ vtkSmartPointer<vtkPolyData> make_checkered_sphere(double radius, int n_theta, i
   return poly;
 }
 
+vtkSmartPointer<vtkPolyData> make_ergosphere(double mass, double spin, int n_theta, int n_phi) {
+  require_positive(mass, "ergosphere: mass");
+  if (!std::isfinite(spin) || !(std::abs(spin) < mass))
+    throw std::invalid_argument("ergosphere: the spin must satisfy |a| < M");
+  if (n_theta < 2 || n_phi < 3) throw std::invalid_argument("ergosphere: need n_theta >= 2 and n_phi >= 3");
+  // A latitude-longitude grid (as make_checkered_sphere) whose radius follows the static limit: the poles are single
+  // rows of coincident points, so the quads there degenerate into triangles, which VTK draws as such.
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  for (int i = 0; i <= n_theta; ++i) {
+    const double theta = kPi * i / n_theta, c = std::cos(theta);
+    const double r = mass + std::sqrt(mass * mass - spin * spin * c * c);
+    for (int j = 0; j <= n_phi; ++j) {
+      const Vec3 p = spherical(r, theta, 2.0 * kPi * (j % n_phi) / n_phi);
+      pts->InsertNextPoint(p[0], p[1], p[2]);
+    }
+  }
+  vtkNew<vtkCellArray> quads;
+  auto id = [&](int i, int j) { return static_cast<vtkIdType>(i * (n_phi + 1) + j); };
+  for (int i = 0; i < n_theta; ++i)
+    for (int j = 0; j < n_phi; ++j) {
+      const vtkIdType q[4] = {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
+      quads->InsertNextCell(4, q);
+    }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(pts);
+  poly->SetPolys(quads);
+  return poly;
+}
+
 vtkSmartPointer<vtkPolyData> make_ring(double radius, int segments) {
   require_positive(radius, "ring radius");
   vtkNew<vtkPoints> pts;

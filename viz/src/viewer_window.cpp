@@ -242,7 +242,7 @@ std::array<int, 4> ViewerWindow::scene_viewport_pixels() const {
 
 std::string ViewerWindow::key_help() {
   return "keys: 1 horizon, 2 photon sphere, 3 ISCO, 4 disk, 5 sky, 6 camera, 7 rays, 8 orbit, 9 colour bar, "
-         "m frame markers, c ray colouring, r reset view, s screenshot, h help, q quit";
+         "0 ergosphere, m frame markers, c ray colouring, r reset view, s screenshot, h help, q quit";
 }
 
 std::string ViewerWindow::handle_key(const std::string& key) {
@@ -264,6 +264,7 @@ std::string ViewerWindow::handle_key(const std::string& key) {
     case '7': return toggle(Layer::rays);
     case '8': return toggle(Layer::orbit);
     case '9': return toggle(Layer::colorbar);
+    case '0': return toggle(Layer::ergosphere);
     case 'm':
       if (!m.frame) return "no frame";
       m.frame->set_markers_visible(!m.frame->markers_visible());

@@ -71,9 +71,10 @@ Vec4 event_from_spherical(const M& metric, const Vec4& x) {
   }
 }
 
-/// The coordinate vectors d_r, d_theta, d_phi at the spherical event x, as vectors of the metric's chart.
+/// d(chart)/d(spherical) at the spherical event x: maps vectors given in (t, r, theta, phi) to the metric's chart
+/// (the identity for a spherical chart).
 template <MetricPolicy M>
-std::array<Vec4, 3> spherical_axes(const M& metric, const Vec4& x) {
+Mat4 jacobian_of_spherical(const M& metric, const Vec4& x) {
   Mat4 j = Mat4::Identity();
   if constexpr (HasSphericalMap<M>) j = metric.jacobian_from_spherical(x);
   else if constexpr (M::chart == Chart::cartesian) {
@@ -82,6 +83,13 @@ std::array<Vec4, 3> spherical_axes(const M& metric, const Vec4& x) {
     j.block<3, 1>(1, 2) = x[1] * e.theta;
     j.block<3, 1>(1, 3) = x[1] * e.sin_theta * e.phi;
   }
+  return j;
+}
+
+/// The coordinate vectors d_r, d_theta, d_phi at the spherical event x, as vectors of the metric's chart.
+template <MetricPolicy M>
+std::array<Vec4, 3> spherical_axes(const M& metric, const Vec4& x) {
+  const Mat4 j = jacobian_of_spherical(metric, x);
   return {Vec4(j.col(1)), Vec4(j.col(2)), Vec4(j.col(3))};
 }
 

@@ -7,6 +7,8 @@
 //          spherical / Boyer-Lindquist coordinates (t, r, theta, phi) for any chart; velocity, look and up as
 //          components along the observer's spatial axes, which are the chart's axes ((r, theta, phi) in a
 //          spherical chart, (x, y, z) in a Cartesian one), or (r, theta, phi) when spherical_position is set.
+//          With spherical_position the observer is also defined in the spherical chart (the static observer of its
+//          t, the ZAMO normal to its t = const slices), so the same spec gives the same camera in every chart.
 // Returns: the Camera (observer/camera.hpp), whose tetrad is built by Gram-Schmidt in the metric (tetrad.hpp).
 // Refuses, with std::invalid_argument saying what to change and before any work: a non-finite position, a
 //          camera on or inside the horizon, an observer that cannot exist there (static inside an ergosphere),
@@ -44,7 +46,8 @@ Camera make_camera(const M& metric, const CameraSpec& spec) {
     throw std::invalid_argument("camera: the position r = " + std::to_string(metric.radius(x)) +
                                 " is on or inside the horizon (r = " + std::to_string(rh) + "); move the camera out");
   const ObserverFrame frame =
-      spec.spherical_position ? observer_frame(metric, x, spec.observer, spherical_axes(metric, spec.position))
+      spec.spherical_position ? observer_frame(metric, x, spec.observer, spherical_axes(metric, spec.position),
+                                               jacobian_of_spherical(metric, spec.position))
                               : observer_frame(metric, x, spec.observer);
   const Tetrad tetrad =
       make_tetrad(metric.metric(x), frame.velocity(spec.velocity), frame.spatial(spec.look), frame.spatial(spec.up));

@@ -101,10 +101,20 @@ struct ObserverFrame {
 
 /// The frame of the chosen observer at x, its spatial axes orthonormalised from `axes` (default: the chart's basis
 /// vectors). Throws std::invalid_argument, saying what to change, where that observer does not exist.
+/// `from_defining_chart` is d(metric's chart)/d(chart that defines the observer) at x: "static" and "ZAMO" are
+/// defined by a chart's t (its Killing time and its t = const slices), and two charts of one spacetime can have
+/// different slices: the ZAMO of Kerr is the observer normal to the Boyer-Lindquist slices, while the observer normal
+/// to the Kerr-Schild slices is another one (it falls in). Pass metric/metric_traits.hpp jacobian_of_spherical for
+/// a camera placed in Boyer-Lindquist coordinates; the identity (default) defines the observer in the metric's own
+/// chart.
 template <MetricPolicy M>
 ObserverFrame observer_frame(const M& metric, const Vec4& x, ObserverKind kind,
-                             const std::array<Vec4, 3>& axes = {Vec4::Unit(1), Vec4::Unit(2), Vec4::Unit(3)}) {
+                             const std::array<Vec4, 3>& axes = {Vec4::Unit(1), Vec4::Unit(2), Vec4::Unit(3)},
+                             const Mat4& from_defining_chart = Mat4::Identity()) {
   const Mat4 g = metric.metric(x);
+  // The metric in the defining chart (the pull-back J^T g J), and its observers pushed forward with J.
+  const Mat4& J = from_defining_chart;
+  const Mat4 g_def = J.transpose() * g * J;
   if (!g.allFinite()) throw std::invalid_argument("observer: the metric is not finite at the camera's position");
   const Eigen::SelfAdjointEigenSolver<Mat4> spectrum(g, Eigen::EigenvaluesOnly);
   const Vec4 ev = spectrum.eigenvalues();  // ascending: a Lorentzian g (+,-,-,-) has three negative, one positive
@@ -112,12 +122,12 @@ ObserverFrame observer_frame(const M& metric, const Vec4& x, ObserverKind kind,
     throw std::invalid_argument("observer: the metric at the camera's position is singular or not of signature "
                                 "(+,-,-,-); move the camera or check the metric");
   if (kind == ObserverKind::static_observer) {
-    if (auto u = static_velocity(g)) return ObserverFrame(g, *u, axes);
+    if (auto u = static_velocity(g_def)) return ObserverFrame(g, J * *u, axes);
     throw std::invalid_argument(
         "observer: no static observer exists at the camera's position (g_tt <= 0: inside a horizon or an "
         "ergosphere); use the ZAMO observer (--observer zamo) or move the camera out");
   }
-  if (auto u = zamo_velocity(g)) return ObserverFrame(g, *u, axes);
+  if (auto u = zamo_velocity(g_def)) return ObserverFrame(g, J * *u, axes);
   throw std::invalid_argument(
       "observer: no zero-angular-momentum observer exists at the camera's position (g^tt <= 0: inside a "
       "horizon); move the camera out");

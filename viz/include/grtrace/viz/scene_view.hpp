@@ -5,7 +5,9 @@
 // Takes:   a SceneLayout (mass, disk, sky radius, camera glyph, horizon checkerboard), then ray and orbit polydata
 //          from paths_to_polydata (geodesic_data.hpp) and the field that colours them.
 // Gives:   renderer() to place in a render window; set_visible/toggle per layer; set_view for the 3D camera.
-// Radii are those of Schwarzschild with mass M: horizon 2M, photon sphere 3M, ISCO 6M.
+// Radii are those of Schwarzschild with mass M: horizon 2M, photon sphere 3M, ISCO 6M; with a spin a != 0 (Kerr),
+// the outer horizon r_+, the ergosphere (static limit r_E(theta), translucent magenta) and the ISCO of the layout
+// (isco_radius; there is no single photon sphere, so that layer is absent). Boyer-Lindquist embedding.
 // Background mid grey (black horizon rays and white disk rays both show). Colours: horizon black (or the
 // checkerboard), photon sphere translucent cyan, ISCO ring orange tube, disk
 // translucent amber, sky sphere grey wireframe, camera frustum white, tetrad axes forward red / up green /
@@ -29,16 +31,19 @@ class vtkPolyData;
 
 namespace grtrace::viz {
 
-enum class Layer { horizon, photon_sphere, isco, disk, sky, camera, rays, orbit, colorbar };
-inline constexpr std::array<Layer, 9> kAllLayers = {Layer::horizon, Layer::photon_sphere, Layer::isco,
-                                                    Layer::disk,    Layer::sky,           Layer::camera,
-                                                    Layer::rays,    Layer::orbit,         Layer::colorbar};
-/// "horizon", "photon-sphere", "isco", "disk", "sky", "camera", "rays", "orbit", "colorbar".
+enum class Layer { horizon, photon_sphere, isco, disk, sky, camera, rays, orbit, colorbar, ergosphere };
+inline constexpr std::array<Layer, 10> kAllLayers = {Layer::horizon, Layer::photon_sphere, Layer::isco,
+                                                     Layer::disk,    Layer::sky,           Layer::camera,
+                                                     Layer::rays,    Layer::orbit,         Layer::colorbar,
+                                                     Layer::ergosphere};
+/// "horizon", "photon-sphere", "isco", "disk", "sky", "camera", "rays", "orbit", "colorbar", "ergosphere".
 std::string_view to_string(Layer layer);
 std::optional<Layer> layer_from_string(std::string_view name);
 
 struct SceneLayout {
   double mass = 1.0;
+  double spin = 0.0;           ///< Kerr a, |a| < M; 0: Schwarzschild (no ergosphere layer)
+  double isco_radius = 0.0;    ///< radius of the ISCO ring; <= 0: 6M (Schwarzschild)
   bool horizon_checkerboard = false;
   int checker_theta = 8, checker_phi = 16;  ///< squares in theta in [0, pi] and phi in [0, 2 pi]
   Rgb8 checker_a{200, 30, 30}, checker_b{20, 20, 20};

@@ -3,6 +3,9 @@
 // (x, y, z) = (r sin th cos ph, r sin th sin ph, r cos th), so the equatorial plane theta = pi/2 is z = 0.
 //
 //   make_sphere             triangulated sphere (horizon r = 2M, photon sphere r = 3M)
+//   make_ergosphere         Kerr's static limit r_E(theta) = M + sqrt(M^2 - a^2 cos^2 theta) as a closed
+//                           latitude-longitude surface (oblate: 2M on the equator, r_+ at the poles), its points in
+//                           the Boyer-Lindquist embedding above (KerrMetric::to_cartesian)
 //   make_checkered_sphere   sphere whose cells carry "checker_color" (uint8 x 3): the theta-phi checkerboard,
 //                           n_theta bands in theta in [0, pi] and n_phi sectors in phi in [0, 2 pi]; the cell with
 //                           floor(theta / (pi/n_theta)) + floor(phi / (2 pi/n_phi)) even gets colour a
@@ -25,6 +28,8 @@ namespace grtrace::viz {
 vtkSmartPointer<vtkPolyData> make_sphere(double radius, int resolution = 96);
 vtkSmartPointer<vtkPolyData> make_checkered_sphere(double radius, int n_theta, int n_phi, Rgb8 a, Rgb8 b,
                                                    int cells_per_square = 6);
+/// Takes M > 0 and |a| < M (throws std::invalid_argument otherwise); n_theta bands in [0, pi], n_phi sectors.
+vtkSmartPointer<vtkPolyData> make_ergosphere(double mass, double spin, int n_theta = 48, int n_phi = 96);
 vtkSmartPointer<vtkPolyData> make_ring(double radius, int segments = 256);
 vtkSmartPointer<vtkPolyData> make_annulus(double r_inner, double r_outer, int segments = 192);
 vtkSmartPointer<vtkPolyData> make_lat_long_sphere(double radius, int parallels = 11, int meridians = 24,

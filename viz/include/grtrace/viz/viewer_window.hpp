@@ -3,7 +3,7 @@
 // offscreen capture to PNG, and the interactive loop with key bindings.
 //
 // Keys (interactive): 1 horizon, 2 photon sphere, 3 ISCO, 4 disk, 5 sky, 6 camera, 7 rays, 8 orbit, 9 colour bar,
-// m frame markers, c cycle the ray colouring, r reset the 3D view, s save a screenshot
+// 0 ergosphere, m frame markers, c cycle the ray colouring, r reset the 3D view, s save a screenshot
 // (<prefix>-NNN.png in the working directory), h print the key list, q / Escape quit.
 // Mouse: trackball camera in the 3D view (left rotate, middle pan, right / wheel zoom).
 //

@@ -1,0 +1,178 @@
+// grtrace-render --metric kerr as a program (issue 12): bad Kerr input is refused before any ray is traced (exit
+// code 2, a message on stderr that says what to change, nothing on stdout, no file left behind); the disk defaults
+// to the ISCO of its sense and the EXR header records spin, chart, observer and the disk's sense and radii.
+//
+// The binary: GRTRACE_RENDER_BINARY if CMake defines it for this target (tests/render/CMakeLists.txt), else
+// <build>/examples/render/grtrace-render next to this test's <build>/tests/render/.
+#include "grtrace/exact/kerr_exact.hpp"
+#include "grtrace/render/exr_io.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path render_binary() {
+#ifdef GRTRACE_RENDER_BINARY
+  return fs::path(GRTRACE_RENDER_BINARY);
+#else
+  const fs::path self = fs::read_symlink("/proc/self/exe");
+  return self.parent_path().parent_path().parent_path() / "examples" / "render" / "grtrace-render";
+#endif
+}
+
+/// s quoted for /bin/sh.
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct ToolRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+class KerrCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    binary_ = render_binary();
+    ASSERT_TRUE(fs::exists(binary_)) << "grtrace-render not found at " << binary_
+                                     << "; build the grtrace-render target first";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    base_ = fs::temp_directory_path() / ("grtrace_kerr_cli_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(base_);
+    fs::create_directories(base_ / "out");
+    fs::create_directories(base_ / "log");
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(base_, ec);
+  }
+
+  /// Runs the tool with args (stdout captured, stderr to a file); returns exit code, stdout and stderr.
+  ToolRun run(const std::vector<std::string>& args) const {
+    std::string cmd = quoted(binary_.string());
+    for (const auto& a : args) cmd += " " + quoted(a);
+    const fs::path err = base_ / "log" / "stderr.txt";
+    cmd += " 2>" + quoted(err.string());
+    ToolRun r;
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
+    const int status = ::pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(err);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    r.err = ss.str();
+    return r;
+  }
+
+  bool out_empty() const { return fs::is_empty(base_ / "out"); }
+  fs::path out(const std::string& name) const { return base_ / "out" / name; }
+
+  fs::path binary_, base_;
+};
+
+/// A small, fast Kerr frame: args plus the size, loose tolerances and the output path.
+std::vector<std::string> kerr(std::vector<std::string> args, const std::string& out) {
+  for (const char* a : {"--metric", "kerr", "--width", "20", "--height", "12", "--rtol", "1e-7", "--atol", "1e-9"})
+    args.emplace_back(a);
+  args.emplace_back("--out");
+  args.push_back(out);
+  return args;
+}
+
+struct BadCase {
+  std::vector<std::string> args;
+  std::string says;  ///< a piece of the message that tells what is wrong
+};
+
+TEST_F(KerrCli, RefusesBadKerrInputBeforeTracingAndLeavesNoFile) {
+  const std::string target = out("frame.exr").string();
+  const std::vector<BadCase> bad = {
+      {{"--spin", "1"}, "|a| < M"},                 // extremal: no horizon to speak of
+      {{"--spin", "-1.2"}, "|a| < M"},              // naked singularity
+      {{"--spin", "2", "--mass", "2"}, "|a| < M"},  // |a| = M with M = 2
+      {{"--spin", "nan"}, "--spin"},                //
+      {{"--spin", "0.9", "--camera-r", "1.8", "--camera-theta", "90", "--observer", "static"}, "ergosphere"},
+      {{"--spin", "0.9", "--camera-r", "1.8", "--camera-theta", "90", "--observer", "static", "--chart", "ks"},
+       "ergosphere"},
+      {{"--spin", "0.9", "--camera-r", "1.2"}, "horizon"},  // r_+ = 1.436
+      {{"--spin", "0.9", "--camera-r", "1.2", "--chart", "ks"}, "horizon"},
+      {{"--spin", "0.9", "--scene", "disk", "--disk-inner", "2"}, "ISCO"},  // prograde ISCO 2.32
+      {{"--spin", "0.9", "--scene", "disk", "--disk-inner", "6", "--disk-retrograde"}, "ISCO"},  // retro 8.72
+      {{"--spin", "-0.9", "--scene", "disk", "--disk-inner", "2.3"}, "ISCO"},  // prograde follows the spin's sign
+      {{"--spin", "0.9", "--scene", "disk", "--chart", "ks"}, "spherical chart"},
+  };
+  for (const auto& c : bad) {
+    const ToolRun r = run(kerr(c.args, target));
+    std::string shown;
+    for (const auto& a : c.args) shown += a + " ";
+    EXPECT_EQ(r.exit_code, 2) << shown << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << shown << "\n" << r.out;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << shown << ": message should say '" << c.says << "':\n" << r.err;
+    EXPECT_TRUE(out_empty()) << shown;
+  }
+  // The ISCO refusal names the value to use.
+  const ToolRun r = run(kerr({"--spin", "0.9", "--scene", "disk", "--disk-inner", "2"}, target));
+  EXPECT_NE(r.err.find("2.3208"), std::string::npos) << r.err;
+}
+
+TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
+  struct Case {
+    std::vector<std::string> args;
+    double spin;
+    grtrace::exact::Orbit orbit;
+    std::string sense, observer, chart;
+  };
+  using grtrace::exact::Orbit;
+  const std::vector<Case> cases = {
+      {{"--spin", "0.9"}, 0.9, Orbit::prograde, "prograde", "zamo", "bl"},
+      {{"--spin", "0.9", "--disk-retrograde", "--observer", "static"}, 0.9, Orbit::retrograde, "retrograde", "static",
+       "bl"},
+      {{"--spin", "-0.5"}, -0.5, Orbit::prograde, "prograde", "zamo", "bl"},
+  };
+  for (const auto& c : cases) {
+    const std::string path = out("disk.exr").string();
+    std::vector<std::string> args = c.args;
+    for (const char* a : {"--scene", "disk", "--camera-r", "40", "--camera-theta", "80", "--fov", "50"})
+      args.emplace_back(a);
+    const ToolRun r = run(kerr(args, path));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const grtrace::Image img = grtrace::read_exr(path);
+    const auto& md = img.metadata;
+    EXPECT_DOUBLE_EQ(std::stod(md.at("spin")), c.spin);
+    EXPECT_EQ(md.at("chart"), c.chart);
+    EXPECT_EQ(md.at("observer"), c.observer);
+    EXPECT_EQ(md.at("disk_sense"), c.sense);
+    EXPECT_NEAR(std::stod(md.at("disk_inner")), grtrace::exact::isco_radius(c.spin, c.orbit), 1e-12);
+    // The disk is in the picture.
+    long hits = 0;
+    for (float o : img.channel("object")) hits += o == 2.0f;
+    EXPECT_GT(hits, 5);
+    fs::remove(path);
+    fs::remove(out("disk.png"));
+  }
+  // Schwarzschild keeps its default inner edge 6 M.
+  const std::string path = out("schw.exr").string();
+  const ToolRun r = run({"--scene", "disk", "--width", "8", "--height", "8", "--rtol", "1e-7", "--atol", "1e-9",
+                         "--camera-r", "40", "--out", path});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(grtrace::read_exr(path).metadata.at("disk_inner"), "6");
+}
+
+}  // namespace

@@ -1,0 +1,76 @@
+// grtrace::viz for Kerr (issue 12): the ergosphere surface lies on the static limit r_E(theta) =
+// M + sqrt(M^2 - a^2 cos^2 theta) of KerrMetric (where g_tt = 0), and the scene view of a spinning hole has the
+// ergosphere layer, the horizon at r_+ and no photon sphere. Data only (no pixels): runs with or without a display.
+#include "grtrace/exact/kerr_exact.hpp"
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/viz/scene_view.hpp"
+#include "grtrace/viz/surfaces.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vtkActor.h>
+#include <vtkBoundingBox.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace {
+
+using namespace grtrace;
+using namespace grtrace::viz;
+
+TEST(VizKerr, ErgospherePointsLieOnTheStaticLimit) {
+  for (double spin : {0.3, 0.9, -0.998}) {
+    const double mass = 1.5;
+    const KerrMetric m = KerrMetric::checked(mass, spin * mass);
+    const auto poly = make_ergosphere(mass, spin * mass, 24, 32);
+    ASSERT_EQ(poly->GetNumberOfPoints(), 25 * 33);
+    EXPECT_EQ(poly->GetNumberOfPolys(), 24 * 32);
+    double worst_radius = 0.0, worst_gtt = 0.0;
+    for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
+      double p[3];
+      poly->GetPoint(i, p);
+      const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+      const double theta = std::acos(std::clamp(p[2] / r, -1.0, 1.0));
+      // Against the metric's own static limit, and against g_tt = 0 there (the definition).
+      worst_radius = std::max(worst_radius, std::abs(r - m.ergosphere_radius(theta)));
+      worst_gtt = std::max(worst_gtt, std::abs(m.metric(Vec4(0.0, r, theta, 0.3))(0, 0)));
+    }
+    EXPECT_LT(worst_radius, 1e-12 * mass) << spin;
+    EXPECT_LT(worst_gtt, 1e-12) << spin;
+    // Oblate: 2M across the equator, r_+ at the poles (the first and last rows of the grid).
+    double bounds[6], pole[3];
+    poly->GetBounds(bounds);
+    EXPECT_NEAR(bounds[1], 2.0 * mass, 1e-12);
+    poly->GetPoint(0, pole);
+    EXPECT_NEAR(pole[2], exact::outer_horizon(spin * mass, mass), 1e-12);
+    poly->GetPoint(poly->GetNumberOfPoints() - 1, pole);
+    EXPECT_NEAR(pole[2], -exact::outer_horizon(spin * mass, mass), 1e-12);
+  }
+  EXPECT_THROW(make_ergosphere(1.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(make_ergosphere(1.0, std::nan("")), std::invalid_argument);
+}
+
+TEST(VizKerr, SceneViewOfASpinningHole) {
+  SceneLayout layout;
+  layout.spin = 0.9;
+  layout.isco_radius = exact::isco_radius(0.9, exact::Orbit::prograde);
+  const SceneView view(layout);
+  EXPECT_TRUE(view.has(Layer::ergosphere));
+  EXPECT_TRUE(view.has(Layer::horizon));
+  EXPECT_TRUE(view.has(Layer::isco));
+  EXPECT_FALSE(view.has(Layer::photon_sphere));  // no single photon sphere in Kerr
+  EXPECT_EQ(layer_from_string("ergosphere"), Layer::ergosphere);
+  const SceneView schwarzschild(SceneLayout{});
+  EXPECT_FALSE(schwarzschild.has(Layer::ergosphere));
+  EXPECT_TRUE(schwarzschild.has(Layer::photon_sphere));
+  SceneLayout bad;
+  bad.spin = 1.0;
+  EXPECT_THROW(SceneView{bad}, std::invalid_argument);
+}
+
+}  // namespace

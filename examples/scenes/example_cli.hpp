@@ -7,6 +7,7 @@
 
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/frame.hpp"
+#include "grtrace/render/output_file.hpp"
 #include "grtrace/render/png_preview.hpp"
 
 #include <cstdlib>
@@ -22,7 +23,8 @@ struct ExampleArgs {
   std::map<std::string, double> numbers;  ///< "--name value" options of the example, with their defaults
 };
 
-/// Parses "--out FILE.exr --size N --<name> X ..."; throws std::invalid_argument with the usage on anything else.
+/// Parses "--out FILE.exr --size N --<name> X ..." and checks both output paths; throws std::invalid_argument with
+/// the usage (or what is wrong with the path) on anything else, before any work.
 inline ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
   std::string usage = std::string("usage: ") + argv[0] + " [--out FILE.exr] [--size 8..4096]";
   for (const auto& [name, value] : defaults.numbers) usage += " [--" + name + " X]";
@@ -40,14 +42,24 @@ inline ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs default
     else if (key.starts_with("--") && a.numbers.count(key.substr(2)) && i + 1 < argc) a.numbers[key.substr(2)] = number(value);
     else throw std::invalid_argument(usage);
   }
+  for (const std::string& path : {a.out, a.out.substr(0, a.out.size() - 4) + ".png"}) {
+    try {  // before any work: a missing or unwritable directory, a directory in the way
+      grtrace::check_output_path(path);
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(e.what());
+    }
+  }
   return a;
 }
 
-/// Writes the EXR (all data channels) and its PNG preview, and prints {"out","png","seconds","status_counts"...}.
+/// Writes the EXR (all data channels) and its PNG preview as one set (both new or both old, render/output_file.hpp),
+/// and prints {"out","png","seconds","status_counts"}.
 inline void write_example_frame(const ExampleArgs& a, const grtrace::Frame& frame) {
   const std::string png = a.out.substr(0, a.out.size() - 4) + ".png";
-  grtrace::write_exr(a.out, frame.image);
-  grtrace::write_png_preview(png, frame.image);
+  grtrace::OutputSet files;
+  grtrace::write_exr(files, a.out, frame.image);
+  grtrace::write_png_preview(files, png, frame.image);
+  files.commit();
   std::cout << "{\"out\":\"" << a.out << "\",\"png\":\"" << png << "\",\"seconds\":" << frame.stats.seconds
             << ",\"status_counts\":" << frame.image.metadata.at("status_counts") << "}\n";
 }

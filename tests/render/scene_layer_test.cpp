@@ -479,6 +479,7 @@ TEST(ExamplePrograms, RefuseBadInputWithExitTwoAndWriteNothing) {
   EXPECT_EQ(run_quietly((dir / "terrell_rotation").string() + " --beta 1" + o), 2);
   EXPECT_EQ(run_quietly((dir / "star_beside_hole").string() + " --size 0 --out " + out.string()), 2);
   EXPECT_EQ(run_quietly((dir / "star_beside_hole").string() + " --out x.png"), 2);
+  EXPECT_EQ(run_quietly((dir / "terrell_rotation").string() + " --size 16 --out /nonexistent-dir/t.exr"), 2);
   EXPECT_FALSE(std::filesystem::exists(out));
 #else
   GTEST_SKIP() << "example programs not built";

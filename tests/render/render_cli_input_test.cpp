@@ -141,7 +141,7 @@ TEST_F(RenderCliInput, RefusesEveryBadInputBeforeTracingAndLeavesNoFile) {
       {"--look", "1,inf,0"},
       {"--up", "0,0,nan"},
       {"--scene", "teapot"},
-      {"--metric", "kerr"},
+      {"--metric", "kerr", "--spin", "1"},  // |a| >= M (kerr with a = 0 is a valid Schwarzschild hole)
       {"--tableau", "rk5000"},
       {"--control", "magic"},
       {"--tableau", "rk4", "--control", "pi"},  // no embedded pair

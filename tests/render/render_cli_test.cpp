@@ -96,7 +96,7 @@ TEST(RenderCli, RefusesBadInputBeforeAnyWork) {
   const std::string o = "--width 8 --height 8 --out " + out.string() + " ";  // the bad option comes last and wins
   const char* bad[] = {"--camera-r 2", "--camera-r 1.5", "--camera-r 500", "--fov 0", "--fov 180", "--fov nan",
                        "--width 0", "--height -3", "--mass inf", "--velocity 0.8,0.8,0", "--look 0,-1,0",
-                       "--scene nope", "--metric kerr", "--tableau nope", "--control pi --tableau rk4",
+                       "--scene nope", "--metric kerr --spin 1", "--tableau nope", "--control pi --tableau rk4",
                        "--angle-correction sometimes", "--camera-theta 0", "--threads -1", "--rtol 0"};
   for (const char* args : bad) {
     const CliRun r = run(o + args);

@@ -51,7 +51,7 @@ CommandLine make_command_line() {
       .option("lambda", "1e-5", "sds: cosmological constant, 0 < Lambda < 1/(9 M^2); the sky sphere must lie "
                                 "inside the cosmological horizon")
       .option("throat", "1", "wormhole: throat radius b0 (--camera-r is then the proper distance l; l < 0 is "
-                             "the other side)")
+                             "the other side, whose sky is drawn differently: green-violet checker, orange stars)")
       .option("camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)")
       .option("camera-theta", "90", "camera polar angle, degrees, strictly between 0 and 180")
       .option("camera-phi", "0", "camera azimuth, degrees")
@@ -157,6 +157,8 @@ Request read_request(const CommandLine& cli) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  // The wormhole's other universe (rays ending at l < 0) gets a sky of its own, seen through the throat.
+  q.scene.far_side = ms.name == "wormhole";
   if (ms.name == "minkowski" && disk)
     throw UsageError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
 

@@ -6,7 +6,9 @@
 //   auto scene = make_scene(StarFieldSky{}, HorizonPaint{}, ThinDisk{}, MyStar{...});
 //
 // Sky and horizon painters are any `Rgb operator()(double theta, double phi) const`: the sky is painted at the
-// escaped ray's asymptotic direction, the horizon at the direction of the point where the ray met it.
+// escaped ray's asymptotic direction, the horizon at the direction of the point where the ray met it. A painter
+// that needs more than the direction (which side of a wormhole the ray ended on: RayOutcome::state) instead
+// provides `Rgb operator()(const RayOutcome&) const` (OutcomePainter); when it has both, the outcome form is used.
 // A failed ray (max_steps, step_underflow, non_finite) gets the flat `failure` colour and NaN data, never NaN
 // colour. With colour_by_redshift every pixel is painted by f_obs / f_src (seed Fig. 5) instead.
 #pragma once
@@ -33,6 +35,25 @@ concept DirectionPainter = std::copy_constructible<P> && requires(const P p, dou
   { p(theta, phi) } -> std::convertible_to<Rgb>;
 };
 
+/// What paints from the whole outcome of the ray (its end state, not only its direction): e.g. a sky that differs
+/// on the two sides of a wormhole (scene/sky.hpp AnySky::far_side). Called only for rays that did not fail.
+template <class P>
+concept OutcomePainter = std::copy_constructible<P> && requires(const P p, const RayOutcome& o) {
+  { p(o) } -> std::convertible_to<Rgb>;
+};
+
+/// Either kind of painter: what a Scene takes as its sky and its horizon.
+template <class P>
+concept ScenePainter = DirectionPainter<P> || OutcomePainter<P>;
+
+/// The colour `painter` gives the outcome `o`: the outcome form when the painter has one (it sees the end state),
+/// else the direction form at o.where. Assumes o did not fail (o.where is finite).
+template <ScenePainter P>
+Rgb paint(const P& painter, const RayOutcome& o) {
+  if constexpr (OutcomePainter<P>) return painter(o);
+  else return painter(o.where.theta, o.where.phi);
+}
+
 /// The horizon's paint: black, or a theta-phi checkerboard (seed Fig. 4) when squares > 0.
 struct HorizonPaint {
   int squares = 0;  ///< 0: black; else squares along theta (twice as many along phi)
@@ -43,7 +64,7 @@ struct HorizonPaint {
   }
 };
 
-template <DirectionPainter Sky, DirectionPainter Horizon, SceneObject... Objects>
+template <ScenePainter Sky, ScenePainter Horizon, SceneObject... Objects>
 struct Scene {
   Sky sky;
   Horizon horizon;
@@ -90,9 +111,9 @@ struct Scene {
     if (colour_by_redshift) {
       p.rgb = redshift_colour(o.redshift);
     } else if (o.object == kSkyObject) {
-      p.rgb = sky(o.where.theta, o.where.phi);
+      p.rgb = paint(sky, o);
     } else if (o.object == kHorizonObject) {
-      p.rgb = horizon(o.where.theta, o.where.phi);
+      p.rgb = paint(horizon, o);
     } else {
       p.rgb = failure;  // a position outside the scene: cannot happen for the library's tracers
       visit_object(o.object, [&](const auto& object) { p.rgb = object.colour(SurfaceHit{o.state, o.redshift}); });
@@ -101,7 +122,7 @@ struct Scene {
   }
 };
 
-template <DirectionPainter Sky, DirectionPainter Horizon, SceneObject... Objects>
+template <ScenePainter Sky, ScenePainter Horizon, SceneObject... Objects>
 Scene<Sky, Horizon, Objects...> make_scene(Sky sky, Horizon horizon, Objects... objects) {
   return {std::move(sky), std::move(horizon), std::tuple<Objects...>(std::move(objects)...)};
 }

@@ -3,9 +3,12 @@
 // Three kinds: a theta-phi checkerboard (seed Fig. 4), a procedural star field (the default), and an
 // equirectangular texture (R, G, B channels of an image: theta down the rows, phi across the columns).
 // Shading runs once per pixel, after the integration, so a runtime choice costs nothing in the hot loop.
+// AnySky (the command-line tools' sky) may carry a second sky for the far side of a two-sided chart: the other
+// universe of a wormhole, where rays end with radial coordinate x^1 < 0 (Ellis: l < 0).
 #pragma once
 
 #include "grtrace/scene/colour_maps.hpp"
+#include "grtrace/trace/ray_outcome.hpp"
 
 #include <array>
 #include <cmath>
@@ -13,6 +16,7 @@
 #include <string>
 #include <cstdint>
 #include <numbers>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -24,10 +28,16 @@ struct CheckerSky {
   Rgb operator()(double theta, double phi) const { return checker_parity(theta, phi, squares) ? light : dark; }
 };
 
-/// Stars on a dark sky with a faint band along the equator; deterministic (a hash of the sky cell).
+/// Stars on a dark sky with a faint band along the equator; deterministic (a hash of the sky cell). A different
+/// cells_theta gives a different pattern; tint multiplies every colour (1, 1, 1: untinted).
 struct StarFieldSky {
   int cells_theta = 1024;  ///< star density grid
-  Rgb operator()(double theta, double phi) const {
+  Rgb tint{1.0f, 1.0f, 1.0f};
+  Rgb operator()(double theta, double phi) const { return tinted(starfield(theta, phi)); }
+
+ private:
+  Rgb tinted(const Rgb& c) const { return {c[0] * tint[0], c[1] * tint[1], c[2] * tint[2]}; }
+  Rgb starfield(double theta, double phi) const {
     const double band = std::exp(-std::pow((theta - std::numbers::pi / 2) / 0.18, 2));
     Rgb c{static_cast<float>(0.01 + 0.05 * band), static_cast<float>(0.012 + 0.045 * band),
           static_cast<float>(0.03 + 0.06 * band)};
@@ -89,10 +99,24 @@ inline void check_texture(const TextureSky& t) {
 
 /// A sky chosen at run time (a command-line flag): one of the three above. Painting runs once per pixel after the
 /// integration, so the visit costs nothing that matters.
+/// With far_side set, rays that end at x^1 < 0 get that sky instead: the other universe of a chart whose radial
+/// coordinate runs through zero (the Ellis wormhole's l). Set it only for such a chart: in a Cartesian chart x^1 is
+/// the x coordinate, in an ordinary spherical chart x^1 = r > 0 and far_side is never used.
 struct AnySky {
-  std::variant<CheckerSky, StarFieldSky, TextureSky> sky = StarFieldSky{};
-  Rgb operator()(double theta, double phi) const {
-    return std::visit([&](const auto& s) { return s(theta, phi); }, sky);
+  using Sky = std::variant<CheckerSky, StarFieldSky, TextureSky>;
+  Sky sky = StarFieldSky{};
+  std::optional<Sky> far_side;  ///< the sky seen by rays ending at x^1 < 0; none: `sky` everywhere
+
+  Rgb operator()(double theta, double phi) const { return paint(sky, theta, phi); }
+  /// The scene's choice (scene/scene.hpp OutcomePainter): the side from the end state, the colour at o.where.
+  Rgb operator()(const RayOutcome& o) const {
+    const bool far = far_side && o.state[1] < 0.0;
+    return paint(far ? *far_side : sky, o.where.theta, o.where.phi);
+  }
+
+ private:
+  static Rgb paint(const Sky& s, double theta, double phi) {
+    return std::visit([&](const auto& p) { return p(theta, phi); }, s);
   }
 };
 

@@ -5,6 +5,9 @@
 //   sky       a star field (or a texture) and a black horizon
 //   redshift  every pixel coloured by f_obs / f_src (seed Fig. 5)
 //   disk      a thin Keplerian disk (scene/thin_disk.hpp) in front of the star field (or texture)
+// With far_side (for a wormhole chart, whose rays may end in the other universe at x^1 < 0) the other universe
+// gets a sky of its own: a green-violet checkerboard for "checker", an orange-tinted star field (a different
+// pattern) otherwise, so the throat shows the other side (scene/sky.hpp AnySky::far_side).
 // A program of your own composes its scene directly with make_scene (scene/scene.hpp); these are presets.
 #pragma once
 
@@ -27,6 +30,7 @@ struct StandardSceneSpec {
   int checker_squares = 18;           ///< checker: squares along theta on sky and horizon
   std::optional<TextureSky> texture;  ///< sky and disk: replaces the star field
   ThinDisk disk{};                    ///< disk
+  bool far_side = false;              ///< a sky of its own for rays ending at x^1 < 0 (wormholes only)
 };
 
 using BackgroundScene = Scene<AnySky, HorizonPaint>;
@@ -48,6 +52,12 @@ inline BackgroundScene background_scene(const StandardSceneSpec& spec) {
     scene.horizon.squares = spec.checker_squares;
   } else if (spec.texture) {
     scene.sky.sky = *spec.texture;
+  }
+  if (spec.far_side) {
+    if (spec.name == "checker")
+      scene.sky.far_side = CheckerSky{spec.checker_squares, {0.3f, 0.85f, 0.3f}, {0.3f, 0.05f, 0.35f}};
+    else
+      scene.sky.far_side = StarFieldSky{701, {1.7f, 0.85f, 0.35f}};
   }
   scene.colour_by_redshift = spec.name == "redshift";
   return scene;

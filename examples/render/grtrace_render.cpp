@@ -71,9 +71,11 @@ CommandLine make_command_line() {
       .option("sky-radius", "400", "radius of the sky sphere where rays are taken as escaped")
       .option("angle-correction", "exact", "escaped rays: none | flat (seed eq. 7-8) | exact (bending to infinity)")
       .option("max-steps", "100000", "step budget per ray")
-      .option("tracer", "auto", "auto | general | symmetric (symmetric: one table of rays for the frame; sky and "
-                                "horizon scenes only)")
-      .option("table-rays", "1024", "symmetric tracer: table rays on each side of the critical angle")
+      .option("tracer", "auto", "auto | general | planar | symmetric. planar: one table of rays for the frame, every "
+                                "scene of a Schwarzschild hole, disk included (auto's choice there with an adaptive "
+                                "--control); symmetric: the older sky-and-horizon table; general: every pixel "
+                                "integrated (any metric)")
+      .option("table-rays", "2048", "planar and symmetric tracers: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
       .option("checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)")
       .option("disk-inner", "6", "disk inner radius (disk scene); kerr: default and lower bound the ISCO of the "
@@ -256,14 +258,21 @@ Request read_request(const CommandLine& cli) {
   }
 
   q.tracer = cli.text("tracer");
-  if (q.tracer != "auto" && q.tracer != "general" && q.tracer != "symmetric")
-    throw UsageError("unknown --tracer '" + q.tracer + "'; choose auto, general or symmetric");
+  if (q.tracer != "auto" && q.tracer != "general" && q.tracer != "symmetric" && q.tracer != "planar")
+    throw UsageError("unknown --tracer '" + q.tracer + "'; choose auto, general, planar or symmetric");
+  if (q.tracer == "planar" && ms.name != "schwarzschild" && ms.name != "rn")
+    throw UsageError("--tracer planar needs a static spherically symmetric metric with a horizon (--metric "
+                     "schwarzschild or rn); use general");
+  if (q.tracer == "planar" && q.control == "fixed")
+    throw UsageError("--tracer planar integrates its table in swept angle, where a fixed --step would mean something "
+                     "else; use --control i, pi or doubling, or --tracer general");
   if (q.tracer == "symmetric" && disk)
     throw UsageError("--tracer symmetric cannot draw a disk (it breaks the spherical symmetry); use general");
   if (q.tracer == "symmetric" && ms.name != "schwarzschild")
     throw UsageError("--tracer symmetric needs --metric schwarzschild (its table assumes that metric); use general");
   if (ms.name == "minkowski") q.tracer = "straight-line";
-  else if (q.tracer == "auto") q.tracer = disk || ms.name != "schwarzschild" ? "general" : "symmetric";
+  // auto (and planar, checked above): the library picks the fastest tracer whose assumptions hold
+  // (trace/auto_tracer.hpp); the JSON line and the EXR header say which one ran.
 
   const long squares = cli.integer("checker-squares");
   if (squares < 1 || squares > 10000) throw UsageError("--checker-squares must be in 1 .. 10000");
@@ -419,7 +428,7 @@ int main(int argc, char** argv) {
     const std::string& metric = q.metric.name;
     if (metric == "schwarzschild" || metric == "minkowski") frame.emplace(render_tool::render_schwarzschild(q, where, table));
     else if (metric == "kerr") frame.emplace(render_tool::render_kerr(q, where));
-    else if (metric == "rn" || metric == "sds") frame.emplace(render_tool::render_rn_sds(q, where));
+    else if (metric == "rn" || metric == "sds") frame.emplace(render_tool::render_rn_sds(q, where, table));
     else frame.emplace(render_tool::render_wormhole_ef(q, where));
     // The table (symmetric tracer) is part of the frame's cost: time the whole thing.
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -450,7 +459,7 @@ int main(int argc, char** argv) {
       image.metadata["disk_inner"] = num(q.scene.disk.r_in);
       image.metadata["disk_outer"] = num(q.scene.disk.r_out);
     }
-    image.metadata["tracer"] = q.tracer;
+    const std::string tracer = image.metadata["tracer"];  // the tracer that ran (render_frame records it)
     image.metadata["tableau"] = q.tableau;
     image.metadata["control"] = q.control;
     image.metadata["rtol"] = num(q.settings.integrator.tolerance.rtol);
@@ -480,10 +489,10 @@ int main(int argc, char** argv) {
     JsonObject json;
     json.add("width", st.width).add("height", st.height).add("seconds", seconds);
     json.add("rays_per_second", st.rays_per_second);
-    const double mean_steps =
-        q.tracer == "symmetric" ? static_cast<double>(table.steps) / static_cast<double>(st.rays) : st.mean_steps;
+    const bool tabulated = tracer == "symmetric-sky" || tracer == "planar";
+    const double mean_steps = tabulated ? static_cast<double>(table.steps) / static_cast<double>(st.rays) : st.mean_steps;
     json.add("mean_steps", mean_steps).add("status_counts", counts);
-    json.add("tracer", q.tracer).add("tableau", q.tableau).add("control", q.control);
+    json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
     json.add("out", q.out).add("png", png).add("threads", st.threads);
     if (status_map) json.add("status_map", status_map_path(q.out));
@@ -492,7 +501,8 @@ int main(int argc, char** argv) {
       json.add("error_pixels", errors.judged).add("error_mismatches", errors.mismatches);
       json.add("error_map", error_map_path(q.out));
     }
-    if (q.tracer == "symmetric") json.add("table_rays", table.rays).add("table_steps", table.steps);
+    if (tabulated) json.add("table_rays", table.rays).add("table_steps", table.steps);
+    if (tracer == "planar") json.add("fallback_rays", table.fallback_rays);
     std::cout << json.str() << std::endl;
     return 0;
   });

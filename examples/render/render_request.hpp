@@ -2,7 +2,7 @@
 // What grtrace-render was asked to do (parsed and checked in grtrace_render.cpp before any work), and the frame
 // rendered for it. The (metric x tableau x controller x scene) instantiations are split over translation units
 // by metric so that they compile in parallel:
-//   render_schwarzschild.cpp  schwarzschild (general and symmetric-sky tracers), minkowski (straight lines)
+//   render_schwarzschild.cpp  schwarzschild (general, planar and symmetric-sky tracers), minkowski (straight lines)
 //   render_kerr.cpp           kerr in Boyer-Lindquist and Kerr-Schild charts
 //   render_rn_sds.cpp         Reissner-Nordstrom, Schwarzschild-de Sitter (automatic Christoffels)
 //   render_wormhole_ef.cpp    Ellis wormhole, Schwarzschild in Eddington-Finkelstein coordinates
@@ -15,6 +15,7 @@
 #include "grtrace/render/frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
 #include <optional>
@@ -34,30 +35,48 @@ struct Request {
   AngleCorrection correction = AngleCorrection::exact;
   std::optional<Camera> camera;
   int threads = 0;
-  int table_nodes = 1024;
+  int table_nodes = 2048;
   bool error_map = false;
 };
 
 struct TableStats {
   long rays = 0, steps = 0;
+  long fallback_rays = 0;  ///< planar tracer: pixels traced by the general tracer instead
 };
 
 /// Sky direction of every pixel in double precision (the EXR channels are float), kept for --error-map.
 using SkyDirections = std::vector<SkyDirection>;
 
-/// The frame through the general scene tracer for any metric: every (tableau, controller) pair and both preset
-/// scene types are instantiated for Metric. A scene whose objects do not fit the metric's chart (the thin disk
-/// needs a spherical chart) is refused with a message.
+/// The table statistics of a tracer that builds one (planar, symmetric-sky); zero for the others.
+template <class Tracer>
+TableStats table_stats_of(const Tracer& tracer) {
+  TableStats t;
+  if constexpr (requires { tracer.table().table_rays(); }) {
+    t.rays = tracer.table().table_rays();
+    t.steps = tracer.table().table_steps();
+  }
+  if constexpr (requires { tracer.fallback_rays(); }) t.fallback_rays = tracer.fallback_rays();
+  return t;
+}
+
+/// The frame for any metric through the tracer asked for: --tracer general, or auto / planar: the fastest whose
+/// assumptions hold (trace/auto_tracer.hpp; --tracer planar was refused up front where it does not apply). Every
+/// (tableau, controller) pair and both preset scene types are instantiated for Metric. A scene whose objects do
+/// not fit the metric's chart (the thin disk needs a spherical chart) is refused with a message.
 template <MetricPolicy Metric>
-Frame render_general(const Request& q, const Metric& metric, SkyDirections* directions) {
+Frame render_general(const Request& q, const Metric& metric, SkyDirections* directions, TableStats* table = nullptr) {
   RenderOptions options;
   options.threads = q.threads;
   std::optional<Frame> frame;
   dispatch_method(q.tableau, q.control, [&]<class T, class C>() {
     with_standard_scene(q.scene, [&]<class Scene>(Scene scene) {
       if constexpr (scene_fits_metric<Metric, Scene>) {
-        frame.emplace(render_frame(*q.camera, make_general_tracer<T, C>(metric, q.settings, q.correction, scene),
-                                   options, directions));
+        auto draw = [&](const auto& tracer) {
+          frame.emplace(render_frame(*q.camera, tracer, options, directions));
+          if (table) *table = table_stats_of(tracer);
+        };
+        if (q.tracer == "general") draw(make_general_tracer<T, C>(metric, q.settings, q.correction, scene));
+        else with_auto_tracer<T, C>(metric, q.settings, *q.camera, q.correction, scene, q.table_nodes, draw);
       } else {
         throw tools::UsageError("--scene " + q.scene.name + " cannot be drawn in the " + std::string(Metric::name) +
                                 " chart (the thin disk needs a spherical chart: use --chart bl)");
@@ -69,17 +88,17 @@ Frame render_general(const Request& q, const Metric& metric, SkyDirections* dire
 
 /// render_general for the named metric when it is one of Metrics (this translation unit's share of the metrics).
 template <class... Metrics>
-Frame render_one_of(const Request& q, SkyDirections* directions) {
+Frame render_one_of(const Request& q, SkyDirections* directions, TableStats* table = nullptr) {
   return with_named_metric(q.metric, [&](const auto& metric) -> Frame {
     using M = std::remove_cvref_t<decltype(metric)>;
-    if constexpr ((std::is_same_v<M, Metrics> || ...)) return render_general(q, metric, directions);
+    if constexpr ((std::is_same_v<M, Metrics> || ...)) return render_general(q, metric, directions, table);
     else throw std::logic_error("grtrace-render: metric " + q.metric.name + " dispatched to the wrong unit");
   });
 }
 
 Frame render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table);
 Frame render_kerr(const Request& q, SkyDirections* directions);
-Frame render_rn_sds(const Request& q, SkyDirections* directions);
+Frame render_rn_sds(const Request& q, SkyDirections* directions, TableStats& table);
 Frame render_wormhole_ef(const Request& q, SkyDirections* directions);
 
 }  // namespace grtrace::render_tool

@@ -3,8 +3,8 @@
 
 namespace grtrace::render_tool {
 
-Frame render_rn_sds(const Request& q, SkyDirections* directions) {
-  return render_one_of<AutoReissnerNordstrom, AutoSchwarzschildDeSitter>(q, directions);
+Frame render_rn_sds(const Request& q, SkyDirections* directions, TableStats& table) {
+  return render_one_of<AutoReissnerNordstrom, AutoSchwarzschildDeSitter>(q, directions, &table);
 }
 
 }  // namespace grtrace::render_tool

@@ -6,8 +6,9 @@
 
 namespace grtrace::render_tool {
 
-/// Flat space by straight lines; Schwarzschild by one table of rays for the frame when the scene has no objects
-/// (--tracer symmetric, auto's choice), else every pixel integrated.
+/// Flat space by straight lines; Schwarzschild by auto's choice (one table of rays for the frame: the planar tracer,
+/// trace/auto_tracer.hpp), every pixel integrated (--tracer general), or the older sky-only table (--tracer
+/// symmetric).
 Frame render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table) {
   RenderOptions options;
   options.threads = q.threads;
@@ -18,7 +19,7 @@ Frame render_schwarzschild(const Request& q, SkyDirections* directions, TableSta
                           options, directions);
     });
   const SchwarzschildMetric metric{q.metric.mass};
-  if (q.tracer != "symmetric") return render_general(q, metric, directions);
+  if (q.tracer != "symmetric") return render_general(q, metric, directions, &table);
   std::optional<Frame> frame;
   dispatch_method(q.tableau, q.control, [&]<class T, class C>() {
     const BackgroundScene scene = background_scene(q.scene);  // the symmetric tracer draws no objects

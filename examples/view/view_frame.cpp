@@ -5,35 +5,26 @@
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
-#include "grtrace/trace/scene_tracer.hpp"
-#include "grtrace/trace/symmetric_scene_tracer.hpp"
+#include "grtrace/trace/auto_tracer.hpp"
 
 namespace grtrace::view {
 
-/// Renders the frame in-process as grtrace-render does (--tracer auto): the general scene tracer for a scene with
-/// objects (the disk), the symmetric-sky tracer (one table of rays for the frame) otherwise.
+/// Renders the frame in-process as grtrace-render does (--tracer auto, trace/auto_tracer.hpp): the fastest exact
+/// tracer for the scene: one table of rays (planar tracer) around a Schwarzschild hole, disk included; every pixel
+/// integrated for Kerr (its sky is not spherically symmetric). The image header's "tracer" says which ran.
 Image render_frame(const Request& q) {
   const Camera& camera = *q.camera;
   RenderOptions options;
   options.threads = q.threads;
   options.progress_label = "frame";
-  const SchwarzschildMetric metric{q.mass};
   std::optional<Frame> frame;
   dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
     with_standard_scene(make_scene_spec(q), [&]<class Scene>(Scene scene) {
-      if (q.kerr)  // Kerr: the general tracer for every scene (no table: the sky is not spherically symmetric)
-        frame.emplace(grtrace::render_frame(
-            camera, make_general_tracer<T, C>(KerrMetric{q.mass, q.spin}, q.rays.settings, q.correction, scene),
-            options));
-      else {
-        if constexpr (Scene::object_count == 0)
-          frame.emplace(grtrace::render_frame(
-              camera, SymmetricSceneTracer<T, C, Scene>(metric, q.rays.settings, camera, q.correction, scene),
-              options));
-        else
-          frame.emplace(grtrace::render_frame(
-              camera, make_general_tracer<T, C>(metric, q.rays.settings, q.correction, scene), options));
-      }
+      auto draw = [&](const auto& tracer) { frame.emplace(grtrace::render_frame(camera, tracer, options)); };
+      if (q.kerr)
+        with_auto_tracer<T, C>(KerrMetric{q.mass, q.spin}, q.rays.settings, camera, q.correction, scene, 2048, draw);
+      else
+        with_auto_tracer<T, C>(SchwarzschildMetric{q.mass}, q.rays.settings, camera, q.correction, scene, 2048, draw);
     });
   });
   return std::move(frame->image);

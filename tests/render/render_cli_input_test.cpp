@@ -215,7 +215,7 @@ TEST_F(RenderCliInput, GoodRunPrintsTheContractJsonAndRecordsTheParameters) {
 }
 
 TEST_F(RenderCliInput, OneAndTwoThreadsGiveIdenticalPixels) {
-  for (const char* tracer : {"general", "symmetric"}) {
+  for (const char* tracer : {"general", "symmetric", "planar"}) {
     SCOPED_TRACE(tracer);
     const ToolRun a = run(small({"--tracer", tracer, "--camera-r", "12", "--threads", "1", "--out", out("a.exr").string()}));
     const ToolRun b = run(small({"--tracer", tracer, "--camera-r", "12", "--threads", "2", "--out", out("b.exr").string()}));

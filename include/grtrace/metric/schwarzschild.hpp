@@ -63,8 +63,17 @@ struct SchwarzschildMetric {
 
   double radius(const Vec4& x) const { return x[1]; }
   double horizon_radius() const { return 2.0 * mass; }
-  /// 1 - 2M/r: g_tt, the squared lapse of the static observers.
-  double lapse_squared(double r) const { return schwarzschild_f(r, mass); }
+  /// 1 - 2M/r: g_tt, the squared lapse of the static observers (any scalar type: the planar tracer
+  /// differentiates it, metric/static_spherical.hpp).
+  template <class S>
+  S lapse_squared(const S& r) const {
+    return schwarzschild_f(r, mass);
+  }
+  /// r = 3M, the circular photon orbit (optional trait of metric/static_spherical.hpp).
+  double photon_sphere_radius() const { return 3.0 * mass; }
+  /// u'' = 3 M u^2 - u, the orbit equation of light in u = 1 / r (optional trait of metric/static_spherical.hpp:
+  /// the planar tracer's table integrates it; tests check it against the generic derivative).
+  double planar_ray_curvature(double u) const { return (3.0 * mass * u - 1.0) * u; }
 
   /// Optional trait (metric/metric_traits.hpp): the exact continuation of a ray from y to infinity, by elliptic
   /// integrals (exact/schwarzschild_exact.hpp); nothing when it falls into the hole.

@@ -23,6 +23,11 @@
 //                                                   tracer samples the whole line at least this often
 //   bool accepts(const GeodesicState& y) const;     filters located crossings (the disk's plane outside its radii);
 //                                                   a refused crossing does not end the ray; default: accept all
+//   static constexpr bool equatorial = true;        the object lies in the equatorial plane theta = pi / 2 of a
+//                                                   spherical chart (its event vanishes there and only there,
+//                                                   accepts() says where in the plane); the planar tracer
+//                                                   (trace/planar_scene_tracer.hpp) draws only such objects;
+//                                                   default false
 //   std::string label() const;                      this instance's name in image headers (two stars in one scene);
 //                                                   default: kind, numbered when the scene has several of a kind
 // The event traits (two_sided, interior_samples, accepts) are read by GeodesicTracer for any event, scene object

@@ -24,7 +24,9 @@
 #include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/trace/critical_angle_grid.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/planar_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,33 +36,9 @@
 
 namespace grtrace {
 
-/// Where a ray from the camera goes, seen in its own orbital plane.
-struct PlanarGeometry {
-  Vec3 radial;      ///< unit vector from the centre to the camera (Cartesian embedding)
-  Vec3 tangential;  ///< unit vector in the orbital plane, perpendicular to radial, along the motion
-  double delta;     ///< angle between the direction of travel and `radial`, in the static frame, [0, pi]
-  double impact;    ///< b = L / E
-};
-
-/// Reads the planar geometry of a ray from its state (Schwarzschild coordinates, either time direction).
+/// The planar geometry of a ray in Schwarzschild spacetime of mass `mass` (trace/planar_geometry.hpp).
 inline PlanarGeometry planar_geometry(const GeodesicState& y, double mass) {
-  const double r = y[1];
-  const SphericalBasis e = spherical_basis(y[2], y[3]);
-  const double f = schwarzschild_f(r, mass);
-  const Vec3 tangential = embedded_tangential_velocity(y, e);  // orthonormal-frame tangential part of dx/dl
-  const double k_radial = y[5] / std::sqrt(f);                      // orthonormal radial part
-  const double t_norm = tangential.norm();
-  PlanarGeometry g;
-  g.radial = e.r;
-  g.tangential = t_norm > 0.0 ? Vec3(tangential / t_norm) : e.theta;
-  g.delta = std::atan2(t_norm, k_radial);
-  g.impact = std::abs(r * t_norm / (f * y[4]));
-  return g;
-}
-
-/// The direction at angle `sweep` from `radial` in the plane of the ray.
-inline exact::SkyDirection rotate_in_plane(const PlanarGeometry& g, double sweep) {
-  return exact::sky_direction_of(std::cos(sweep) * g.radial + std::sin(sweep) * g.tangential);
+  return planar_geometry(SchwarzschildMetric{mass}, y);
 }
 
 template <ExplicitTableau T, StepController C = PIController>
@@ -107,8 +85,7 @@ class SymmetricSkyTable {
     const bool escaped = delta < delta_c_;
     const Side& side = escaped ? escaped_side_ : captured_side_;
     if (side.values.empty()) throw std::out_of_range("SymmetricSkyTable: delta outside the tabulated range");
-    const double gap = std::max(std::abs(delta - delta_c_), 1e-300);
-    return side.interpolate(side.coordinate(gap), escaped ? RayStatus::escaped : RayStatus::captured);
+    return side.interpolate(std::abs(delta - delta_c_), escaped ? RayStatus::escaped : RayStatus::captured);
   }
 
   const SchwarzschildMetric& metric() const { return metric_; }
@@ -117,57 +94,35 @@ class SymmetricSkyTable {
 
  private:
   struct Side {
-    double s0 = 0.0, ds = 1.0;  // node i sits at s = s0 + i ds
-    double kappa = 1.0;         // s(g) = ln g + g / kappa, g = |delta - delta_c|
+    CriticalAngleGrid grid;
     std::vector<Entry> values;
 
-    double coordinate(double gap) const { return std::log(gap) + gap / kappa; }
-    // Inverse of coordinate(): Newton in x = ln g on x + e^x / kappa = s (increasing and convex in x).
-    double gap_at(double s) const {
-      double x = std::min(s, std::log(kappa * std::max(s, 1.0)));
-      for (int it = 0; it < 60; ++it) {
-        const double e = std::exp(x) / kappa, dx = (x + e - s) / (1.0 + e);
-        x -= dx;
-        if (std::abs(dx) < 1e-15 * (1.0 + std::abs(x))) break;
-      }
-      return std::exp(x);
-    }
-
-    Entry interpolate(double s, RayStatus status) const {
-      const int n = static_cast<int>(values.size());
-      if (n == 1) return values[0];
-      const double x = std::clamp((s - s0) / ds, 0.0, static_cast<double>(n - 1));
-      int i = std::clamp(static_cast<int>(std::floor(x)) - 1, 0, std::max(0, n - 4));
-      const int m = std::min(4, n);
+    Entry interpolate(double gap, RayStatus status) const {
+      const CriticalAngleGrid::Stencil st = grid.stencil(gap);
       Entry e{status, 0.0, 0.0, 0.0};
-      for (int j = 0; j < m; ++j) {  // Lagrange weights on nodes i .. i+m-1
-        double w = 1.0;
-        for (int l = 0; l < m; ++l)
-          if (l != j) w *= (x - (i + l)) / static_cast<double>(j - l);
-        const Entry& v = values[static_cast<std::size_t>(i + j)];
+      for (int j = 0; j < st.count; ++j) {
+        const Entry& v = values[static_cast<std::size_t>(st.first + j)];
+        const double w = st.weight[static_cast<std::size_t>(j)];
         if (v.status != status) e.status = v.status;  // a failed table ray poisons its neighbourhood
         e.sweep += w * v.sweep;
         e.sweep_infinity += w * v.sweep_infinity;
       }
-      e.steps = values[static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(x)), 0, n - 1))].steps;
+      e.steps = values[static_cast<std::size_t>(st.nearest)].steps;
       return e;
     }
   };
 
   // sign +1: escaped side, delta = delta_c - gap; sign -1: captured side, delta = delta_c + gap.
   Side build(int sign, double gap_min, double gap_max, int nodes) {
-    Side side;
-    const int n = gap_max > gap_min * (1.0 + 1e-12) ? std::max(nodes, 4) : 1;
-    side.kappa = gap_max / std::max(1.0, std::log(gap_max / gap_min));
-    side.s0 = side.coordinate(gap_min);
-    side.ds = n > 1 ? (side.coordinate(gap_max) - side.s0) / (n - 1) : 1.0;
+    Side side{CriticalAngleGrid(gap_min, gap_max, nodes), {}};
+    const int n = side.grid.nodes;
     side.values.resize(static_cast<std::size_t>(n));
     long steps = 0;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 8) reduction(+ : steps)
 #endif
     for (int i = 0; i < n; ++i) {
-      const double delta = delta_c_ - sign * side.gap_at(side.s0 + i * side.ds);
+      const double delta = delta_c_ - sign * side.grid.gap_of_node(i);
       const Entry e = trace_one(delta);
       side.values[static_cast<std::size_t>(i)] = e;
       steps += static_cast<long>(e.steps);

@@ -22,10 +22,17 @@ struct ReissnerNordstrom {
 
   static constexpr std::array<int, 2> depends_on = {1, 2};  ///< g(r, theta): t and phi are Killing
 
+  /// f(r) = 1 - 2M/r + Q^2/r^2 = g_tt (any scalar type; with it the metric is a StaticSphericalMetric, so the
+  /// planar tracer can draw it: metric/static_spherical.hpp).
+  template <class S>
+  S lapse_squared(const S& r) const {
+    return 1.0 - 2.0 * mass / r + charge * charge / (r * r);
+  }
+
   template <class S>
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
     using std::sin;
-    const S r = x[1], f = 1.0 - 2.0 * mass / r + charge * charge / (r * r), rs = r * sin(x[2]);
+    const S r = x[1], f = lapse_squared(r), rs = r * sin(x[2]);
     return diagonal_metric<S>(f, -1.0 / f, -r * r, -rs * rs);
   }
   double radius(const Vec4& x) const { return x[1]; }
@@ -33,8 +40,7 @@ struct ReissnerNordstrom {
   double inner_horizon_radius() const { return mass - std::sqrt(mass * mass - charge * charge); }
 
   double energy(const GeodesicState& y) const {
-    const double r = y[1];
-    return (1.0 - 2.0 * mass / r + charge * charge / (r * r)) * y[4];
+    return lapse_squared(y[1]) * y[4];
   }
   double angular_momentum(const GeodesicState& y) const {
     const double rs = y[1] * std::sin(y[2]);

@@ -1,0 +1,54 @@
+// grtrace/trace/auto_tracer.hpp
+// "auto": the fastest scene tracer whose assumptions hold, decided where the facts are known (from the types at
+// compile time, from the metric's values at run time) so that every program picks the same way: grtrace-render,
+// grtrace-view and a user's own.
+//
+//   straight-line  the metric declares itself flat (FlatMetric, metric/metric_traits.hpp): nothing to integrate
+//   planar         a static spherically symmetric metric with a horizon (StaticSphericalMetric), a scene whose
+//                  objects lie in the equatorial plane (planar_supports_scene), an adaptive step controller:
+//                  one table of rays for the frame (trace/planar_scene_tracer.hpp)
+//   general        anything else: every pixel integrated (trace/scene_tracer.hpp)
+//
+// Takes:   the tableau and controller (template arguments), the metric, trace settings, the camera (the planar
+//          table covers its pixels), the angle correction, the scene, the number of table rays per side, and f.
+// Returns: whatever f(tracer) returns, f called once with the chosen tracer (a const reference; its static `name`
+//          says which it is). The planar tracer's table is built before f is called.
+// Assumes: for the planar tracer, horizon guard < camera radius < sky radius (checked: std::invalid_argument).
+#pragma once
+
+#include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/metric/static_spherical.hpp"
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/trace/planar_scene_tracer.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
+#include "grtrace/trace/straight_line.hpp"
+
+#include <utility>
+
+namespace grtrace {
+
+/// True when the planar tracer can draw this scene in this metric with this controller (its run-time condition,
+/// a horizon, is checked by with_auto_tracer).
+template <class Metric, class SceneT, class C>
+inline constexpr bool planar_tracer_applies = [] {
+  if constexpr (StaticSphericalMetric<Metric> && planar_supports_scene<SceneT>) return C::estimate != ErrorEstimate::none;
+  else return false;
+}();
+
+template <ExplicitTableau T, StepController C, MetricPolicy Metric, class SceneT, class F>
+decltype(auto) with_auto_tracer(const Metric& metric, const TraceSettings& settings, const Camera& camera,
+                                AngleCorrection correction, const SceneT& scene, int table_rays, F&& f) {
+  if constexpr (FlatMetric<Metric>) {
+    return f(StraightLineTracer(metric, settings.escape_radius, correction, scene));
+  } else {
+    if constexpr (planar_tracer_applies<Metric, SceneT, C>) {
+      if (metric.horizon_radius() > 0.0) {
+        const PlanarSceneTracer<Metric, T, C, SceneT> planar(metric, settings, camera, correction, scene, table_rays);
+        return f(planar);
+      }
+    }
+    return f(make_general_tracer<T, C>(metric, settings, correction, scene));
+  }
+}
+
+}  // namespace grtrace

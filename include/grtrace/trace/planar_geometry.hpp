@@ -1,0 +1,56 @@
+// grtrace/trace/planar_geometry.hpp
+// A ray of a static, spherically symmetric spacetime seen in its own orbital plane (metric/static_spherical.hpp):
+// the plane through the centre spanned by the radial direction n of its start and its direction of travel t.
+// Its path is r(psi) with psi the angle swept from n towards t; what happens to it depends only on delta, the angle
+// between its direction of travel and n in the static frame at its start (aberration for a moving camera is
+// already in the pixel's momentum).
+#pragma once
+
+#include "grtrace/core/sky_direction.hpp"
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
+#include "grtrace/metric/static_spherical.hpp"
+
+#include <cmath>
+
+namespace grtrace {
+
+/// Where a ray from the camera goes, seen in its own orbital plane.
+struct PlanarGeometry {
+  Vec3 radial;      ///< unit vector from the centre to the start (Cartesian embedding)
+  Vec3 tangential;  ///< unit vector in the orbital plane, perpendicular to radial, along the motion
+  double delta;     ///< angle between the direction of travel and `radial`, in the static frame, [0, pi]
+  double impact;    ///< b = L / E
+  double angular_momentum;  ///< L = r^2 dpsi/dlambda (>= 0: psi grows along the ray)
+
+  /// The embedding's unit vector at swept angle psi, and the unit vector along increasing psi there.
+  Vec3 direction_at(double psi) const { return std::cos(psi) * radial + std::sin(psi) * tangential; }
+  Vec3 sweep_direction_at(double psi) const { return -std::sin(psi) * radial + std::cos(psi) * tangential; }
+};
+
+/// Reads the planar geometry of a ray from its state (spherical chart, either time direction).
+template <StaticSphericalMetric M>
+PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y) {
+  const double r = y[1];
+  const SphericalBasis e = spherical_basis(y[2], y[3]);
+  const double a = metric.lapse_squared(r);
+  const Vec3 tangential = embedded_tangential_velocity(y, e);  // orthonormal-frame tangential part of dx/dl
+  double k_radial;                                              // orthonormal radial part
+  if constexpr (HasRadialScale<M>) k_radial = std::sqrt(metric.radial_scale_squared(r)) * y[5];
+  else k_radial = y[5] / std::sqrt(a);
+  const double t_norm = tangential.norm();
+  PlanarGeometry g;
+  g.radial = e.r;
+  g.tangential = t_norm > 0.0 ? Vec3(tangential / t_norm) : e.theta;
+  g.delta = std::atan2(t_norm, k_radial);
+  g.impact = std::abs(r * t_norm / (a * y[4]));
+  g.angular_momentum = r * t_norm;
+  return g;
+}
+
+/// The direction at angle `sweep` from `radial` in the plane of the ray.
+inline SkyDirection rotate_in_plane(const PlanarGeometry& g, double sweep) {
+  return sky_direction_of(g.direction_at(sweep));
+}
+
+}  // namespace grtrace

@@ -1,0 +1,298 @@
+// grtrace/trace/planar_path_table.hpp
+// The paths of all the rays a frame needs, in a static spherically symmetric spacetime, from one table of rays.
+//
+// Why: a ray from a camera at radius r_c stays in its orbital plane and its path u(psi) = 1 / r there depends on one
+// number, its angle delta to the outward radial direction in the static frame (trace/planar_geometry.hpp). So the
+// frame needs the two-parameter function u(delta, psi), not one integration per pixel. We integrate the reduced
+// planar equation u'' = G(u) (metric/static_spherical.hpp; psi is the independent variable, so there is no
+// turning-point trouble and no time coordinate) for a table of delta values with the frame's own compile-time
+// tableau and controller, and keep each table ray's path on a uniform grid in psi. A pixel then reads:
+//   - its fate and sweep: escaped (u falls to 1 / R_sky) or captured (u reaches 1 / r_guard), the angle swept until
+//     then, and for escaped rays the angle swept until u = 0, i.e. the exact direction at infinity;
+//   - u and u' at any swept angle psi it needs (e.g. where its plane meets an equatorial disk, psi_k = psi_0 + k pi).
+//
+// Accuracy: each table ray is integrated to the trace settings' tolerance with steps no longer than max_step, and
+// its accepted states (u, u', u'' = G(u)) are interpolated by quintic Hermite polynomials (error ~ h^6 |u^(6)| /
+// 46080 per step) onto the grid of spacing grid_step; the grid is read back the same way. Across delta, the four nodes
+// around the pixel's angle are combined by cubic Lagrange weights in the coordinate of trace/critical_angle_grid.hpp
+// (logarithmic near the critical angle delta_c, where u(delta, psi) - u_photon ~ |delta - delta_c| e^psi).
+// Each table ray is integrated past its end (beyond u = 0 for escaped rays, inside the horizon guard for captured
+// ones) so that neighbours of a pixel have the values the pixel needs; where one does not, the pixel is told so
+// and the caller traces it on its own (PlanarSceneTracer falls back to the general tracer and counts it).
+#pragma once
+
+#include "grtrace/core/ray_status.hpp"
+#include "grtrace/integrate/controlled_integrator.hpp"
+#include "grtrace/metric/static_spherical.hpp"
+#include "grtrace/trace/critical_angle_grid.hpp"
+#include "grtrace/trace/geodesic_tracer.hpp"  // TraceSettings
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+namespace grtrace {
+
+/// u, u' = du/dpsi on one interval of a path, from the values and first two derivatives at its ends (quintic
+/// Hermite interpolation, exact for polynomials of degree 5). t in [0, 1] is the fraction of the interval h.
+struct PathPoint {
+  double u, w;  ///< u = 1 / r and w = du/dpsi
+};
+inline PathPoint quintic_hermite(const std::array<double, 3>& a, const std::array<double, 3>& b, double h, double t) {
+  const double t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
+  const double h0 = 1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5, h1 = t - 6.0 * t3 + 8.0 * t4 - 3.0 * t5;
+  const double h2 = 0.5 * (t2 - 3.0 * t3 + 3.0 * t4 - t5), h4 = -4.0 * t3 + 7.0 * t4 - 3.0 * t5;
+  const double h5 = 0.5 * (t3 - 2.0 * t4 + t5);
+  const double d0 = -30.0 * t2 + 60.0 * t3 - 30.0 * t4, d1 = 1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4;
+  const double d2 = 0.5 * (2.0 * t - 9.0 * t2 + 12.0 * t3 - 5.0 * t4), d4 = -12.0 * t2 + 28.0 * t3 - 15.0 * t4;
+  const double d5 = 0.5 * (3.0 * t2 - 8.0 * t3 + 5.0 * t4);
+  const double u = h0 * a[0] + h * h1 * a[1] + h * h * h2 * a[2] + (1.0 - h0) * b[0] + h * h4 * b[1] + h * h * h5 * b[2];
+  const double w = (d0 * a[0] - d0 * b[0]) / h + d1 * a[1] + h * d2 * a[2] + d4 * b[1] + h * d5 * b[2];
+  return {u, w};
+}
+
+template <StaticSphericalMetric Metric, ExplicitTableau T, StepController C = PIController>
+class PlanarPathTable {
+ public:
+  /// The grid spacing in psi of every stored path (radians).
+  static constexpr double grid_step = 1.0 / 32.0;
+  /// The longest integration step in psi: the accepted states are interpolated onto the grid with an error of
+  /// ~ max_step^6 |u^(6)| / 46080 (|u^(6)| is of the order of u near the photon sphere), 1e-11 and below.
+  static constexpr double max_step = 1.0 / 8.0;
+
+  /// One table ray.
+  struct Node {
+    double delta = 0.0;
+    RayStatus status = RayStatus::max_steps;  ///< escaped, captured, or the failure that ended it
+    double sweep_sky = nan;       ///< escaped: psi where u = 1 / R_sky
+    double sweep_infinity = nan;  ///< escaped: psi where u = 0 (the exact direction at infinity)
+    double sweep_guard = nan;     ///< captured: psi where u = 1 / r_guard
+    int steps = 0;                ///< accepted integration steps until the end (sky sphere or guard)
+    std::vector<std::array<double, 3>> path;  ///< (u, u', u'') at psi = j grid_step
+    static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  };
+
+  /// What a pixel at angle delta reads from the table.
+  struct Lookup {
+    RayStatus status;     ///< escaped or captured, or a failure status when a neighbouring table ray failed
+    double sweep_end;     ///< psi at the sky sphere (escaped) or the horizon guard (captured)
+    double sweep_infinity;
+    int steps;            ///< the nearest table ray's accepted steps
+    bool side_escaped;
+    CriticalAngleGrid::Stencil stencil;
+  };
+
+  /// Takes the metric, the camera radius, trace settings (tolerance, sky radius, horizon guard, step budget) for the
+  /// table rays, the range of delta the frame needs and the number of table rays on each side of delta_c.
+  /// Assumes (checked) a horizon, guard < camera_r < sky radius.
+  PlanarPathTable(Metric metric, double camera_r, TraceSettings settings, double delta_min, double delta_max,
+                  int nodes_per_side = 1024, C controller = {})
+      : metric_(metric), settings_(settings), controller_(controller), camera_r_(camera_r) {
+    const double rh = metric.horizon_radius();
+    guard_r_ = (1.0 + settings.horizon_epsilon) * rh;
+    sky_r_ = settings.escape_radius;
+    if (!(rh > 0.0)) throw std::invalid_argument("PlanarPathTable: the metric has no horizon (use another tracer)");
+    if (!(camera_r > guard_r_ && camera_r < sky_r_))
+      throw std::invalid_argument("PlanarPathTable: need horizon guard < camera radius < sky radius");
+    const double a = std::asin(std::min(
+        1.0, critical_impact_parameter(metric) / camera_r * std::sqrt(metric.lapse_squared(camera_r))));
+    delta_c_ = camera_r >= photon_sphere_radius(metric) ? std::numbers::pi - a : a;
+    delta_min = std::clamp(delta_min, 0.0, std::numbers::pi);
+    delta_max = std::clamp(delta_max, 0.0, std::numbers::pi);
+    // Each side covers the frame's angles on that side; the gap to delta_c is bounded below so that the logarithm
+    // stays finite (rays closer than 1e-14 rad to delta_c are read from the last node).
+    constexpr double min_gap = 1e-14;
+    if (delta_min < delta_c_)
+      escaped_ = build(+1, std::max(delta_c_ - std::min(delta_max, delta_c_), min_gap), delta_c_ - delta_min,
+                       nodes_per_side);
+    if (delta_max > delta_c_)
+      captured_ = build(-1, std::max(std::max(delta_min, delta_c_) - delta_c_, min_gap), delta_max - delta_c_,
+                        nodes_per_side);
+  }
+
+  double critical_angle() const { return delta_c_; }
+  double sky_radius() const { return sky_r_; }
+  double guard_radius() const { return guard_r_; }
+  double camera_radius() const { return camera_r_; }
+  const Metric& metric() const { return metric_; }
+  long table_steps() const { return total_steps_; }
+  int table_rays() const { return static_cast<int>(escaped_.nodes.size() + captured_.nodes.size()); }
+
+  /// The fate of the ray leaving the camera at angle delta, interpolated from the table rays around it.
+  Lookup at(double delta) const {
+    const bool escaped = delta < delta_c_;
+    const Side& side = escaped ? escaped_ : captured_;
+    if (side.nodes.empty()) throw std::out_of_range("PlanarPathTable: delta outside the tabulated range");
+    Lookup l{escaped ? RayStatus::escaped : RayStatus::captured, 0.0, 0.0, 0, escaped,
+             side.grid.stencil(std::abs(delta - delta_c_))};
+    for (int j = 0; j < l.stencil.count; ++j) {
+      const Node& n = side.nodes[static_cast<std::size_t>(l.stencil.first + j)];
+      const double w = l.stencil.weight[static_cast<std::size_t>(j)];
+      if (n.status != l.status) l.status = n.status;  // a failed table ray poisons its neighbourhood
+      l.sweep_end += w * (escaped ? n.sweep_sky : n.sweep_guard);
+      l.sweep_infinity += w * n.sweep_infinity;
+    }
+    l.steps = side.nodes[static_cast<std::size_t>(l.stencil.nearest)].steps;
+    return l;
+  }
+
+  /// u and u' at swept angle psi >= 0 on the ray of `lookup`; nothing where a table ray around it has no values.
+  std::optional<PathPoint> path_at(const Lookup& lookup, double psi) const {
+    const Side& side = lookup.side_escaped ? escaped_ : captured_;
+    const double x = psi / grid_step;
+    const auto j = static_cast<std::size_t>(x);
+    const double t = x - static_cast<double>(j);
+    PathPoint p{0.0, 0.0};
+    for (int i = 0; i < lookup.stencil.count; ++i) {
+      const Node& n = side.nodes[static_cast<std::size_t>(lookup.stencil.first + i)];
+      if (!(psi >= 0.0) || j + 1 >= n.path.size()) return std::nullopt;
+      const PathPoint q = quintic_hermite(n.path[j], n.path[j + 1], grid_step, t);
+      const double w = lookup.stencil.weight[static_cast<std::size_t>(i)];
+      p.u += w * q.u;
+      p.w += w * q.w;
+    }
+    return p;
+  }
+
+  /// The table ray nodes of one side (+1 escaped, -1 captured), for tests.
+  const std::vector<Node>& nodes(int side) const { return side > 0 ? escaped_.nodes : captured_.nodes; }
+
+  /// One table ray at angle delta (also what tests compare against the general tracer).
+  Node trace_node(double delta) const {
+    Node node;
+    node.delta = delta;
+    // The ray equation degenerates for an exactly radial ray (b = 0, psi never grows): keep nodes off it.
+    constexpr double radial_margin = 1e-9;
+    const double d = std::clamp(delta, radial_margin, std::numbers::pi - radial_margin);
+    const double r = camera_r_, a = metric_.lapse_squared(r), bscale = radial_scale_squared(metric_, r);
+    const double b = r * std::sin(d) / std::sqrt(a);
+    const PlanarRayEquation<Metric> eq{&metric_, 1.0 / (b * b)};
+    const double u_sky = 1.0 / sky_r_, u_guard = 1.0 / guard_r_;
+    // Where the continuation past the end stops: beyond infinity by a margin in psi (escaped), or well inside the
+    // guard (captured; u blows up at the central singularity).
+    constexpr double margin = 0.25;
+    const double u_stop_inside = 4.0 * u_guard;
+
+    IntegratorSettings is = settings_.integrator;
+    is.h_max = std::min(is.h_max, max_step);
+    is.h_min = 1e-15 * std::sin(d);  // psi ranges shrink with b: a near-radial ray sweeps ~sin(delta) in all
+    ControlledIntegrator<T, C, 2> integ(is, controller_);
+    Vector<2> y0(1.0 / r, -std::cos(d) / (std::sin(d) * r * std::sqrt(bscale)));
+    integ.start(eq, y0, settings_.initial_step);
+
+    std::vector<std::pair<double, std::array<double, 3>>> accepted;  // (psi, (u, u', u''))
+    auto record = [&](double psi, const Vector<2>& y) {
+      accepted.push_back({psi, {y[0], y[1], eq.curvature(y[0])}});
+    };
+    record(0.0, y0);
+    // psi where u crosses `level` inside the last accepted interval (bisection on its quintic Hermite).
+    auto crossing = [&](double level) {
+      const auto& [p0, s0] = accepted[accepted.size() - 2];
+      const auto& [p1, s1] = accepted.back();
+      const double h = p1 - p0, sign = s1[0] > s0[0] ? 1.0 : -1.0;
+      double lo = 0.0, hi = 1.0;
+      for (int it = 0; it < 200 && hi - lo > 1e-17; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (sign * (quintic_hermite(s0, s1, h, mid).u - level) < 0.0 ? lo : hi) = mid;
+      }
+      return p0 + 0.5 * (lo + hi) * h;
+    };
+
+    double psi_end_continuation = std::numeric_limits<double>::infinity();
+    bool ended = false;
+    for (int step = 0; step < settings_.max_steps + 100000; ++step) {
+      const StepOutcome outcome = integ.advance(eq);
+      if (outcome != StepOutcome::ok) {
+        if (!ended) node.status = outcome == StepOutcome::non_finite ? RayStatus::non_finite : RayStatus::step_underflow;
+        break;
+      }
+      record(integ.lambda(), integ.state());
+      const double u = integ.state()[0], psi = integ.lambda();
+      if (!ended) {
+        if (step + 1 > settings_.max_steps) {
+          node.status = RayStatus::max_steps;
+          break;
+        }
+        if (u <= u_sky && integ.state()[1] < 0.0) {
+          node.status = RayStatus::escaped;
+          node.sweep_sky = crossing(u_sky);
+          node.steps = integ.accepted();
+          ended = true;
+        } else if (u >= u_guard) {
+          node.status = RayStatus::captured;
+          node.sweep_guard = crossing(u_guard);
+          node.steps = integ.accepted();
+          psi_end_continuation = 2.0 * node.sweep_guard + margin;
+          ended = true;
+        }
+      }
+      if (ended && node.status == RayStatus::escaped && std::isnan(node.sweep_infinity) && u <= 0.0) {
+        node.sweep_infinity = crossing(0.0);
+        psi_end_continuation = 2.0 * node.sweep_infinity + margin;
+      }
+      if (psi >= psi_end_continuation) break;
+      if (ended && node.status == RayStatus::captured && u >= u_stop_inside) break;
+    }
+    if (!ended && (node.status == RayStatus::escaped || node.status == RayStatus::captured))
+      node.status = RayStatus::max_steps;
+    resample(accepted, eq, node.path);
+    return node;
+  }
+
+ private:
+  struct Side {
+    CriticalAngleGrid grid;
+    std::vector<Node> nodes;
+  };
+
+  // The path on the uniform grid psi = j h, from the accepted states by quintic Hermite interpolation.
+  static void resample(const std::vector<std::pair<double, std::array<double, 3>>>& accepted,
+                       const PlanarRayEquation<Metric>& eq, std::vector<std::array<double, 3>>& path) {
+    if (accepted.size() < 2) return;
+    const double last = accepted.back().first;
+    std::size_t k = 0;
+    for (int j = 0;; ++j) {
+      const double psi = j * grid_step;
+      if (psi > last) break;
+      while (k + 2 < accepted.size() && accepted[k + 1].first < psi) ++k;
+      const auto& [p0, s0] = accepted[k];
+      const auto& [p1, s1] = accepted[k + 1];
+      const double h = p1 - p0;
+      const PathPoint q = h > 0.0 ? quintic_hermite(s0, s1, h, std::clamp((psi - p0) / h, 0.0, 1.0))
+                                  : PathPoint{s0[0], s0[1]};
+      path.push_back({q.u, q.w, eq.curvature(q.u)});
+    }
+  }
+
+  // sign +1: escaped side, delta = delta_c - gap; sign -1: captured side, delta = delta_c + gap.
+  Side build(int sign, double gap_min, double gap_max, int nodes) {
+    Side side{CriticalAngleGrid(gap_min, gap_max, nodes), {}};
+    const int n = side.grid.nodes;
+    side.nodes.resize(static_cast<std::size_t>(n));
+    long steps = 0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 8) reduction(+ : steps)
+#endif
+    for (int i = 0; i < n; ++i) {
+      side.nodes[static_cast<std::size_t>(i)] = trace_node(delta_c_ - sign * side.grid.gap_of_node(i));
+      steps += side.nodes[static_cast<std::size_t>(i)].steps;
+    }
+    total_steps_ += steps;
+    return side;
+  }
+
+  Metric metric_;
+  TraceSettings settings_;
+  C controller_;
+  double camera_r_, guard_r_ = 0.0, sky_r_ = 0.0;
+  double delta_c_ = 0.0;
+  Side escaped_, captured_;
+  long total_steps_ = 0;
+};
+
+}  // namespace grtrace

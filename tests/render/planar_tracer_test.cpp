@@ -1,0 +1,312 @@
+// The planar-path tracer (trace/planar_scene_tracer.hpp) must agree with the general tracer pixel by pixel on disk
+// scenes, for static and moving cameras at inclinations 10 to 90 degrees and radii 8 to 1000 M; its table must
+// agree with the exact elliptic-integral deflection; and its reduced ray equation must be the Schwarzschild one.
+#include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/metric/examples/reissner_nordstrom.hpp"
+#include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
+#include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/tableau/tsitouras54.hpp"
+#include "grtrace/trace/planar_scene_tracer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace {
+
+using namespace grtrace;
+constexpr double pi = std::numbers::pi;
+
+TraceSettings accurate_settings(double sky_r) {
+  TraceSettings s;
+  s.integrator.tolerance = {1e-13, 1e-15};
+  s.escape_radius = sky_r;
+  return s;
+}
+
+double angle_difference(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * pi)); }
+
+TEST(PlanarRayEquation, IsTheSchwarzschildOrbitEquation) {
+  const SchwarzschildMetric metric{1.5};
+  const PlanarRayEquation<SchwarzschildMetric> eq{&metric, 1.0 / 49.0};
+  for (double u : {0.0, 0.01, 0.1, 0.2222, 0.3, 1.0}) {
+    EXPECT_NEAR(eq.curvature(u), 3.0 * 1.5 * u * u - u, 1e-15 * (1.0 + u));
+    EXPECT_NEAR(eq.first_integral(u), 1.0 / 49.0 - u * u + 2.0 * 1.5 * u * u * u, 1e-15);
+  }
+  EXPECT_DOUBLE_EQ(critical_impact_parameter(metric), 3.0 * std::sqrt(3.0) * 1.5);
+}
+
+// A metric written with its own g_rr (B = 1 / A, but given, so the generic derivative path is used) and no
+// photon_sphere_radius: the numerical photon sphere and the b-dependent equation must reduce to the same numbers.
+struct SchwarzschildWithRadialScale : SchwarzschildMetric {
+  double planar_ray_curvature(double) const = delete;  // the closed f(r) form does not apply with a B of its own
+  template <class S>
+  S radial_scale_squared(const S& r) const {
+    return 1.0 / lapse_squared(r);
+  }
+};
+
+TEST(PlanarRayEquation, GenericFormMatchesFRForm) {
+  const SchwarzschildWithRadialScale metric{};
+  static_assert(HasRadialScale<SchwarzschildWithRadialScale>);
+  const PlanarRayEquation<SchwarzschildWithRadialScale> eq{&metric, 1.0 / 36.0};
+  for (double u : {0.01, 0.1, 0.3}) EXPECT_NEAR(eq.curvature(u), 3.0 * u * u - u, 1e-13);
+  // ... and the automatic f(r) form (Reissner-Nordstrom with Q = 0 has no closed form) equals the closed one.
+  const AutoReissnerNordstrom rn{ReissnerNordstrom{1.0, 0.0}};
+  const PlanarRayEquation<AutoReissnerNordstrom> generic{&rn, 0.0};
+  const PlanarRayEquation<SchwarzschildMetric> closed{&static_cast<const SchwarzschildMetric&>(metric), 0.0};
+  for (double u : {-0.01, 0.0, 0.01, 0.1, 0.3, 2.0}) EXPECT_NEAR(generic.curvature(u), closed.curvature(u), 1e-14);
+}
+
+// Reissner-Nordstrom has no photon_sphere_radius(): the numerical minimum of r^2 / f against the closed form
+// r_ph = (3M + sqrt(9M^2 - 8Q^2)) / 2, and its orbit equation u'' = 3Mu^2 - u - 2Q^2u^3.
+TEST(PlanarRayEquation, ReissnerNordstromPhotonSphereAndEquation) {
+  for (double q : {0.0, 0.5, 0.9}) {
+    const AutoReissnerNordstrom metric{ReissnerNordstrom{1.0, q}};
+    static_assert(StaticSphericalMetric<AutoReissnerNordstrom>);
+    const double exact = 0.5 * (3.0 + std::sqrt(9.0 - 8.0 * q * q));
+    EXPECT_NEAR(photon_sphere_radius(metric), exact, 1e-7 * exact);
+    const double bc = exact / std::sqrt(metric.lapse_squared(exact));
+    EXPECT_NEAR(critical_impact_parameter(metric), bc, 1e-13 * bc);
+    const PlanarRayEquation<AutoReissnerNordstrom> eq{&metric, 0.0};
+    for (double u : {0.01, 0.2, 0.4}) EXPECT_NEAR(eq.curvature(u), 3.0 * u * u - u - 2.0 * q * q * u * u * u, 1e-14);
+  }
+}
+
+struct TableCase {
+  double camera_r, sky_r;
+};
+class PlanarTable : public ::testing::TestWithParam<TableCase> {};
+
+// The table's sweep to infinity against the exact elliptic-integral deflection, and its sweep to the sky sphere or
+// the guard against the general tracer on the same ray, over [0, pi] and close to the critical angle.
+TEST_P(PlanarTable, SweepsMatchExactAndGeneral) {
+  const auto [camera_r, sky_r] = GetParam();
+  const SchwarzschildMetric metric{1.0};
+  const TraceSettings settings = accurate_settings(sky_r);
+  const PlanarPathTable<SchwarzschildMetric, Fehlberg78, PIController> table(metric, camera_r, settings, 0.0, pi);
+  const GeodesicTracer<SchwarzschildMetric, Fehlberg78> general(metric, settings);
+  const double dc = table.critical_angle(), f = 1.0 - 2.0 / camera_r;
+  EXPECT_NEAR(camera_r * std::sin(dc) / std::sqrt(f), 3.0 * std::sqrt(3.0), 1e-9);
+  int escaped = 0, captured = 0;
+  double worst_exact = 0.0, worst_general = 0.0;
+  for (int i = 0; i < 130; ++i) {
+    double delta = (i + 0.5) * pi / 100.0;
+    // ... and within 1e-2 .. 1e-7 of the critical angle, where the sweep's condition number grows like 1 / gap.
+    if (i >= 100) delta = dc + (i % 2 ? 1.0 : -1.0) * std::pow(10.0, -2.0 - (i - 100) / 6.0);
+    if (delta <= 0.0 || delta >= pi) continue;
+    const Vec4 x(0.0, camera_r, pi / 2.0, 0.0);
+    const Vec4 k(1.0 / std::sqrt(f), std::sqrt(f) * std::cos(delta), 0.0, std::sin(delta) / camera_r);
+    const GeodesicState y0 = make_state(x, k);
+    const TraceResult direct = general.trace(y0);
+    const auto look = table.at(delta);
+    ASSERT_EQ(look.status, direct.status) << "delta = " << delta;
+    worst_general = std::max(worst_general, angle_difference(look.sweep_end, direct.final_state[3]));
+    if (direct.status == RayStatus::escaped) {
+      ++escaped;
+      const auto ex = exact::asymptotic_direction(y0, 1.0);
+      ASSERT_TRUE(ex.has_value());
+      worst_exact = std::max(worst_exact, angle_difference(look.sweep_infinity, ex->phi));
+    } else {
+      ++captured;
+    }
+  }
+  EXPECT_GT(escaped, 10);
+  EXPECT_GT(captured, 10);
+  EXPECT_LT(worst_exact, 1e-7) << "against the elliptic integrals";
+  EXPECT_LT(worst_general, 1e-7) << "against the general tracer (surface crossing)";
+}
+
+INSTANTIATE_TEST_SUITE_P(Cameras, PlanarTable,
+                         ::testing::Values(TableCase{50.0, 1000.0}, TableCase{8.0, 1000.0},
+                                           TableCase{1000.0, 5000.0}, TableCase{2.5, 1000.0}));
+
+// Each table ray's stored path satisfies the first integral (u')^2 = 1 / b^2 - u^2 + 2 M u^3 of its own b.
+TEST(PlanarTable, StoredPathsKeepTheFirstIntegral) {
+  const SchwarzschildMetric metric{1.0};
+  const PlanarPathTable<SchwarzschildMetric, Fehlberg78, PIController> table(metric, 30.0, accurate_settings(1000.0),
+                                                                            0.0, pi, 64);
+  double worst = 0.0;
+  for (int side : {+1, -1})
+    for (const auto& node : table.nodes(side)) {
+      if (std::sin(node.delta) < 1e-6) continue;  // nodes at exactly radial angles are traced 1e-9 rad off
+      const double f = 1.0 - 2.0 / 30.0, b = 30.0 * std::sin(node.delta) / std::sqrt(f);
+      for (std::size_t j = 0; j < node.path.size(); j += 7) {
+        const double u = node.path[j][0], w = node.path[j][1];
+        if (u < 0.0 || u > 0.5) continue;  // the physical part of the path
+        const double F = 1.0 / (b * b) - u * u + 2.0 * u * u * u;
+        worst = std::max(worst, std::abs(w * w - F) / (1.0 / (b * b) + u * u));
+      }
+    }
+  EXPECT_LT(worst, 1e-8);  // the grid interpolation of steps up to max_step
+}
+
+// The angle range from the frame's border (and the pixels that see straight out or in) equals a scan of every pixel.
+TEST(PlanarAngleRange, EqualsTheScanOfEveryPixel) {
+  const SchwarzschildMetric metric{1.0};
+  struct View {
+    Vec3 look, velocity;
+    double fov;
+  };
+  for (const View& v : {View{Vec3(-1, 0, 0), Vec3::Zero(), 60.0}, View{Vec3(1, 0, 0), Vec3::Zero(), 90.0},
+                       View{Vec3(0, 0, 1), Vec3::Zero(), 120.0}, View{Vec3(-1, 0.2, 0), Vec3(0, 0, 0.7), 40.0},
+                       View{Vec3(0.3, 0, 1), Vec3(-0.5, 0.1, 0.2), 150.0}, View{Vec3(-1, 0, 0), Vec3(0, 0, 0.9), 10.0}}) {
+    CameraSpec cs;
+    cs.position = Vec4(0.0, 12.0, 1.2, 0.4);
+    cs.look = v.look;
+    cs.up = Vec3(0, -1, 0.1);
+    cs.velocity = v.velocity;
+    cs.width = 41;
+    cs.height = 29;
+    cs.fov_degrees = v.fov;
+    const Camera camera = make_camera(metric, cs);
+    double lo = pi, hi = 0.0;
+    for (int row = 0; row < camera.height(); ++row)
+      for (int col = 0; col < camera.width(); ++col) {
+        const double d = planar_geometry(metric, camera.pixel_state(col, row)).delta;
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+    const auto [a, b] = planar_angle_range(metric, camera);
+    // Never narrower than the scan; wider only by the pixel containing a radial direction (at most one pixel).
+    EXPECT_LE(a, lo + 1e-15);
+    EXPECT_GE(b, hi - 1e-15);
+    const double pixel = v.fov * pi / 180.0 / (camera.width() - 1);
+    EXPECT_LT(lo - a, 2.0 * pixel) << "look " << v.look.transpose();
+    EXPECT_LT(b - hi, 2.0 * pixel) << "look " << v.look.transpose();
+  }
+}
+
+struct FrameCase {
+  double camera_r, inclination_degrees;
+  Vec3 velocity;  ///< 3-velocity in the static frame, (r, theta, phi) components (zero: a static camera)
+  double fov;
+  int size = 48;
+  double speed() const { return velocity.norm(); }
+};
+std::string case_name(const ::testing::TestParamInfo<FrameCase>& info) {
+  const FrameCase& c = info.param;
+  return "r" + std::to_string(static_cast<int>(c.camera_r)) + "_i" + std::to_string(static_cast<int>(c.inclination_degrees)) +
+         (c.speed() > 0.0 ? "_moving" : "_static");
+}
+class PlanarFrame : public ::testing::TestWithParam<FrameCase> {};
+
+// Pixel by pixel against the general tracer at the same tolerance: the object channel identical except where the
+// hit lies within 1e-6 relative of a disk edge (a silhouette: the two methods may fall either side), hit radius
+// within 1e-6 relative, redshift within 1e-7 relative, sky direction within 1e-6 rad.
+struct Comparison {
+  int hits = 0, skies = 0, horizons = 0, silhouettes = 0;
+  double worst_r = 0.0, worst_g = 0.0, worst_sky = 0.0;
+};
+
+template <class Planar, class General>
+Comparison compare_frames(const Planar& planar, const General& general, const Camera& camera, const ThinDisk& disk) {
+  Comparison c;
+  for (int row = 0; row < camera.height(); ++row)
+    for (int col = 0; col < camera.width(); ++col) {
+      const GeodesicState y0 = camera.pixel_state(col, row);
+      const RayOutcome a = planar.trace(y0), b = general.trace(y0);
+      EXPECT_FALSE(is_failure(b.status));
+      EXPECT_FALSE(is_failure(a.status)) << "pixel " << col << "," << row;
+      EXPECT_TRUE(std::isfinite(a.redshift));
+      if (a.object != b.object) {
+        // Explained only by a hit within 1e-6 relative of an edge of the disk.
+        const double r = a.object == kFirstSceneObject ? a.radius : b.radius;
+        const double edge = std::min(std::abs(r / disk.r_in - 1.0), std::abs(r / disk.r_out - 1.0));
+        EXPECT_LT(edge, 1e-6) << "pixel " << col << "," << row << ": planar " << a.object << ", general " << b.object;
+        ++c.silhouettes;
+        continue;
+      }
+      c.worst_g = std::max(c.worst_g, std::abs(a.redshift / b.redshift - 1.0));
+      if (a.object == kFirstSceneObject) {
+        ++c.hits;
+        c.worst_r = std::max(c.worst_r, std::abs(a.radius / b.radius - 1.0));
+        c.worst_sky = std::max(c.worst_sky, angular_distance(a.where, b.where));
+      } else if (a.object == kSkyObject) {
+        ++c.skies;
+        c.worst_sky = std::max(c.worst_sky, angular_distance(a.where, b.where));
+      } else {
+        ++c.horizons;
+      }
+    }
+  return c;
+}
+
+void expect_agreement(const Comparison& c, long fallbacks, long fallback_bound, const std::string& what) {
+  std::printf("%s: hits %d sky %d horizon %d silhouettes %d fallbacks %ld | worst r %.2e g %.2e sky %.2e\n",
+              what.c_str(), c.hits, c.skies, c.horizons, c.silhouettes, fallbacks, c.worst_r, c.worst_g, c.worst_sky);
+  EXPECT_GT(c.hits, 20);
+  EXPECT_GT(c.skies, 20);
+  EXPECT_LE(c.silhouettes, 3);
+  EXPECT_LT(c.worst_r, 1e-6);
+  EXPECT_LT(c.worst_g, 1e-7);
+  EXPECT_LT(c.worst_sky, 1e-6);
+  EXPECT_LE(fallbacks, fallback_bound);
+}
+
+TEST_P(PlanarFrame, MatchesGeneralTracerPixelByPixel) {
+  const FrameCase c = GetParam();
+  const SchwarzschildMetric metric{1.0};
+  const double sky_r = std::max(1000.0, 4.0 * c.camera_r);
+  const TraceSettings settings = accurate_settings(sky_r);
+  StandardSceneSpec spec;
+  spec.name = "disk";
+  spec.disk.r_in = 6.0;
+  spec.disk.r_out = 20.0;
+  const DiskScene scene = disk_scene(spec);
+  CameraSpec cs;
+  cs.position = Vec4(0.0, c.camera_r, c.inclination_degrees * pi / 180.0, 0.3);
+  cs.velocity = c.velocity;
+  cs.width = cs.height = c.size;
+  cs.fov_degrees = c.fov;
+  const Camera camera = make_camera(metric, cs);
+  const PlanarSceneTracer<SchwarzschildMetric, Fehlberg78, PIController, DiskScene> planar(
+      metric, settings, camera, AngleCorrection::exact, scene, 2048);
+  const auto general = make_general_tracer<Fehlberg78, PIController>(metric, settings, AngleCorrection::exact, scene);
+  const Comparison cmp = compare_frames(planar, general, camera, spec.disk);
+  // Fallbacks: the rays whose plane is the disk plane (one row when the camera sits in it), and a few others.
+  expect_agreement(cmp, planar.fallback_rays(), c.size + c.size * c.size / 100,
+                   "r " + std::to_string(c.camera_r) + " i " + std::to_string(c.inclination_degrees) + " v " +
+                       std::to_string(c.speed()));
+}
+
+// Any static spherically symmetric metric, not only Schwarzschild: Reissner-Nordstrom (automatic Christoffels for
+// the general tracer, the automatic f(r) derivative and the numerical photon sphere for the planar one), flat
+// correction beyond the sky sphere (the metric has no exact continuation).
+TEST(PlanarFrameReissnerNordstrom, MatchesGeneralTracerPixelByPixel) {
+  const AutoReissnerNordstrom metric{ReissnerNordstrom{1.0, 0.7}};
+  const TraceSettings settings = accurate_settings(1000.0);
+  StandardSceneSpec spec;
+  spec.name = "disk";
+  spec.disk.r_in = 5.0;
+  spec.disk.r_out = 18.0;
+  check_disk_orbits(metric, spec.disk);
+  const DiskScene scene = disk_scene(spec);
+  CameraSpec cs;
+  cs.position = Vec4(0.0, 40.0, 75.0 * pi / 180.0, 0.0);
+  cs.velocity = Vec3(0.0, 0.0, 0.3);
+  cs.width = cs.height = 40;
+  cs.fov_degrees = 60.0;
+  const Camera camera = make_camera(metric, cs);
+  const PlanarSceneTracer<AutoReissnerNordstrom, Fehlberg78, PIController, DiskScene> planar(
+      metric, settings, camera, AngleCorrection::exact, scene, 2048);
+  const auto general = make_general_tracer<Fehlberg78, PIController>(metric, settings, AngleCorrection::exact, scene);
+  expect_agreement(compare_frames(planar, general, camera, spec.disk), planar.fallback_rays(), 16, "rn Q 0.7");
+}
+
+INSTANTIATE_TEST_SUITE_P(Cameras, PlanarFrame,
+                         ::testing::Values(FrameCase{50.0, 80.0, Vec3::Zero(), 60.0},
+                                           FrameCase{50.0, 10.0, Vec3::Zero(), 60.0},
+                                           FrameCase{50.0, 45.0, Vec3(0.0, 0.0, 0.5), 60.0},
+                                           FrameCase{50.0, 90.0, Vec3::Zero(), 60.0, 49},  // a row in the disk plane
+                                           FrameCase{8.0, 80.0, Vec3::Zero(), 120.0},
+                                           FrameCase{8.0, 30.0, Vec3(0.0, 0.0, 0.6), 120.0},
+                                           FrameCase{1000.0, 80.0, Vec3::Zero(), 3.0},
+                                           FrameCase{1000.0, 60.0, Vec3(-0.3, 0.0, 0.0), 3.0}),
+                         case_name);
+
+}  // namespace

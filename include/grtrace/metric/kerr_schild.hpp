@@ -68,11 +68,17 @@ struct KerrSchildTerms {
   Eigen::Vector3d df;  ///< d_i f
   Eigen::Matrix3d dl;  ///< dl(i, j) = d_i l_j (spatial; l_t is constant)
 
-  KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
+  /// r^2 alone: the positive root of r^4 - b r^2 - c = 0 (b = R^2 - a^2, c = a^2 z^2), in the form without
+  /// cancellation for either sign of b. radius() needs only this (the events test it every step).
+  static double radius_squared(double a, double x, double y, double z) {
     const double a2 = a * a, b = x * x + y * y + z * z - a2, c = a2 * z * z;
     const double root = std::sqrt(b * b + 4.0 * c);
-    // r^2 is the positive root of r^4 - b r^2 - c = 0, in the form without cancellation for either sign of b.
-    const double r2 = b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
+    return b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
+  }
+
+  KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
+    const double a2 = a * a, c = a2 * z * z;
+    const double r2 = radius_squared(a, x, y, z);
     r = std::sqrt(r2);
     // One division for 1/P, 1/W and 1/r (P W r ~ r^7 stays finite for any r below ~1e40 M).
     const double p = r2 + a2, w = r2 * r2 + c, inv_pwr = 1.0 / (p * w * r);
@@ -168,7 +174,7 @@ struct KerrSchildMetric {
   }
 
   /// The Boyer-Lindquist-like r of the event (the quadric's root), not the Euclidean distance.
-  double radius(const Vec4& x) const { return terms(x).r; }
+  double radius(const Vec4& x) const { return std::sqrt(KerrSchildTerms::radius_squared(spin, x[1], x[2], x[3])); }
   /// The capture radius r_c = r_+ - (r_+ - r_-)/4 (see the header comment: inside r_+, so capture is exact).
   double horizon_radius() const { return outer_horizon() - 0.25 * (outer_horizon() - inner_horizon()); }
   /// The chart's own coordinates: the Kerr-Schild x, y, z (r = const surfaces are oblate spheroids).

@@ -195,8 +195,11 @@ class GeodesicTracer {
       double theta_first = std::numeric_limits<double>::infinity();
       GeodesicState y_first = GeodesicState::Zero();
       std::size_t first = K;
+      // The horizon and the sky sphere test the same radius: computed once per step (a square root or two for
+      // Kerr-Schild); the values are those horizon(y) and escape(y) return.
+      const double r_now = metric_.radius(integ.state().template head<4>());
       for_each_event(all, [&](std::size_t i, const auto& e) {
-        const double g1 = e(integ.state());
+        const double g1 = i == 0 ? (has_horizon ? r_now - r_guard : 1.0) : i == 1 ? r_escape - r_now : e(integ.state());
         // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
         const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
         if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {

@@ -13,8 +13,25 @@
 // the symmetric tracer's look-ups; max_error, median_error (radians, escaped pixels, against
 // exact::asymptotic_direction at the camera, in double precision, computed after the timed loop); mismatches
 // (escaped/captured verdicts that disagree with the exact one); failures.
+//
+// The general tracer per metric (issue 11, item 3: the cost of one accepted step in a frame):
+//   frame/metric/<metric>/<method>/<N>   a ZAMO camera at r = 50 M, theta = 80 deg looking at the hole, fov 60,
+//                                        sky sphere at 400 M (flat continuation), N x N, 2 threads; <metric> is
+//                                        schwarzschild, kerr_bl (a = 0.9 M, Boyer-Lindquist), kerr_ks (a = 0.9 M,
+//                                        Kerr-Schild, outgoing slicing: the rays are past-directed) and
+//                                        schwarzschild_disk (the thin disk scene, 6-30 M). Counters: ns_per_step
+//                                        (one core), cpu_ns_per_step (the process's processor time per accepted
+//                                        step: what to read on a shared machine, where wall time inflates),
+//                                        steps_per_ray, rays_per_second, max_error / median_error / p99_error /
+//                                        p999_error
+//                                        (radians, escaped and hit pixels, against the same frame traced with
+//                                        rkf78/i at rtol 1e-12 after the timed loop), mismatches (end object
+//                                        differs from the reference's), failures.
 #include "../../examples/work_precision/work_precision.hpp"
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/observer/camera.hpp"
+#include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/observer/static_frame.hpp"
 #include "grtrace/observer/tetrad.hpp"
 #include "grtrace/render/image.hpp"
@@ -26,7 +43,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <initializer_list>
 #include <numbers>
@@ -194,6 +213,120 @@ void register_symmetric(const std::string& name, double rtol, int nodes, std::in
         ->UseRealTime();
 }
 
+// ---- the general tracer per metric (issue 11, item 3) --------------------------------------------------------
+
+template <class Metric>
+Camera metric_camera(const Metric& metric, int n) {
+  CameraSpec spec;
+  spec.position = Vec4(0.0, 50.0, 80.0 * std::numbers::pi / 180.0, 0.0);
+  spec.spherical_position = true;
+  spec.observer = ObserverKind::zamo;
+  spec.width = spec.height = n;
+  spec.fov_degrees = 60.0;
+  return make_camera(metric, spec);
+}
+
+/// Per pixel: end object and direction (as the tracer reports them).
+struct MetricAnswers {
+  std::vector<SkyDirection> where;
+  std::vector<int> object;
+  std::vector<unsigned char> failed;
+  explicit MetricAnswers(std::size_t n) : where(n), object(n, -1), failed(n, 0) {}
+  void store(std::size_t i, const RayOutcome& o) {
+    where[i] = o.where;
+    object[i] = o.object;
+    failed[i] = is_failure(o.status) ? 1 : 0;
+  }
+};
+
+template <class Tracer>
+RenderStats render_metric_answers(const Tracer& tracer, const Camera& cam, Image& image, MetricAnswers& answers) {
+  return render_image(
+      image,
+      [&](int col, int row) {
+        const RayOutcome o = tracer.trace(cam.pixel_state(col, row));
+        answers.store(image.index(col, row), o);
+        return tracer.scene().shade(o);
+      },
+      quiet_options());
+}
+
+template <class T, class C, class Metric, class SceneT>
+void frame_metric(benchmark::State& state, const Metric& metric, const SceneT& scene, int n, double rtol) {
+  const Camera cam = metric_camera(metric, n);
+  const auto tracer = make_general_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene);
+  Image image(n, n);
+  MetricAnswers answers(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+  RenderStats stats;
+  double seconds = 0.0;
+  const std::clock_t cpu_start = std::clock();  // the process's processor time, all threads
+  for (auto _ : state) {
+    stats = render_metric_answers(tracer, cam, image, answers);
+    seconds += stats.seconds;
+  }
+  const double cpu_seconds =
+      static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC / static_cast<double>(state.iterations());
+  seconds /= static_cast<double>(state.iterations());
+  // Judged against a much tighter trace of the same frame (not timed).
+  const auto reference_tracer =
+      make_general_tracer<Fehlberg78, IController>(metric, settings_for(1e-12), AngleCorrection::flat, scene);
+  MetricAnswers reference(answers.where.size());
+  Image reference_image(n, n);
+  render_metric_answers(reference_tracer, cam, reference_image, reference);
+  std::vector<double> errors;
+  long mismatches = 0;
+  for (std::size_t i = 0; i < answers.where.size(); ++i) {
+    if (answers.failed[i] || reference.failed[i]) continue;
+    if (answers.object[i] != reference.object[i]) {
+      ++mismatches;
+      continue;
+    }
+    if (answers.object[i] != kHorizonObject) errors.push_back(exact::angular_distance(answers.where[i], reference.where[i]));
+  }
+  const auto summary = work_precision::summarize(errors);
+  // The max is one pixel near the photon ring, where round-off is amplified: the upper quantiles say more.
+  std::sort(errors.begin(), errors.end());
+  auto quantile = [&](double q) {
+    return errors.empty() ? 0.0 : errors[static_cast<std::size_t>(q * static_cast<double>(errors.size() - 1))];
+  };
+  state.counters["p99_error"] = quantile(0.99);
+  state.counters["p999_error"] = quantile(0.999);
+  const double rays = static_cast<double>(n) * n;
+  state.counters["rays_per_second"] = rays / seconds;
+  state.counters["threads"] = stats.threads;
+  state.counters["ns_per_step"] = seconds * stats.threads * 1e9 / static_cast<double>(stats.total_steps);
+  state.counters["cpu_ns_per_step"] = cpu_seconds * 1e9 / static_cast<double>(stats.total_steps);
+  state.counters["steps_per_ray"] = static_cast<double>(stats.total_steps) / rays;
+  state.counters["max_error"] = summary.max;
+  state.counters["median_error"] = summary.median;
+  state.counters["mismatches"] = static_cast<double>(mismatches);
+  state.counters["failures"] = static_cast<double>(stats.failures());
+}
+
+template <class T, class C>
+void register_metric_frames(const std::string& method, double rtol, int n) {
+  auto add = [&](const std::string& metric_name, auto run) {
+    benchmark::RegisterBenchmark(("frame/metric/" + metric_name + "/" + method + "/" + std::to_string(n)).c_str(),
+                                 run)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  };
+  add("schwarzschild", [=](benchmark::State& s) {
+    frame_metric<T, C>(s, SchwarzschildMetric{1.0}, background_scene({}), n, rtol);
+  });
+  add("kerr_bl", [=](benchmark::State& s) {
+    frame_metric<T, C>(s, KerrMetric{1.0, 0.9}, background_scene({}), n, rtol);
+  });
+  add("kerr_ks", [=](benchmark::State& s) {
+    frame_metric<T, C>(s, KerrSchildMetric{1.0, 0.9, KerrSchildSlicing::outgoing}, background_scene({}), n, rtol);
+  });
+  add("schwarzschild_disk", [=](benchmark::State& s) {
+    StandardSceneSpec spec;
+    spec.name = "disk";
+    frame_metric<T, C>(s, SchwarzschildMetric{1.0}, disk_scene(spec), n, rtol);
+  });
+}
+
 const bool registered = [] {
   // General tracer: the defaults chosen from the chart (tsit5 + I, rtol 2e-9; tsit5 + PI, 3e-9), grtrace-render's
   // previous default (dopri5 + PI, 1e-10), the cheapest with the continuation from the last step (rkf78 + I, 1e-9),
@@ -210,6 +343,11 @@ const bool registered = [] {
   register_symmetric<Tsitouras54, IController>("tsit5-i-2e-9-512", 2e-9, 512, {1024});
   register_symmetric<DormandPrince54, PIController>("dopri5-pi-1e-10-1024", 1e-10, 1024, {1024});
   register_symmetric<Fehlberg78, PIController>("rkf78-pi-1e-13-1024", 1e-13, 1024, {1024});
+  // The general tracer per metric and per tableau (issue 11, item 3).
+  register_metric_frames<Tsitouras54, IController>("tsit5/i/2e-9", 2e-9, 128);
+  register_metric_frames<DormandPrince54, PIController>("dopri5/pi/1e-10", 1e-10, 128);
+  register_metric_frames<Fehlberg78, IController>("rkf78/i/1e-9", 1e-9, 128);
+  register_metric_frames<ClassicRK4, StepDoubling>("rk4/doubling/1e-8", 1e-8, 128);
   return true;
 }();
 

@@ -5,7 +5,8 @@
 //   accel/kerr_bl/<a>           KerrMetric::acceleration, a = 0 and a = 0.9 (same code path, the cost of Kerr at a = 0)
 //   accel/kerr_schild/<a>       KerrSchildMetric::acceleration at the corresponding KS state
 //   accel/kerr_bl_table         acceleration_from_christoffel(christoffel()) for comparison (not for the hot loop)
-//   ray/<metric>[/<a>]          one photon from r = 7 M to r = 200 M with DormandPrince54 + PI at rtol 1e-9
+//   ray/<metric>[/<a>]          one photon from r = 7 M to r = 200 M with DormandPrince54 + PI at rtol 1e-9;
+//                               counter ns_per_step: CPU time per accepted step
 //                               (ray/kerr_bl/0 is the same ray as ray/schwarzschild: the whole-ray cost of Kerr at a =
 //                               0)
 // One call per iteration: read the CPU column (the machine is shared; wall time inflates under load). Run:
@@ -82,6 +83,9 @@ void run_ray(benchmark::State& state, const Metric& metric, const GeodesicState&
     benchmark::DoNotOptimize(r);
   }
   state.counters["steps"] = steps;
+  // CPU time per accepted step (one core), the isolated counterpart of frame_benchmark's frame/metric/*.
+  state.counters["ns_per_step"] = benchmark::Counter(static_cast<double>(steps) * static_cast<double>(state.iterations()),
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 GeodesicState ray_start(double a) {
   const KerrMetric m{1.0, a};

@@ -68,11 +68,17 @@ struct KerrSchildTerms {
   Eigen::Vector3d df;  ///< d_i f
   Eigen::Matrix3d dl;  ///< dl(i, j) = d_i l_j (spatial; l_t is constant)
 
-  KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
+  /// r^2 alone: the positive root of r^4 - b r^2 - c = 0 (b = R^2 - a^2, c = a^2 z^2), in the form without
+  /// cancellation for either sign of b. radius() needs only this (the events test it every step).
+  static double radius_squared(double a, double x, double y, double z) {
     const double a2 = a * a, b = x * x + y * y + z * z - a2, c = a2 * z * z;
     const double root = std::sqrt(b * b + 4.0 * c);
-    // r^2 is the positive root of r^4 - b r^2 - c = 0, in the form without cancellation for either sign of b.
-    const double r2 = b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
+    return b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
+  }
+
+  KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
+    const double a2 = a * a, c = a2 * z * z;
+    const double r2 = radius_squared(a, x, y, z);
     r = std::sqrt(r2);
     // One division for 1/P, 1/W and 1/r (P W r ~ r^7 stays finite for any r below ~1e40 M).
     const double p = r2 + a2, w = r2 * r2 + c, inv_pwr = 1.0 / (p * w * r);
@@ -151,8 +157,47 @@ struct KerrSchildMetric {
     return christoffel_from_derivatives(inverse_metric(x), metric_derivatives(x));
   }
 
-  /// -Gamma^mu_ab k^a k^b in closed form (see the header comment).
-  Vec4 acceleration(const Vec4& x, const Vec4& k) const {
+  /// -Gamma^mu_ab k^a k^b in closed form (see the header comment), in scalars. The terms of KerrSchildTerms are
+  /// formed inline, without the 3x3 matrix J = d_i l_j: J = dr c^T + D with c_j = (e x - 2 r l_x, e y - 2 r l_y,
+  /// -e z / r) / (P, P, r) and D = [[e r, -a, 0], [a, e r, 0], [0, 0, e P / r]] / P, so that
+  /// J k = dr (c.k) + D k, J^T k = c (dr.k) + D^T k and k.J.k = (dr.k)(c.k) + e r (k_x^2 + k_y^2) / P + e k_z^2 / r
+  /// (a's part of D is antisymmetric). The same quantities as the Eigen form (acceleration_reference) up to
+  /// round-off, at about half the cost.
+  Vec4 acceleration(const Vec4& x4, const Vec4& k) const {
+    const double a = spin, e = orientation(), x = x4[1], y = x4[2], z = x4[3];
+    const double a2 = a * a, c = a2 * z * z;
+    const double r2 = KerrSchildTerms::radius_squared(a, x, y, z), r = std::sqrt(r2), r3 = r2 * r;
+    const double p = r2 + a2, w = r2 * r2 + c, inv_pwr = 1.0 / (p * w * r);
+    const double inv_p = w * r * inv_pwr, inv_w = p * r * inv_pwr, inv_r = p * w * inv_pwr;
+    const double f = 2.0 * mass * r3 * inv_w;
+    const double lx = (e * r * x + a * y) * inv_p, ly = (e * r * y - a * x) * inv_p, lz = e * z * inv_r;
+    const double drx = x * r3 * inv_w, dry = y * r3 * inv_w, drz = z * r * p * inv_w;
+    const double fkf = f * (3.0 * inv_r - 4.0 * r3 * inv_w);
+    const double dfx = fkf * drx, dfy = fkf * dry, dfz = fkf * drz - f * 2.0 * a2 * z * inv_w;
+    const double cx = (e * x - 2.0 * r * lx) * inv_p, cy = (e * y - 2.0 * r * ly) * inv_p, cz = -e * z * inv_r * inv_r;
+    const double erp = e * r * inv_p, ap = a * inv_p, er = e * inv_r;
+    const double kt = k[0], kx = k[1], ky = k[2], kz = k[3];
+    const double s = kt + lx * kx + ly * ky + lz * kz;  // l_t = 1
+    const double dr_k = drx * kx + dry * ky + drz * kz, c_k = cx * kx + cy * ky + cz * kz;
+    const double jkx = drx * c_k + (erp * kx - ap * ky), jky = dry * c_k + (ap * kx + erp * ky),
+                 jkz = drz * c_k + er * kz;  // J k
+    const double dlkx = cx * dr_k + (erp * kx + ap * ky), dlky = cy * dr_k + (erp * ky - ap * kx),
+                 dlkz = cz * dr_k + er * kz;  // J^T k
+    const double df_k = dfx * kx + dfy * ky + dfz * kz, ds = kx * jkx + ky * jky + kz * jkz;
+    // F = (s Df + f Ds) l + (-1/2 s^2 df - f s J k + f s J^T k) on the spatial components.
+    const double fl = s * df_k + f * ds, hs2 = 0.5 * s * s, fs = f * s;
+    const double f0 = fl;
+    const double f1 = fl * lx + (-hs2 * dfx - fs * jkx + fs * dlkx);
+    const double f2 = fl * ly + (-hs2 * dfy - fs * jky + fs * dlky);
+    const double f3 = fl * lz + (-hs2 * dfz - fs * jkz + fs * dlkz);
+    // g^{-1} F = eta F + f L (L . F), L = eta l = (1, -l_x, -l_y, -l_z).
+    const double f_lf = f * (f0 - lx * f1 - ly * f2 - lz * f3);
+    return Vec4(f0 + f_lf, -f1 - f_lf * lx, -f2 - f_lf * ly, -f3 - f_lf * lz);
+  }
+
+  /// The same acceleration from KerrSchildTerms with Eigen's 3-vectors and 3x3 J (the form acceleration() was
+  /// derived from; tests compare the two).
+  Vec4 acceleration_reference(const Vec4& x, const Vec4& k) const {
     const KerrSchildTerms q = terms(x);
     const Eigen::Vector3d ks = k.tail<3>();
     const double s = q.l.dot(k);
@@ -168,7 +213,7 @@ struct KerrSchildMetric {
   }
 
   /// The Boyer-Lindquist-like r of the event (the quadric's root), not the Euclidean distance.
-  double radius(const Vec4& x) const { return terms(x).r; }
+  double radius(const Vec4& x) const { return std::sqrt(KerrSchildTerms::radius_squared(spin, x[1], x[2], x[3])); }
   /// The capture radius r_c = r_+ - (r_+ - r_-)/4 (see the header comment: inside r_+, so capture is exact).
   double horizon_radius() const { return outer_horizon() - 0.25 * (outer_horizon() - inner_horizon()); }
   /// The chart's own coordinates: the Kerr-Schild x, y, z (r = const surfaces are oblate spheroids).

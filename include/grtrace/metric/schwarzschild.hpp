@@ -6,6 +6,7 @@
 // With mass 0 this is flat space in spherical coordinates (MinkowskiSpherical).
 #pragma once
 
+#include "grtrace/core/sin_cos.hpp"
 #include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -47,9 +48,10 @@ struct SchwarzschildMetric {
     return G;
   }
 
-  /// -Gamma^mu_{ab} k^a k^b, written out (14 multiplies, one division by r, one by sin theta).
+  /// -Gamma^mu_{ab} k^a k^b, written out (14 multiplies, one division by r, one by sin theta, one inline sincos).
   Vec4 acceleration(const Vec4& x, const Vec4& k) const {
-    const double r = x[1], m = mass, inv_r = 1.0 / r, st = std::sin(x[2]), ct = std::cos(x[2]);
+    const SinCos sc = sin_cos(x[2]);  // inline (core/sin_cos.hpp): libm's call was a quarter of a step
+    const double r = x[1], m = mass, inv_r = 1.0 / r, st = sc.sin, ct = sc.cos;
     const double r2m = r - 2.0 * m;
     const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];
     const double a_trt = m / (r * r2m);  // Gamma^t_rt = -Gamma^r_rr

@@ -48,6 +48,13 @@ struct TraceSettings {
   /// step (AngleCorrection::exact) reads only the redshift at the sphere, for which the interpolant is ample, and
   /// switches this off to save the refinement steps on every escaping ray.
   bool refine_escape = true;
+  /// The constraint guard is checked every this many accepted steps, and always where the ray ends (a surface,
+  /// max_steps, a step underflow), so a ray that went bad still ends as non_finite, at most this many steps later
+  /// than with a check after every step; its verdict on every other ray is the same. The guard is a
+  /// detector of a lost geodesic (a fixed step too large near the horizon, where k^t and the drift grow without
+  /// bound within a few steps), not a correction, and a check costs a 4x4 metric (about as much as a right-hand
+  /// side): 1 restores the check after every step.
+  int constraint_check_interval = 8;
 };
 
 struct TraceResult {
@@ -161,6 +168,8 @@ class GeodesicTracer {
     };
     const double guard = settings_.constraint_tolerance;
     auto violated = [&](const GeodesicState& y) { return guard > 0.0 && constraint_violation(metric_, y, norm0) > guard; };
+    const int check_interval = std::max(1, settings_.constraint_check_interval);
+    int steps_since_check = 0;
 
     std::array<double, K> g_prev{};
     for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = e(y0); });
@@ -176,7 +185,9 @@ class GeodesicTracer {
       if (outcome != StepOutcome::ok) {
         // An underflow where the right-hand side itself is not finite (e.g. a start on the polar axis of a
         // spherical chart, where cot(theta) diverges) is a non-finite ray, not a step-size problem.
-        const bool rhs_finite = outcome == StepOutcome::step_underflow && rhs(integ.state()).allFinite();
+        // A state that fails the constraint guard (not checked since the last interval) is non_finite too.
+        const bool rhs_finite = outcome == StepOutcome::step_underflow && rhs(integ.state()).allFinite() &&
+                                !(steps_since_check > 0 && violated(integ.state()));
         return finish(rhs_finite ? RayStatus::step_underflow : RayStatus::non_finite, integ.state(), integ.lambda(),
                       integ);
       }
@@ -184,8 +195,11 @@ class GeodesicTracer {
       double theta_first = std::numeric_limits<double>::infinity();
       GeodesicState y_first = GeodesicState::Zero();
       std::size_t first = K;
+      // The horizon and the sky sphere test the same radius: computed once per step (a square root or two for
+      // Kerr-Schild); the values are those horizon(y) and escape(y) return.
+      const double r_now = metric_.radius(integ.state().template head<4>());
       for_each_event(all, [&](std::size_t i, const auto& e) {
-        const double g1 = e(integ.state());
+        const double g1 = i == 0 ? (has_horizon ? r_now - r_guard : 1.0) : i == 1 ? r_escape - r_now : e(integ.state());
         // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
         const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
         if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {
@@ -216,7 +230,10 @@ class GeodesicTracer {
         if (violated(y_hit)) return finish(RayStatus::non_finite, y_hit, lambda_hit, integ);
         return finish(status_of(first, result), y_hit, lambda_hit, integ);
       }
-      if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
+      if (++steps_since_check >= check_interval) {
+        steps_since_check = 0;
+        if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
+      }
       observer(integ, 1.0);
       if constexpr (Metric::chart == Chart::spherical) {
         GeodesicState y = integ.state();
@@ -227,6 +244,8 @@ class GeodesicTracer {
         }
       }
     }
+    if (steps_since_check > 0 && violated(integ.state()))
+      return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
     return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ);
   }
 

@@ -20,6 +20,8 @@ mark_as_advanced(GRTRACE_INSTALL_CMAKEDIR)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/grtrace"
         DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
         FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" PATTERN "*.inl")
+install(FILES "${PROJECT_BINARY_DIR}/include/grtrace/version.hpp"    # generated from cmake/version.hpp.in
+        DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/grtrace")
 
 install(TARGETS grtrace EXPORT grtraceTargets)
 install(EXPORT grtraceTargets

@@ -3,13 +3,17 @@
 // `--flag=BOOL` (true/false, yes/no, on/off, 1/0; anything else is refused).
 // Every option is declared with its default and help text, so --help lists all of them; unknown options,
 // missing values and malformed or non-finite numbers raise UsageError with a message that says what to change.
+// Every tool also answers --help and --version ("<program> <version>", the CMake project version from the
+// generated grtrace/version.hpp) on stdout and exits 0 before any other work.
 #pragma once
 
 #include "grtrace/core/memory_limit.hpp"
 #include "grtrace/render/output_file.hpp"
+#include "grtrace/version.hpp"
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <new>
 #include <optional>
@@ -40,6 +44,11 @@ std::string join(const Names& names, std::string_view separator) {
   return out;
 }
 
+/// What --version prints: "<program> <version>\n" (the CMake project version).
+inline std::string version_line(std::string_view program) {
+  return std::string(program) + " " + std::string(grtrace::kVersion) + "\n";
+}
+
 class CommandLine {
  public:
   CommandLine(std::string program, std::string summary) : program_(std::move(program)), summary_(std::move(summary)) {}
@@ -54,12 +63,17 @@ class CommandLine {
     return *this;
   }
 
-  /// Returns false when --help was asked for (the help text is then already printed to stdout).
+  /// Returns false when --help or --version was asked for (the help text or "<program> <version>" is then already
+  /// printed to stdout; the tool exits 0).
   bool parse(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
       std::string arg = argv[i];
       if (arg == "--help" || arg == "-h") {
         std::fputs(help().c_str(), stdout);
+        return false;
+      }
+      if (arg == "--version") {
+        std::fputs(version_line(program_).c_str(), stdout);
         return false;
       }
       if (arg.rfind("--", 0) != 0) throw UsageError("unexpected argument '" + arg + "' (options start with --)");
@@ -141,6 +155,7 @@ class CommandLine {
       h += "\n";
     }
     h += "  --help                         print this help and exit\n";
+    h += "  --version                      print \"" + program_ + " <version>\" and exit\n";
     return h;
   }
 

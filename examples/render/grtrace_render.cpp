@@ -12,11 +12,14 @@
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/frame.hpp"
+#include "grtrace/render/frame_files.hpp"
 #include "grtrace/render/png_preview.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <numbers>
@@ -83,6 +86,9 @@ CommandLine make_command_line() {
       .option("disk-outer", "20", "disk outer radius (disk scene)")
       .option("threads", "0", "OpenMP threads (0 = all cores)")
       .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
+      .option("exr-compression", "zips", "EXR compression, all lossless (channels read back bit for bit): zips | zip "
+                                         "(zlib level 1; zips: one scanline per chunk) | piz (smallest, slower) | "
+                                         "rle | none (fastest, largest)")
       .flag("error-map",
             "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
             "elliptic-integral direction from the camera (Schwarzschild/flat only); write <out>-error.png "
@@ -414,12 +420,43 @@ void write_error_map(OutputSet& set, const std::string& path, const Image& image
   write_png_rgb8(set, path, image.width(), image.height(), rgb);
 }
 
+/// --exr-compression (checked before any work) and the EXR writer's threads (--threads).
+ExrWriteOptions exr_options(const CommandLine& cli, int threads) {
+  ExrWriteOptions o;
+  const auto c = exr_compression_from_name(cli.text("exr-compression"));
+  if (!c)
+    throw UsageError("unknown --exr-compression '" + cli.text("exr-compression") +
+                     "'; choose zips, zip, piz, rle or none (lossless: the channels read back bit for bit)");
+  o.compression = *c;
+  o.threads = threads;
+  return o;
+}
+
+/// GRTRACE_TIMING=1: the wall time of each phase of the run on stderr (not part of the JSON contract).
+struct PhaseTimer {
+  bool on = [] {
+    const char* v = std::getenv("GRTRACE_TIMING");
+    return v && *v && std::string(v) != "0";
+  }();
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+  void operator()(const char* phase) {
+    const auto now = std::chrono::steady_clock::now();
+    if (on)
+      std::fprintf(stderr, "grtrace-render: %-12s %8.1f ms\n", phase,
+                   std::chrono::duration<double, std::milli>(now - last).count());
+    last = now;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  PhaseTimer phase;
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
     const Request q = read_request(cli);
+    const ExrWriteOptions exr = exr_options(cli, q.threads);
+    phase("input");
     SkyDirections directions;  // --error-map only
     SkyDirections* const where = q.error_map ? &directions : nullptr;
     const auto t0 = std::chrono::steady_clock::now();
@@ -436,6 +473,7 @@ int main(int argc, char** argv) {
     RenderStats& st = frame->stats;
     st.seconds = seconds;
     st.rays_per_second = static_cast<double>(st.rays) / seconds;
+    phase("trace");
     // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
     const ErrorSummary errors = q.error_map ? compute_error_channel(q, image, directions) : ErrorSummary{};
 
@@ -473,16 +511,18 @@ int main(int argc, char** argv) {
       image.metadata["error_mismatches"] = std::to_string(errors.mismatches);
     }
     record_render_stats(image, st);
+    phase("header");
     // The EXR, its preview and the maps: all written to temporaries first, then renamed together (all new or
     // all as they were; output_file.hpp).
     OutputSet outputs;
-    write_exr(outputs, q.out, image);
     const std::string png = png_path(q.out);
-    write_png_preview(outputs, png, image);
+    write_exr_and_preview(outputs, q.out, png, image, exr);  // the preview is encoded while the EXR is written
+    phase("exr+png");
     const bool status_map = cli.flag_set("status-map");
     if (status_map) write_status_map(outputs, status_map_path(q.out), image);
     if (q.error_map) write_error_map(outputs, error_map_path(q.out), image);
     outputs.commit();
+    phase("maps+commit");
 
     JsonObject counts;
     for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.add(kRayStatusNames[i], st.status_counts[i]);
@@ -504,6 +544,7 @@ int main(int argc, char** argv) {
     if (tabulated) json.add("table_rays", table.rays).add("table_steps", table.steps);
     if (tracer == "planar") json.add("fallback_rays", table.fallback_rays);
     std::cout << json.str() << std::endl;
+    phase("json");
     return 0;
   });
 }

@@ -1,14 +1,16 @@
 // examples/scenes/example_cli.hpp
 // The little that the example programs share besides the library: their command line (--out FILE.exr, --size N
 // and named numbers of their own), writing the frame as EXR + PNG with a one-line JSON summary, and the exit codes
-// (2 for bad input, before anything is traced or written; 1 for anything else). Kept apart so that each example's
-// .cpp shows only its physics.
+// (2 for bad input, before anything is traced or written; 1 for anything else; --version prints "<program>
+// <version>" and exits 0 before any work). Kept apart so that each example's .cpp shows only its physics.
 #pragma once
 
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/frame.hpp"
+#include "grtrace/render/frame_files.hpp"
 #include "grtrace/render/output_file.hpp"
 #include "grtrace/render/png_preview.hpp"
+#include "grtrace/version.hpp"
 
 #include <cstdlib>
 #include <exception>
@@ -23,10 +25,16 @@ struct ExampleArgs {
   std::map<std::string, double> numbers;  ///< "--name value" options of the example, with their defaults
 };
 
+/// Thrown by parse_example_args for --version; run_example prints "<program> <version>" and exits 0.
+struct VersionRequested {};
+
 /// Parses "--out FILE.exr --size N --<name> X ..." and checks both output paths; throws std::invalid_argument with
-/// the usage (or what is wrong with the path) on anything else, before any work.
+/// the usage (or what is wrong with the path) on anything else, before any work. "--version" in an option's place
+/// throws VersionRequested (handled by run_example).
 inline ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
-  std::string usage = std::string("usage: ") + argv[0] + " [--out FILE.exr] [--size 8..4096]";
+  for (int i = 1; i < argc; i += 2)
+    if (std::string(argv[i]) == "--version") throw VersionRequested{};
+  std::string usage = std::string("usage: ") + argv[0] + " [--out FILE.exr] [--size 8..4096] [--version]";
   for (const auto& [name, value] : defaults.numbers) usage += " [--" + name + " X]";
   auto number = [&](const std::string& text) {  // the whole text must be a number
     char* end = nullptr;
@@ -57,18 +65,21 @@ inline ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs default
 inline void write_example_frame(const ExampleArgs& a, const grtrace::Frame& frame) {
   const std::string png = a.out.substr(0, a.out.size() - 4) + ".png";
   grtrace::OutputSet files;
-  grtrace::write_exr(files, a.out, frame.image);
-  grtrace::write_png_preview(files, png, frame.image);
+  grtrace::write_exr_and_preview(files, a.out, png, frame.image);
   files.commit();
   std::cout << "{\"out\":\"" << a.out << "\",\"png\":\"" << png << "\",\"seconds\":" << frame.stats.seconds
             << ",\"status_counts\":" << frame.image.metadata.at("status_counts") << "}\n";
 }
 
-/// Runs an example's body: bad input (std::invalid_argument) exits 2 with its message, other failures exit 1.
+/// Runs an example's body: --version prints "<program> <version>" and exits 0, bad input (std::invalid_argument)
+/// exits 2 with its message, other failures exit 1.
 template <class Body>
 int run_example(const char* program, Body&& body) {
   try {
     body();
+    return 0;
+  } catch (const VersionRequested&) {
+    std::cout << program << " " << grtrace::kVersion << "\n";
     return 0;
   } catch (const std::invalid_argument& e) {
     std::cerr << program << ": " << e.what() << "\n";

@@ -149,6 +149,9 @@ TEST_F(RenderCliInput, RefusesEveryBadInputBeforeTracingAndLeavesNoFile) {
       {"--max-steps", "0"},
       {"--threads", "-1"},
       {"--no-such-option", "1"},
+      {"--exr-compression", "dwaa"},         // lossy: the channels must read back bit for bit
+      {"--exr-compression", "pxr24"},
+      {"--exr-compression", ""},
       {"--out", (base_ / "missing-dir" / "frame.exr").string()},
       {"--out", (base_ / "out").string()},  // a directory
   };

@@ -195,6 +195,38 @@ TEST_F(Exr, RoundTripIsBitExactForEveryChannelAndCompression) {
   EXPECT_EQ(listing(), std::vector<std::string>{"frame.exr"});
 }
 
+// Every compression the tools offer by name, at both ends of the zlib levels, in the calling thread and on a pool
+// (with a frame tall enough for several chunks of every compression): the same bits back, the compression asked.
+TEST_F(Exr, NamedCompressionsLevelsAndThreadsAllReadBackBitExact) {
+  const Image image = awkward_image(37, 77);
+  for (const auto& [name, compression] : grtrace::kExrLosslessCompressions)
+    for (const int level : {1, 9, -1})
+      for (const int threads : {1, 2, 0}) {
+        SCOPED_TRACE(std::string(name) + " level " + std::to_string(level) + " threads " + std::to_string(threads));
+        const fs::path path = dir_ / "frame.exr";
+        grtrace::write_exr(path, image, {.compression = compression, .zip_level = level, .threads = threads});
+        expect_channels_bit_identical(image, grtrace::read_exr(path));
+        EXPECT_EQ(Imf::InputFile(path.c_str()).header().compression(), compression);
+      }
+  EXPECT_EQ(listing(), std::vector<std::string>{"frame.exr"});
+}
+
+TEST(ExrNames, OnlyTheLosslessCompressionsHaveNames) {
+  EXPECT_EQ(grtrace::exr_compression_from_name("zip"), Imf::ZIP_COMPRESSION);
+  EXPECT_EQ(grtrace::exr_compression_from_name("zips"), Imf::ZIPS_COMPRESSION);
+  EXPECT_EQ(grtrace::exr_compression_from_name("piz"), Imf::PIZ_COMPRESSION);
+  EXPECT_EQ(grtrace::exr_compression_from_name("rle"), Imf::RLE_COMPRESSION);
+  EXPECT_EQ(grtrace::exr_compression_from_name("none"), Imf::NO_COMPRESSION);
+  for (const char* lossy : {"pxr24", "b44", "b44a", "dwaa", "dwab", "ZIP", "", "zip1"})
+    EXPECT_FALSE(grtrace::exr_compression_from_name(lossy).has_value()) << lossy;
+}
+
+TEST_F(Exr, ZipLevelOutsideOneToNineIsRefusedAndNothingIsWritten) {
+  for (const int level : {0, 10, -2})
+    EXPECT_THROW(grtrace::write_exr(dir_ / "frame.exr", Image(2, 2), {.zip_level = level}), std::invalid_argument);
+  EXPECT_TRUE(listing().empty());
+}
+
 TEST_F(Exr, AttributesRoundTrip) {
   Image image(3, 2);
   image.metadata["camera_r"] = "20";
@@ -338,7 +370,52 @@ TEST(Srgb, KnownValues) {
     EXPECT_EQ(grtrace::srgb_encode8(grtrace::srgb_decode8(static_cast<std::uint8_t>(c))), c) << c;
 }
 
+// The preview encodes with a table of thresholds instead of pow (png_preview.hpp): the same code for every value.
+// (Checked once for every float in [0, 1.5) when it was written; here: the doubles around each threshold, the
+// extremes, and a million random values over the whole range the preview sees.)
+TEST(Srgb, ThresholdTableEncodesLikeTheTransferFunction) {
+  const auto& t = grtrace::detail::srgb_encode8_thresholds();
+  auto same = [&](double x) {
+    EXPECT_EQ(grtrace::detail::srgb_encode8_fast(x, t), grtrace::srgb_encode8(x)) << std::hexfloat << x;
+  };
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    EXPECT_EQ(static_cast<std::size_t>(grtrace::srgb_encode8(t[k])), k + 1);
+    EXPECT_EQ(static_cast<std::size_t>(grtrace::srgb_encode8(std::nextafter(t[k], 0.0))), k);
+    for (const double x : {std::nextafter(t[k], 0.0), t[k], std::nextafter(t[k], 2.0)}) same(x);
+  }
+  for (const double x : {0.0, -0.0, -1.0, 1.0, std::nextafter(1.0, 0.0), 1e-300, 5e-324, 7.0,
+                         std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                         std::numeric_limits<double>::quiet_NaN()})
+    same(x);
+  std::uint64_t state = 0x9e3779b97f4a7c15u;  // splitmix64
+  for (int i = 0; i < 1'000'000; ++i) {
+    state += 0x9e3779b97f4a7c15u;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    z ^= z >> 31;
+    const double u = static_cast<double>(z >> 11) * 0x1.0p-53;  // [0, 1)
+    const double x = i % 2 == 0 ? u * 1.2 : std::pow(10.0, -12.0 * u);  // linear and logarithmic coverage
+    if (grtrace::detail::srgb_encode8_fast(x, t) != grtrace::srgb_encode8(x)) same(x);  // reports only failures
+  }
+}
+
 using Png = TempDir;
+
+// The writer uses libpng's full API now: the file still carries its sRGB chunk and reads back exactly.
+TEST_F(Png, WrittenFileHasTheSrgbChunkAndReadsBackExactly) {
+  const int w = 61, h = 29;
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(3 * w * h));
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<std::uint8_t>((i * 37u) ^ (i >> 5));
+  const fs::path path = dir_ / "map.png";
+  grtrace::write_png_rgb8(path, w, h, rgb);
+  std::string bytes(fs::file_size(path), '\0');
+  std::ifstream(path, std::ios::binary).read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  EXPECT_NE(bytes.find("sRGB"), std::string::npos);
+  EXPECT_NE(bytes.find("IEND"), std::string::npos);
+  EXPECT_EQ(grtrace::read_png_rgb8(path).rgb, rgb);
+}
 
 TEST_F(Png, PreviewEncodesLinearValuesAsSrgb) {
   Image image(3, 2);

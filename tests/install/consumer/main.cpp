@@ -4,10 +4,12 @@
 #include <grtrace/metric/schwarzschild.hpp>
 #include <grtrace/tableau/dormand_prince54.hpp>
 #include <grtrace/trace/geodesic_tracer.hpp>
+#include <grtrace/version.hpp>  // generated at configure time and installed beside the other headers
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <string_view>
 
 namespace {
@@ -47,6 +49,14 @@ int main() {
   check(wide.status == grtrace::RayStatus::escaped, "photon with b = 7 escapes");
   check(close.status == grtrace::RayStatus::captured, "photon with b = 5 is captured");
   check(std::abs(wide.constraint_drift) < 1e-6, "g(k, k) stays null along the b = 7 ray");
+
+  std::printf("grtrace %s\n", grtrace::kVersion.data());
+  check(grtrace::kVersion == std::to_string(GRTRACE_VERSION_MAJOR) + "." + std::to_string(GRTRACE_VERSION_MINOR) +
+                                 "." + std::to_string(GRTRACE_VERSION_PATCH),
+        "grtrace/version.hpp: kVersion is MAJOR.MINOR.PATCH");
+#ifdef GRTRACE_EXPECTED_VERSION
+  check(grtrace::kVersion == GRTRACE_EXPECTED_VERSION, "grtrace/version.hpp matches the package version");
+#endif
 
   return failures == 0 ? 0 : 1;
 }

@@ -4,6 +4,9 @@
 // --impact B traces a photon from far away with impact parameter B; "deflection" is the total bending from
 // infinity to infinity (the legs outside the integrated region are added exactly), with the exact value
 // and the error beside it. --path FILE.csv writes every accepted step (lambda, x^mu, k^mu, h).
+// --vtp FILE.vtp writes the same points as a VTK XML polyline for ParaView (grtrace/viz/vtk_export.hpp: point data
+// affine_parameter, step_size, redshift, status, pixel, ...; the redshift is relative to the static observer at the
+// start event); it needs the build with VTK (grtrace::viz). The files of one run are renamed into place together.
 // --metric kerr --spin A [--chart bl|ks]: Kerr in Boyer-Lindquist or Kerr-Schild coordinates. Positions and
 // velocities are given in Boyer-Lindquist (t, r, theta, phi) for both charts; the JSON adds the conserved energy
 // E, axial angular momentum L_z and Carter constant Q at the start and their drifts; --impact B traces an
@@ -20,6 +23,11 @@
 #include "grtrace/trace/deflection.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
+
+#if GRTRACE_GEODESIC_VTP
+#include "grtrace/viz/traced_path.hpp"
+#include "grtrace/viz/vtk_export.hpp"
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -90,7 +98,8 @@ CommandLine make_command_line() {
       .option("position", "", "initial event t,r,theta,phi (radians)")
       .option("velocity", "", "initial spatial components k^r,k^theta,k^phi; k^t solves g(k,k) = 0 or 1")
       .flag("past-directed", "with --position: k^t < 0 (trace back in time, as cameras do)")
-      .option("path", "", "write every accepted step to this CSV file");
+      .option("path", "", "write every accepted step to this CSV file")
+      .option("vtp", "", "write the geodesic (every accepted step) as a VTK XML polyline for ParaView (.vtp)");
   return cli;
 }
 
@@ -187,9 +196,14 @@ Request read_request(const CommandLine& cli) {
   return q;
 }
 
+/// The output files of a run (--path, --vtp), written together.
+struct Outputs {
+  std::string path, vtp;
+};
+
 /// Writes the accepted steps as CSV; `cartesian` names the columns of a Cartesian chart (Kerr-Schild).
-void write_path(const std::string& file, const std::vector<PathRow>& rows, bool cartesian = false) {
-  write_file_atomically(file, [&](std::ostream& out) {
+void write_path(OutputSet& set, const std::string& file, const std::vector<PathRow>& rows, bool cartesian = false) {
+  write_file_atomically(set, file, [&](std::ostream& out) {
     out << (cartesian ? "lambda,t,x,y,z,kt,kx,ky,kz,h\n" : "lambda,t,r,theta,phi,kt,kr,ktheta,kphi,h\n");
     out.precision(17);
     for (const auto& row : rows) {
@@ -200,8 +214,49 @@ void write_path(const std::string& file, const std::vector<PathRow>& rows, bool 
   });
 }
 
+/// Writes the accepted steps as a .vtp polyline: points metric.to_cartesian(x), the rows' lambda and h, the
+/// status, no pixel, and the redshift f_static(start) / f_static(x) (NaN where g_tt <= 0: no static observer).
+template <class Metric>
+void write_vtp([[maybe_unused]] OutputSet& set, [[maybe_unused]] const std::string& file,
+               [[maybe_unused]] const Metric& metric, [[maybe_unused]] const std::vector<PathRow>& rows,
+               [[maybe_unused]] RayStatus status) {
+#if GRTRACE_GEODESIC_VTP
+  viz::TracedPath path;
+  path.status = status;
+  auto static_energy = [&](const GeodesicState& y) {
+    const Mat4 g = metric.metric(Vec4(y.head<4>()));
+    return g(0, 0) > 0.0 ? g.row(0).dot(y.tail<4>()) / std::sqrt(g(0, 0)) : viz::kNaN;
+  };
+  const double e0 = rows.empty() ? viz::kNaN : static_energy(rows.front().y);
+  int step = 0;
+  for (const PathRow& row : rows) {
+    viz::PathSample s;
+    s.state = row.y;
+    s.position = metric.to_cartesian(Vec4(row.y.head<4>()));
+    s.lambda = row.lambda;
+    s.h = row.h;
+    s.step = step++;
+    s.redshift = e0 / static_energy(row.y);
+    path.samples.push_back(s);
+  }
+  viz::write_vtk_xml(set, viz::paths_to_export_polydata(std::span(&path, 1)), file);
+#else
+  throw std::logic_error("--vtp: built without VTK");  // refused in main before any work
+#endif
+}
+
+template <class Metric>
+void write_outputs(const Outputs& files, const Metric& metric, const std::vector<PathRow>& rows, RayStatus status,
+                   bool cartesian = false) {
+  if (files.path.empty() && files.vtp.empty()) return;
+  OutputSet set;
+  if (!files.path.empty()) write_path(set, files.path, rows, cartesian);
+  if (!files.vtp.empty()) write_vtp(set, files.vtp, metric, rows, status);
+  set.commit();
+}
+
 template <ExplicitTableau T, StepController C>
-JsonObject run(const Request& q, const std::string& path_file) {
+JsonObject run(const Request& q, const Outputs& files) {
   C controller{};
   if constexpr (std::is_same_v<C, StepDoubling>) controller.richardson = q.richardson;
   const GeodesicTracer<SchwarzschildMetric, T, C> tracer(q.metric, q.settings, controller);
@@ -221,7 +276,7 @@ JsonObject run(const Request& q, const std::string& path_file) {
     r = tracer.trace_observed(q.initial, recorder);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!path_file.empty()) write_path(path_file, rows);
+  write_outputs(files, q.metric, rows, r.status);
 
   JsonObject json;
   json.add("status", to_string(r.status));
@@ -279,7 +334,7 @@ double bl_phi(const Metric& m, const GeodesicState& y) {
 /// Traces the request in Kerr (Boyer-Lindquist or Kerr-Schild `metric`) and returns the JSON of the contract plus
 /// E, L_z, Q at the start and their drifts. Assumes q.kerr, the request checked, q.initial in BL coordinates.
 template <ExplicitTableau T, StepController C, class Metric>
-JsonObject run_kerr(const Request& q, const Metric& metric, const std::string& path_file) {
+JsonObject run_kerr(const Request& q, const Metric& metric, const Outputs& files) {
   C controller{};
   if constexpr (std::is_same_v<C, StepDoubling>) controller.richardson = q.richardson;
   const KerrMetric bl{q.metric.mass, q.spin};
@@ -298,7 +353,7 @@ JsonObject run_kerr(const Request& q, const Metric& metric, const std::string& p
   const auto t0 = std::chrono::steady_clock::now();
   const TraceResult r = tracer.trace_observed(start, recorder);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!path_file.empty()) write_path(path_file, rows, std::is_same_v<Metric, KerrSchildMetric>);
+  write_outputs(files, metric, rows, r.status, std::is_same_v<Metric, KerrSchildMetric>);
 
   JsonObject json;
   json.add("status", to_string(r.status));
@@ -355,13 +410,13 @@ JsonObject run_kerr(const Request& q, const Metric& metric, const std::string& p
 
 /// run_kerr in the requested chart (KS: the slicing whose horizon the ray's time direction crosses).
 template <ExplicitTableau T, StepController C>
-JsonObject run_kerr_chart(const Request& q, const std::string& path_file) {
+JsonObject run_kerr_chart(const Request& q, const Outputs& files) {
   if (q.chart == "ks") {
     KerrSchildMetric ks = KerrSchildMetric::checked(q.metric.mass, q.spin);
     ks.slicing = slicing_crossed_by(q.impact_run ? 1.0 : q.initial[4]);
-    return run_kerr<T, C>(q, ks, path_file);
+    return run_kerr<T, C>(q, ks, files);
   }
-  return run_kerr<T, C>(q, KerrMetric::checked(q.metric.mass, q.spin), path_file);
+  return run_kerr<T, C>(q, KerrMetric::checked(q.metric.mass, q.spin), files);
 }
 
 }  // namespace
@@ -370,12 +425,20 @@ int main(int argc, char** argv) {
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
     const Request q = read_request(cli);
-    const std::string path_file = cli.text("path");
-    if (cli.given("path")) tools::check_output_option("path", path_file);  // --path "" is refused
+    const Outputs files{cli.text("path"), cli.text("vtp")};
+    if (cli.given("path")) tools::check_output_option("path", files.path);  // --path "" is refused
+    if (cli.given("vtp")) {
+#if !GRTRACE_GEODESIC_VTP
+      throw UsageError("--vtp: this grtrace-geodesic was built without VTK (grtrace::viz)");
+#endif
+      tools::check_output_option("vtp", files.vtp);
+      if (!files.path.empty() && same_file(files.vtp, files.path))
+        throw UsageError("--vtp and --path name the same file '" + files.vtp + "'");
+    }
     JsonObject json;
     const auto error = dispatch_method(cli.text("tableau"), cli.text("control"),
                                        [&]<class T, class C>() {
-                                         json = q.kerr ? run_kerr_chart<T, C>(q, path_file) : run<T, C>(q, path_file);
+                                         json = q.kerr ? run_kerr_chart<T, C>(q, files) : run<T, C>(q, files);
                                        });
     if (error != DispatchError::none) throw UsageError(describe(error, cli.text("tableau"), cli.text("control")));
     std::cout << json.str() << std::endl;

@@ -7,6 +7,8 @@
 //     rendered here; the bundle's pixels are marked, and each bundle ray keeps its pixel's colour.
 //   * --chart orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts).
 // Interactive when a display exists; --screenshot FILE.png --size WxH renders offscreen and exits.
+// --export DIR writes the 3D scene (rays with their point data, surfaces, the frame as an image, scene.vtm) as VTK XML
+// files for ParaView (grtrace/viz/vtk_export.hpp) and exits; alone it opens no window and needs no display.
 // Rendering needs X: headless, run under  xvfb-run -a -s "-screen 0 1280x1024x24" grtrace-view ...
 // With --frame, the camera (event and tetrad), the scene, mass, sky radius, angle correction and integration
 // method are read from the EXR's header (as grtrace-render writes it), so the bundle is traced through the frame's
@@ -40,6 +42,7 @@
 #include "grtrace/viz/orbits.hpp"
 #include "grtrace/viz/scene_view.hpp"
 #include "grtrace/viz/viewer_window.hpp"
+#include "grtrace/viz/vtk_export.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -71,6 +74,8 @@ CommandLine make_command_line() {
                   "Interactive when a display exists; --screenshot renders offscreen and exits.\n"
                   "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png");
   cli.option("screenshot", "", "render offscreen to this PNG and exit")
+      .option("export", "", "write the 3D scene (rays, surfaces, frame) as VTK XML files for ParaView into this "
+                            "directory (created if missing; open DIR/scene.vtm) and exit; needs no display")
       .option("size", "", "window / screenshot size WxH (default 1600x800; charts 900x800)")
       .option("chart", "", "draw a chart of the orbit instead of the 3D view: orbit | norm | step")
       // scene (as grtrace-render)
@@ -314,6 +319,11 @@ Request read_request(const CommandLine& cli) {
     if (!cli.text("frame").empty()) tools::check_not_input("screenshot", q.screenshot, "frame", cli.text("frame"));
   }
   q.chart = cli.text("chart");
+  if (cli.given("export")) {
+    q.export_dir = cli.text("export");
+    if (q.export_dir.empty()) throw UsageError("--export needs a directory name");
+    if (!q.chart.empty()) throw UsageError("--export writes the 3D scene; not with --chart");
+  }
   if (!q.chart.empty() && q.chart != "orbit" && q.chart != "norm" && q.chart != "step")
     throw UsageError("--chart must be orbit, norm or step, got '" + q.chart + "'");
   q.size = cli.given("size") ? parse_size("size", cli.text("size"))
@@ -550,19 +560,37 @@ int run_view(const Request& q) {
   } else {
     layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
   }
-  viz::SceneView scene(layout);
 
   const auto pixels = bundle_pixels(q);
   const std::vector<viz::TracedPath> rays = view::trace_bundle(q, pixels, frame_rgb);
+  std::optional<viz::TracedPath> orbit;
+  if (q.show_orbit) orbit = view::trace_orbit(q);
+
+  if (!q.export_dir.empty()) {
+    viz::SceneExport ex;
+    ex.layout = layout;
+    ex.hidden = q.hidden;
+    ex.rays = rays;
+    ex.orbit = orbit ? &*orbit : nullptr;
+    if (q.bundle != "beam")
+      ex.camera = viz::CameraRecord{camera.position(), camera.tetrad().e, q.fov, q.width, q.height};
+    ex.frame = &frame_rgb;
+    ex.frame_channels = &frame_image;
+    const auto files = viz::export_scene(q.export_dir, ex);
+    std::cout << "wrote " << files.back().path.string() << " (" << files.size() - 1 << " files: ";
+    for (std::size_t i = 0; i + 1 < files.size(); ++i)
+      std::cout << (i ? ", " : "") << files[i].path.filename().string();
+    std::cout << "; " << rays.size() << " rays)\n";
+    if (q.screenshot.empty()) return 0;  // export only: no window
+  }
+
+  viz::SceneView scene(layout);
   if (!rays.empty()) {
     viz::ScalarField field = q.color_by;
     if (field == viz::ScalarField::pixel_color && q.bundle == "beam") field = viz::ScalarField::status;  // no pixels
     scene.set_rays(viz::paths_to_polydata(rays), field);
   }
-  if (q.show_orbit) {
-    const viz::TracedPath orbit = view::trace_orbit(q);
-    scene.set_orbit(viz::paths_to_polydata(std::span(&orbit, 1)), viz::ScalarField::lambda);
-  }
+  if (orbit) scene.set_orbit(viz::paths_to_polydata(std::span(&*orbit, 1)), viz::ScalarField::lambda);
   for (viz::Layer l : q.hidden) scene.set_visible(l, false);
   viz::ViewPose pose = scene.default_view();
   if (q.view_from) {
@@ -615,10 +643,19 @@ int main(int argc, char** argv) {
   try {
     if (!cli.parse(argc, argv)) return 0;
     const Request q = read_request(cli);
-    try {
-      viz::require_display(cli.program(), "");
-    } catch (const viz::NoDisplayError& e) {
-      throw UsageError(std::string(e.what()) + " --screenshot FILE.png");
+    if (q.export_dir.empty() || !q.screenshot.empty()) {  // --export alone draws nothing: no display needed
+      try {
+        viz::require_display(cli.program(), "");
+      } catch (const viz::NoDisplayError& e) {
+        throw UsageError(std::string(e.what()) + " --screenshot FILE.png");
+      }
+    }
+    if (!q.export_dir.empty()) {  // after every other check, so a directory is made only for real work
+      try {
+        viz::prepare_export_directory(q.export_dir);
+      } catch (const viz::ExportPathError& e) {
+        throw UsageError(std::string("--export: ") + e.what());
+      }
     }
     return q.chart.empty() ? run_view(q) : run_chart(q);
   } catch (const UsageError& e) {

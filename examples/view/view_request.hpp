@@ -33,6 +33,7 @@ struct MethodChoice {
 
 struct Request {
   std::string screenshot;
+  std::string export_dir;  ///< --export: write the scene as VTK XML files here (viz/vtk_export.hpp)
   std::array<int, 2> size{};
   std::string chart;
   std::string scene = "disk";  ///< a preset of scene/standard_scenes.hpp

@@ -610,8 +610,10 @@ int run_view(const Request& q) {
     std::snprintf(frame_caption, sizeof frame_caption, "frame %s (%dx%d)%s",
                   std::filesystem::path(q.frame_file).filename().c_str(), q.width, q.height, marked);
   } else {
-    std::snprintf(frame_caption, sizeof frame_caption, "frame (%dx%d, rendered in %.2f s)%s", q.width, q.height,
-                  frame_seconds, marked);
+    // The header names the tracer that ran (trace/auto_tracer.hpp picks the fastest exact one).
+    const auto tracer = frame_image.metadata.find("tracer");
+    std::snprintf(frame_caption, sizeof frame_caption, "frame (%dx%d, %s tracer, rendered in %.2f s)%s", q.width,
+                  q.height, tracer == frame_image.metadata.end() ? "?" : tracer->second.c_str(), frame_seconds, marked);
   }
   char scene_caption[256];
   std::snprintf(scene_caption, sizeof scene_caption,

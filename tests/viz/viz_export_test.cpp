@@ -11,6 +11,8 @@
 #include "grtrace/viz/traced_path.hpp"
 #include "grtrace/viz/vtk_export.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <vtkAbstractArray.h>
@@ -57,21 +59,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace grtrace;
 
-struct ToolRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-ToolRun run(const std::string& cmd) {
-  ToolRun r;
-  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
-  const int w = ::pclose(p);
-  r.status = WIFEXITED(w) ? WEXITSTATUS(w) : -1;
-  return r;
-}
+using grtrace::tool_tests::ToolRun;
+const auto run = grtrace::tool_tests::run_command;
 
 std::string view(const std::string& args) { return std::string("env -u DISPLAY ") + GRTRACE_VIEW_EXE + " " + args; }
 std::string geodesic(const std::string& args) { return std::string(GRTRACE_GEODESIC_EXE) + " " + args; }

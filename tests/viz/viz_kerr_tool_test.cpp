@@ -1,6 +1,8 @@
 // grtrace-view --metric kerr as a program (issue 12): bad Kerr input is refused (exit 2, a message naming the
 // option), and a Kerr scene (frame by the general tracer, rays, outer horizon, ergosphere, ISCO) is drawn offscreen.
 // The rendering case skips without DISPLAY (run under xvfb-run).
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -17,23 +19,10 @@
 
 namespace {
 
-struct ToolRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using grtrace::tool_tests::ToolRun;
 
 /// Runs grtrace-view with `args` (shell words); returns the exit status and the merged output.
-ToolRun run(const std::string& args) {
-  ToolRun r;
-  const std::string cmd = std::string(GRTRACE_VIEW_EXE) + " " + args + " 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
-  const int w = ::pclose(p);
-  r.status = WIFEXITED(w) ? WEXITSTATUS(w) : -1;
-  return r;
-}
+ToolRun run(const std::string& args) { return grtrace::tool_tests::run_command(std::string(GRTRACE_VIEW_EXE) + " " + args); }
 
 TEST(ViewKerr, BadKerrInputExitsWithTwo) {
   const std::array<std::pair<const char*, const char*>, 6> cases = {{

@@ -8,6 +8,8 @@
 #include "grtrace/render/png_preview.hpp"
 #include "grtrace/viz/viewer_window.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -24,22 +26,10 @@
 
 namespace {
 
-struct ToolRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using grtrace::tool_tests::ToolRun;
 
-ToolRun run(const std::string& args) {
-  ToolRun r;
-  const std::string cmd = std::string(GRTRACE_VIEW_EXE) + " " + args + " 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
-  const int w = ::pclose(p);
-  r.status = WIFEXITED(w) ? WEXITSTATUS(w) : -1;
-  return r;
-}
+/// Runs grtrace-view with `args` (shell words); returns the exit status and the merged output.
+ToolRun run(const std::string& args) { return grtrace::tool_tests::run_command(std::string(GRTRACE_VIEW_EXE) + " " + args); }
 
 std::filesystem::path scratch(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("grtrace-view-test-" + std::to_string(::getpid()));

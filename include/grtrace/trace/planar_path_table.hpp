@@ -238,8 +238,6 @@ class PlanarPathTable {
       if (psi >= psi_end_continuation) break;
       if (ended && node.status == RayStatus::captured && u >= u_stop_inside) break;
     }
-    if (!ended && (node.status == RayStatus::escaped || node.status == RayStatus::captured))
-      node.status = RayStatus::max_steps;
     resample(accepted, eq, node.path);
     return node;
   }

@@ -115,7 +115,7 @@ class PlanarSceneTracer {
   /// Builds the table for the camera's pixels. Assumes (checked by the table) horizon guard < camera radius < sky.
   PlanarSceneTracer(Metric metric, const TraceSettings& settings, const Camera& camera, AngleCorrection correction,
                     SceneT scene, int nodes_per_side = 2048, C controller = {})
-      : metric_(metric), correction_(correction), scene_(scene),
+      : metric_(metric), correction_(correction),
         fallback_(metric, settings, controller, correction, std::move(scene)) {
     const auto [lo, hi] = planar_angle_range(metric, camera);
     table_.emplace(metric, camera.position()[1], settings, lo, hi, nodes_per_side, controller);
@@ -182,7 +182,7 @@ class PlanarSceneTracer {
     return out;
   }
 
-  const SceneT& scene() const { return scene_; }
+  const SceneT& scene() const { return fallback_.scene(); }  // the fallback tracer holds the one copy
   const PlanarPathTable<Metric, T, C>& table() const { return *table_; }
   /// Pixels traced by the general tracer instead (see the top of this file), since construction.
   long fallback_rays() const { return fallbacks_.load(std::memory_order_relaxed); }
@@ -213,8 +213,8 @@ class PlanarSceneTracer {
   void visit_hit(const GeodesicState& y, F&& f) const {
     bool done = false;
     [&]<std::size_t... I>(std::index_sequence<I...>) {
-      ((!done && event_accepts(std::get<I>(scene_.objects), y)
-            ? (f(kFirstSceneObject + static_cast<int>(I), std::get<I>(scene_.objects)), void(done = true))
+      ((!done && event_accepts(std::get<I>(scene().objects), y)
+            ? (f(kFirstSceneObject + static_cast<int>(I), std::get<I>(scene().objects)), void(done = true))
             : void()),
        ...);
     }(std::make_index_sequence<SceneT::object_count>{});
@@ -222,7 +222,6 @@ class PlanarSceneTracer {
 
   Metric metric_;
   AngleCorrection correction_;
-  SceneT scene_;
   GeneralSceneTracer<Metric, T, C, SceneT> fallback_;
   std::optional<PlanarPathTable<Metric, T, C>> table_;
   mutable std::atomic<long> fallbacks_{0};

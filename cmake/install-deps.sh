@@ -11,6 +11,9 @@ packages=(
   libvtk9-dev                         # viz frontend
   libgtest-dev libbenchmark-dev       # tests and benchmarks
   xvfb xauth                          # headless VTK rendering in tests
+  libcli11-dev libtomlplusplus-dev    # tools only: option parsing and TOML scene files (--config)
+  nlohmann-json3-dev                  # tools only: JSON output
+  ffmpeg                              # grtrace-render --mp4: camera flights assembled into a video
 )
 # Optional, not part of CI: GRTRACE_FUZZ=1 also installs AFL++ for the fuzz targets in tests/fuzz/.
 if [ "${GRTRACE_FUZZ:-0}" = 1 ]; then

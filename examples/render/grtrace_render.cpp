@@ -10,7 +10,10 @@
 
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/observer/timelike_start.hpp"
+#include "grtrace/observer/worldline.hpp"
 #include "grtrace/render/exr_io.hpp"
+#include "grtrace/render/flight_files.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/render/frame_files.hpp"
 #include "grtrace/render/png_preview.hpp"
@@ -22,6 +25,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <sstream>
 
@@ -34,6 +38,7 @@ using tools::UsageError;
 using render_tool::Request;
 using render_tool::SkyDirections;
 using render_tool::TableStats;
+using render_tool::FlightRequest;
 
 CommandLine make_command_line() {
   CommandLine cli("grtrace-render",
@@ -95,7 +100,23 @@ CommandLine make_command_line() {
             "(heat map, log scale 1e-12 .. 1e-2 rad) and report max_error/median_error in the JSON")
       .flag("disk-retrograde", "disk scene: the gas turns against the hole's rotation (default: with it; "
                                "towards +phi for a non-rotating hole)")
-      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
+      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)")
+      .option("flight", "", "render a sequence along a camera path instead of one frame: seed (the seed report's "
+                            "orbit: r = 100 M, dphi/dtau = 0.00075/M, equatorial) | circular (the circular orbit at "
+                            "--camera-r) | orbit (from --camera-r/-theta/-phi with --orbit-dr, --orbit-dphi) | infall "
+                            "(from rest at --camera-r) | csv (--flight-csv). Frames are spaced evenly in the camera's "
+                            "proper time; its tetrad is rebuilt in every frame from its 4-velocity with the fixed "
+                            "--look/--up rule (aberration and Doppler from u). Writes <out stem>-NNNN.exr and .png; "
+                            "a re-run skips the frames already written whole by the same flight")
+      .option("frames", "300", "flight: number of frames")
+      .option("frame-dtau", "0", "flight: proper time between frames; 0: one revolution in phi over the frames "
+                                 "(seed, circular, orbit) or the fall to 1.1 r_h (infall)")
+      .option("orbit-dr", "0", "flight orbit: initial dr/dtau")
+      .option("orbit-dphi", "0.00075", "flight orbit: initial dphi/dtau")
+      .option("flight-csv", "", "flight csv: camera states, a header line then rows "
+                                "tau,t,r,theta,phi,ut,ur,utheta,uphi (angles in radians, g(u,u) = 1)")
+      .option("fps", "30", "flight --mp4: frames per second")
+      .flag("mp4", "flight: also write <out stem>.mp4 from the PNG previews (ffmpeg, H.264)");
   return cli;
 }
 
@@ -103,11 +124,26 @@ std::string png_path(const std::string& exr) { return exr.substr(0, exr.size() -
 std::string status_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-status.png"; }
 std::string error_map_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + "-error.png"; }
 
-/// Every file a run writes: the EXR, its PNG preview, and the maps asked for.
-std::vector<std::string> output_paths(const std::string& exr, bool status_map, bool error_map) {
-  std::vector<std::string> out{exr, png_path(exr)};
-  if (status_map) out.push_back(status_map_path(exr));
-  if (error_map) out.push_back(error_map_path(exr));
+std::string flight_exr_path(const Request& q, int i) {
+  return flight_frame_path(q.out, i, static_cast<int>(q.flight.cameras.size())).string();
+}
+std::string mp4_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + ".mp4"; }
+
+/// Every file a run writes: the EXR, its PNG preview, and the maps asked for; for a flight every frame's EXR and
+/// PNG and the MP4 if asked for.
+std::vector<std::string> output_paths(const Request& q, bool status_map, bool mp4) {
+  if (!q.flight.cameras.empty()) {
+    std::vector<std::string> out;
+    for (int i = 0; i < static_cast<int>(q.flight.cameras.size()); ++i) {
+      out.push_back(flight_exr_path(q, i));
+      out.push_back(png_path(out.back()));
+    }
+    if (mp4) out.push_back(mp4_path(q.out));
+    return out;
+  }
+  std::vector<std::string> out{q.out, png_path(q.out)};
+  if (status_map) out.push_back(status_map_path(q.out));
+  if (q.error_map) out.push_back(error_map_path(q.out));
   return out;
 }
 
@@ -144,6 +180,97 @@ void set_disk_sense_and_isco(const CommandLine& cli, const MetricSpec& ms, ThinD
         << "): no stable circular orbit exists there; raise --disk-inner to at least the ISCO or leave it out";
     throw UsageError(msg.str());
   }
+}
+
+/// The camera path of --flight (checked, before any work): the start (a preset, or --camera-r/-theta/-phi with
+/// --orbit-dr/--orbit-dphi), the proper-time step (--frame-dtau, or automatic: one revolution over the frames, or
+/// the fall to 1.1 r_h), the path sampled (observer/worldline.hpp) and one camera per frame pointed by
+/// --look/--up (make_moving_camera). Refuses what a single frame's camera would, plus a path that ends (horizon,
+/// sky sphere) before its last frame, and the options that describe a single frame only.
+void read_flight(const CommandLine& cli, Request& q) {
+  FlightRequest& f = q.flight;
+  f.name = cli.text("flight");
+  if (f.name.empty()) {
+    for (const char* name : {"flight-csv", "frame-dtau", "orbit-dr", "orbit-dphi", "fps"})
+      if (cli.given(name)) throw UsageError(std::string("--") + name + " needs --flight (a camera path)");
+    if (cli.given("frames") || cli.flag_set("mp4")) throw UsageError("--frames and --mp4 need --flight (a camera path)");
+    return;
+  }
+  if (f.name != "seed" && f.name != "circular" && f.name != "orbit" && f.name != "infall" && f.name != "csv")
+    throw UsageError("unknown --flight '" + f.name + "'; choose seed, circular, orbit, infall or csv");
+  for (const char* name : {"velocity", "observer"})
+    if (cli.given(name))
+      throw UsageError(std::string("--") + name + " sets a single frame's camera; a flight's camera moves with its "
+                       "path (its 4-velocity): leave it out");
+  if (cli.flag_set("status-map") || q.error_map)
+    throw UsageError("--status-map and --error-map are for single frames; leave them out with --flight");
+  if (q.tracer == "symmetric") throw UsageError("--tracer symmetric does not fly; use auto (or general)");
+  if ((f.name == "csv") != !cli.text("flight-csv").empty())
+    throw UsageError("--flight csv goes with --flight-csv FILE (and --flight-csv only with --flight csv)");
+  const long frames = cli.integer("frames");
+  if (frames < 1 || frames > 100000) throw UsageError("--frames must be in 1 .. 100000");
+  const double dtau = cli.number("frame-dtau");
+  if (!(dtau >= 0.0)) throw UsageError("--frame-dtau must be >= 0 (0: automatic), got " + cli.text("frame-dtau"));
+  if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
+  const double r = cli.number("camera-r");
+  const double theta = cli.number("camera-theta") * std::numbers::pi / 180.0;
+  const double phi = cli.number("camera-phi") * std::numbers::pi / 180.0;
+  const CameraView view{triple(cli, "look"), triple(cli, "up"), q.camera->width(), q.camera->height(),
+                        q.camera->fov_degrees()};
+  const MetricSpec& ms = q.metric;
+  Worldline path;
+  try {
+    with_named_metric(ms, [&](const auto& m) {
+      using M = std::remove_cvref_t<decltype(m)>;
+      if constexpr (M::chart != Chart::spherical) {
+        throw UsageError("--flight needs a spherical chart (the camera path is integrated in (t, r, theta, phi)); "
+                         "use --chart bl");
+      } else {
+        const double rh = m.horizon_radius();
+        if (f.name == "csv") {
+          path = read_worldline_csv(cli.text("flight-csv"));
+          check_worldline(m, path);
+          f.dtau = path.samples.size() > 1 ? path.samples[1].tau - path.samples[0].tau : 0.0;
+        } else {
+          const TimelikeStart start = f.name == "seed"       ? seed_orbit_start(m, ms.mass)
+                                      : f.name == "circular" ? circular_orbit_start(m, r)
+                                      : f.name == "infall"   ? radial_infall_start(m, r, theta, phi)
+                                                             : orbit_start(m, r, theta, phi, cli.number("orbit-dr"),
+                                                                           cli.number("orbit-dphi"));
+          f.dtau = dtau;
+          if (f.dtau == 0.0 && f.name == "infall") {
+            const auto fall = rh > 0.0 ? proper_time_until(m, start, RadiusEvent{1.1 * rh}) : std::nullopt;
+            if (!fall || !(start.x[1] > 1.1 * rh))
+              throw UsageError("--flight infall: no fall to 1.1 r_h from --camera-r " + cli.text("camera-r") +
+                               " (no horizon, or already inside 1.1 r_h); give --frame-dtau");
+            f.dtau = *fall / static_cast<double>(std::max(frames - 1, 1L));
+          } else if (f.dtau == 0.0) {
+            const auto turn = proper_time_until(m, start, revolution_event(start));
+            if (!turn)
+              throw UsageError("--flight " + f.name + ": the camera does not complete a revolution in phi (it falls "
+                               "in or escapes first); give --frame-dtau");
+            f.dtau = *turn / static_cast<double>(frames);
+          }
+          path = sample_worldline(m, start, f.dtau, static_cast<int>(frames));
+          if (!path.complete())
+            throw UsageError("--flight " + f.name + ": the camera's path ends (" +
+                             std::string(kRayStatusNames[static_cast<std::size_t>(*path.stopped)]) + " at tau = " +
+                             JsonObject::number(path.samples.back().tau) + ") before frame " +
+                             std::to_string(path.samples.size()) + "; use fewer --frames or a smaller --frame-dtau");
+        }
+        for (std::size_t i = 0; i < path.samples.size(); ++i)
+          if (!(m.radius(path.samples[i].x) < q.settings.escape_radius))
+            throw UsageError("--flight: frame " + std::to_string(i) + " is at r = " +
+                             JsonObject::number(m.radius(path.samples[i].x)) +
+                             ", outside the sky sphere; raise --sky-radius");
+        f.cameras = flight_cameras(m, path, view);
+      }
+    });
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--flight " + f.name + ": " + e.what());
+  }
+  for (const WorldlineSample& s : path.samples) f.tau.push_back(s.tau);
+  q.camera = f.cameras.front();
 }
 
 Request read_request(const CommandLine& cli) {
@@ -318,10 +445,12 @@ Request read_request(const CommandLine& cli) {
   q.out = cli.text("out");
   if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
     throw UsageError("--out must name an .exr file, got '" + q.out + "'");
+  read_flight(cli, q);
   // Every file this run writes, checked before any work: writable, not a directory, not the input texture.
-  for (const std::string& path : output_paths(q.out, cli.flag_set("status-map"), q.error_map)) {
+  for (const std::string& path : output_paths(q, cli.flag_set("status-map"), cli.flag_set("mp4"))) {
     tools::check_output_option("out", path);
     tools::check_not_input("out", path, "sky-texture", cli.text("sky-texture"));
+    tools::check_not_input("out", path, "flight-csv", cli.text("flight-csv"));
   }
   return q;
 }
@@ -448,26 +577,125 @@ struct PhaseTimer {
   }
 };
 
+
+/// Everything a frame's header records beyond what render_frame wrote: the command line, every option's effective
+/// value (given or default: the frame can be reproduced from its header alone), the metric and scene, the method.
+void describe_frame(Image& image, const Request& q, const CommandLine& cli, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
+  for (const auto& [name, value] : cli.values()) image.metadata["option_" + name] = value;
+  auto num = [](double v) { return JsonObject::number(v); };
+  image.metadata["scene"] = q.scene.name;
+  image.metadata["metric"] = q.metric.name;
+  image.metadata["mass"] = num(q.metric.name == "minkowski" ? 0.0 : q.metric.mass);
+  if (q.metric.name == "kerr") {
+    image.metadata["spin"] = num(q.metric.spin);
+    image.metadata["chart"] = q.metric.chart;
+  }
+  if (q.metric.name == "rn") image.metadata["charge"] = num(q.metric.charge);
+  if (q.metric.name == "sds") image.metadata["lambda"] = num(q.metric.lambda);
+  if (q.metric.name == "wormhole") image.metadata["throat"] = num(q.metric.throat);
+  image.metadata["observer"] = q.flight.cameras.empty() ? observer_name(cli, q.metric) : "moving (flight)";
+  if (q.scene.name == "disk") {
+    image.metadata["disk_sense"] = cli.flag_set("disk-retrograde") ? "retrograde" : "prograde";
+    image.metadata["disk_inner"] = num(q.scene.disk.r_in);
+    image.metadata["disk_outer"] = num(q.scene.disk.r_out);
+  }
+  image.metadata["tableau"] = q.tableau;
+  image.metadata["control"] = q.control;
+  image.metadata["rtol"] = num(q.settings.integrator.tolerance.rtol);
+  image.metadata["atol"] = num(q.settings.integrator.tolerance.atol);
+  image.metadata["max_steps"] = std::to_string(q.settings.max_steps);
+  image.metadata["sky_radius"] = num(q.settings.escape_radius);
+  image.metadata["angle_correction"] = q.correction_name;
+}
+
+/// The frame (or, for a flight, every frame through q.flight.sink) from the translation unit of q's metric.
+std::optional<Frame> render_request(const Request& q, SkyDirections* where, TableStats& table) {
+  const std::string& metric = q.metric.name;
+  if (metric == "schwarzschild" || metric == "minkowski") return render_tool::render_schwarzschild(q, where, table);
+  if (metric == "kerr") return render_tool::render_kerr(q, where);
+  if (metric == "rn" || metric == "sds") return render_tool::render_rn_sds(q, where, table);
+  return render_tool::render_wormhole_ef(q, where);
+}
+
+JsonObject status_counts_json(const std::array<long, kRayStatusCount>& counts) {
+  JsonObject json;
+  for (std::size_t i = 0; i < kRayStatusCount; ++i) json.add(kRayStatusNames[i], counts[i]);
+  return json;
+}
+
+/// --flight: every frame as <stem>-NNNN.exr + .png (skipping those a previous run of the same flight wrote whole:
+/// same flight_signature), then the MP4 if asked for; one line of JSON for the whole sequence.
+int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const ExrWriteOptions& exr) {
+  std::map<std::string, std::string> content;  // the options that decide what the frames show
+  for (const auto& [name, value] : cli.values())
+    if (name != "threads" && name != "mp4" && name != "fps" && name != "exr-compression") content[name] = value;
+  const std::string signature = flight_signature(content);
+  const int frames = static_cast<int>(q.flight.cameras.size());
+  q.flight.skip = [&](int i) { return flight_frame_done(flight_exr_path(q, i), png_path(flight_exr_path(q, i)), signature); };
+  TableStats table;
+  std::string tracer = "none";
+  q.flight.sink = [&](int i, Frame& frame, const TableStats& t) {
+    Image& image = frame.image;
+    describe_frame(image, q, cli, argc, argv);
+    image.metadata["flight"] = q.flight.name;
+    image.metadata["flight_frame"] = std::to_string(i);
+    image.metadata["flight_frames"] = std::to_string(frames);
+    image.metadata["flight_tau"] = JsonObject::number(q.flight.tau[static_cast<std::size_t>(i)]);
+    image.metadata["flight_signature"] = signature;
+    tracer = image.metadata["tracer"];
+    table.rays += t.rays;
+    table.steps += t.steps;
+    table.fallback_rays += t.fallback_rays;
+    OutputSet outputs;
+    const std::string path = flight_exr_path(q, i);
+    write_exr_and_preview(outputs, path, png_path(path), image, exr);
+    outputs.commit();
+  };
+  FlightStats stats;
+  q.flight.stats = &stats;
+  render_request(q, nullptr, table);
+  std::string mp4;
+  if (cli.flag_set("mp4")) {
+    mp4 = mp4_path(q.out);
+    OutputSet outputs;
+    assemble_mp4(outputs, flight_png_pattern(png_path(q.out), frames), frames, cli.number("fps"), mp4);
+    outputs.commit();
+  }
+  JsonObject json;
+  json.add("flight", q.flight.name).add("frames", frames).add("frames_rendered", stats.rendered);
+  json.add("frames_skipped", stats.skipped).add("width", q.camera->width()).add("height", q.camera->height());
+  json.add("proper_time_step", q.flight.dtau).add("seconds", stats.seconds);
+  json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds);
+  json.add("status_counts", status_counts_json(stats.status_counts));
+  json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
+  json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
+  json.add("first_frame", flight_exr_path(q, 0)).add("last_frame", flight_exr_path(q, frames - 1));
+  if (!mp4.empty()) json.add("mp4", mp4);
+  if (tracer == "planar" || tracer == "symmetric-sky") {
+    json.add("table_rays", table.rays).add("table_steps", table.steps).add("fallback_rays", table.fallback_rays);
+    json.add("mean_steps", stats.rays > 0 ? static_cast<double>(table.steps) / static_cast<double>(stats.rays) : 0.0);
+  }
+  std::cout << json.str() << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   PhaseTimer phase;
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
-    const Request q = read_request(cli);
+    Request q = read_request(cli);
     const ExrWriteOptions exr = exr_options(cli, q.threads);
     phase("input");
+    if (!q.flight.cameras.empty()) return run_flight(q, cli, argc, argv, exr);
     SkyDirections directions;  // --error-map only
     SkyDirections* const where = q.error_map ? &directions : nullptr;
     const auto t0 = std::chrono::steady_clock::now();
-    std::optional<Frame> frame;
     TableStats table;
-    const std::string& metric = q.metric.name;
-    if (metric == "schwarzschild" || metric == "minkowski") frame.emplace(render_tool::render_schwarzschild(q, where, table));
-    else if (metric == "kerr") frame.emplace(render_tool::render_kerr(q, where));
-    else if (metric == "rn" || metric == "sds") frame.emplace(render_tool::render_rn_sds(q, where, table));
-    else frame.emplace(render_tool::render_wormhole_ef(q, where));
-    // The table (symmetric tracer) is part of the frame's cost: time the whole thing.
+    std::optional<Frame> frame = render_request(q, where, table);
+    // The table (planar and symmetric tracers) is part of the frame's cost: time the whole thing.
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Image& image = frame->image;
     RenderStats& st = frame->stats;
@@ -477,34 +705,9 @@ int main(int argc, char** argv) {
     // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
     const ErrorSummary errors = q.error_map ? compute_error_channel(q, image, directions) : ErrorSummary{};
 
-    for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
-    // Every option's effective value (given or default), so the frame can be reproduced from its header alone.
-    for (const auto& [name, value] : cli.values()) image.metadata["option_" + name] = value;
+    describe_frame(image, q, cli, argc, argv);
     auto num = [](double v) { return JsonObject::number(v); };
-    image.metadata["scene"] = q.scene.name;
-    image.metadata["metric"] = q.metric.name;
-    image.metadata["mass"] = num(q.metric.name == "minkowski" ? 0.0 : q.metric.mass);
-    if (q.metric.name == "kerr") {
-      image.metadata["spin"] = num(q.metric.spin);
-      image.metadata["chart"] = q.metric.chart;
-    }
-    if (q.metric.name == "rn") image.metadata["charge"] = num(q.metric.charge);
-    if (q.metric.name == "sds") image.metadata["lambda"] = num(q.metric.lambda);
-    if (q.metric.name == "wormhole") image.metadata["throat"] = num(q.metric.throat);
-    image.metadata["observer"] = observer_name(cli, q.metric);
-    if (q.scene.name == "disk") {
-      image.metadata["disk_sense"] = cli.flag_set("disk-retrograde") ? "retrograde" : "prograde";
-      image.metadata["disk_inner"] = num(q.scene.disk.r_in);
-      image.metadata["disk_outer"] = num(q.scene.disk.r_out);
-    }
     const std::string tracer = image.metadata["tracer"];  // the tracer that ran (render_frame records it)
-    image.metadata["tableau"] = q.tableau;
-    image.metadata["control"] = q.control;
-    image.metadata["rtol"] = num(q.settings.integrator.tolerance.rtol);
-    image.metadata["atol"] = num(q.settings.integrator.tolerance.atol);
-    image.metadata["max_steps"] = std::to_string(q.settings.max_steps);
-    image.metadata["sky_radius"] = num(q.settings.escape_radius);
-    image.metadata["angle_correction"] = q.correction_name;
     if (q.error_map) {
       image.metadata["error_max"] = num(errors.max);
       image.metadata["error_median"] = num(errors.median);
@@ -524,8 +727,7 @@ int main(int argc, char** argv) {
     outputs.commit();
     phase("maps+commit");
 
-    JsonObject counts;
-    for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.add(kRayStatusNames[i], st.status_counts[i]);
+    const JsonObject counts = status_counts_json(st.status_counts);
     JsonObject json;
     json.add("width", st.width).add("height", st.height).add("seconds", seconds);
     json.add("rays_per_second", st.rays_per_second);

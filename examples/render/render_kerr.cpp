@@ -3,7 +3,7 @@
 
 namespace grtrace::render_tool {
 
-Frame render_kerr(const Request& q, SkyDirections* directions) {
+std::optional<Frame> render_kerr(const Request& q, SkyDirections* directions) {
   return render_one_of<KerrMetric, KerrSchildMetric>(q, directions);
 }
 

@@ -12,12 +12,14 @@
 
 #include "grtrace/metric/named_metrics.hpp"
 #include "grtrace/observer/camera.hpp"
+#include "grtrace/render/flight.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <type_traits>
@@ -26,6 +28,22 @@
 #include <vector>
 
 namespace grtrace::render_tool {
+
+struct TableStats {
+  long rays = 0, steps = 0;
+  long fallback_rays = 0;  ///< planar tracer: pixels traced by the general tracer instead
+};
+
+/// --flight: one frame per camera along a path (render/flight.hpp); empty cameras: a single frame (Request::camera).
+struct FlightRequest {
+  std::string name;                ///< --flight: seed | circular | orbit | infall | csv ("" = one frame)
+  std::vector<Camera> cameras;
+  std::vector<double> tau;         ///< each frame's proper time on the path
+  double dtau = 0.0;               ///< proper time between frames (csv: as given)
+  std::function<bool(int)> skip;                              ///< frame i is already on disk, written whole
+  std::function<void(int, Frame&, const TableStats&)> sink;  ///< writes frame i
+  FlightStats* stats = nullptr;                              ///< receives the flight's statistics
+};
 
 struct Request {
   StandardSceneSpec scene;
@@ -37,11 +55,7 @@ struct Request {
   int threads = 0;
   int table_nodes = 2048;
   bool error_map = false;
-};
-
-struct TableStats {
-  long rays = 0, steps = 0;
-  long fallback_rays = 0;  ///< planar tracer: pixels traced by the general tracer instead
+  FlightRequest flight;
 };
 
 /// Sky direction of every pixel in double precision (the EXR channels are float), kept for --error-map.
@@ -63,14 +77,30 @@ TableStats table_stats_of(const Tracer& tracer) {
 /// assumptions hold (trace/auto_tracer.hpp; --tracer planar was refused up front where it does not apply). Every
 /// (tableau, controller) pair and both preset scene types are instantiated for Metric. A scene whose objects do
 /// not fit the metric's chart (the thin disk needs a spherical chart) is refused with a message.
+/// With q.flight.cameras: every frame of the flight through q.flight's skip and sink, and nothing returned.
 template <MetricPolicy Metric>
-Frame render_general(const Request& q, const Metric& metric, SkyDirections* directions, TableStats* table = nullptr) {
+std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyDirections* directions,
+                                    TableStats* table = nullptr) {
   RenderOptions options;
   options.threads = q.threads;
   std::optional<Frame> frame;
   dispatch_method(q.tableau, q.control, [&]<class T, class C>() {
     with_standard_scene(q.scene, [&]<class Scene>(Scene scene) {
       if constexpr (scene_fits_metric<Metric, Scene>) {
+        if (!q.flight.cameras.empty()) {
+          auto sink = [&](int i, Frame& f, const auto& tracer) { q.flight.sink(i, f, table_stats_of(tracer)); };
+          const FlightStats stats =
+              q.tracer == "general"
+                  ? render_flight(
+                        q.flight.cameras,
+                        [&](const Camera&, auto&& f) { f(make_general_tracer<T, C>(metric, q.settings, q.correction, scene)); },
+                        q.flight.skip, sink, options)
+                  : render_flight(q.flight.cameras,
+                                  auto_tracer_per_camera<T, C>(metric, q.settings, q.correction, scene, q.table_nodes),
+                                  q.flight.skip, sink, options);
+          if (q.flight.stats) *q.flight.stats = stats;
+          return;
+        }
         auto draw = [&](const auto& tracer) {
           frame.emplace(render_frame(*q.camera, tracer, options, directions));
           if (table) *table = table_stats_of(tracer);
@@ -83,22 +113,23 @@ Frame render_general(const Request& q, const Metric& metric, SkyDirections* dire
       }
     });
   });
-  return std::move(*frame);
+  return frame;
 }
 
 /// render_general for the named metric when it is one of Metrics (this translation unit's share of the metrics).
 template <class... Metrics>
-Frame render_one_of(const Request& q, SkyDirections* directions, TableStats* table = nullptr) {
-  return with_named_metric(q.metric, [&](const auto& metric) -> Frame {
+std::optional<Frame> render_one_of(const Request& q, SkyDirections* directions, TableStats* table = nullptr) {
+  return with_named_metric(q.metric, [&](const auto& metric) -> std::optional<Frame> {
     using M = std::remove_cvref_t<decltype(metric)>;
     if constexpr ((std::is_same_v<M, Metrics> || ...)) return render_general(q, metric, directions, table);
     else throw std::logic_error("grtrace-render: metric " + q.metric.name + " dispatched to the wrong unit");
   });
 }
 
-Frame render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table);
-Frame render_kerr(const Request& q, SkyDirections* directions);
-Frame render_rn_sds(const Request& q, SkyDirections* directions, TableStats& table);
-Frame render_wormhole_ef(const Request& q, SkyDirections* directions);
+// Each returns the frame, or nothing for a flight (q.flight.cameras: the frames went to q.flight.sink).
+std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table);
+std::optional<Frame> render_kerr(const Request& q, SkyDirections* directions);
+std::optional<Frame> render_rn_sds(const Request& q, SkyDirections* directions, TableStats& table);
+std::optional<Frame> render_wormhole_ef(const Request& q, SkyDirections* directions);
 
 }  // namespace grtrace::render_tool

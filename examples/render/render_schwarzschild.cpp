@@ -9,14 +9,19 @@ namespace grtrace::render_tool {
 /// Flat space by straight lines; Schwarzschild by auto's choice (one table of rays for the frame: the planar tracer,
 /// trace/auto_tracer.hpp), every pixel integrated (--tracer general), or the older sky-only table (--tracer
 /// symmetric).
-Frame render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table) {
+std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table) {
   RenderOptions options;
   options.threads = q.threads;
   const Camera& cam = *q.camera;
   if (q.tracer == "straight-line")
-    return with_standard_scene(q.scene, [&](auto scene) {
-      return render_frame(cam, StraightLineTracer(MinkowskiSpherical{}, q.settings.escape_radius, q.correction, scene),
-                          options, directions);
+    return with_standard_scene(q.scene, [&](auto scene) -> std::optional<Frame> {
+      const StraightLineTracer tracer(MinkowskiSpherical{}, q.settings.escape_radius, q.correction, scene);
+      if (q.flight.cameras.empty()) return render_frame(cam, tracer, options, directions);
+      const FlightStats stats = render_flight(
+          q.flight.cameras, [&](const Camera&, auto&& f) { f(tracer); }, q.flight.skip,
+          [&](int i, Frame& frame, const auto&) { q.flight.sink(i, frame, TableStats{}); }, options);
+      if (q.flight.stats) *q.flight.stats = stats;
+      return std::nullopt;
     });
   const SchwarzschildMetric metric{q.metric.mass};
   if (q.tracer != "symmetric") return render_general(q, metric, directions, &table);
@@ -28,7 +33,7 @@ Frame render_schwarzschild(const Request& q, SkyDirections* directions, TableSta
     table = {tracer.table().table_rays(), tracer.table().table_steps()};
     frame.emplace(render_frame(cam, tracer, options, directions));
   });
-  return std::move(*frame);
+  return frame;
 }
 
 }  // namespace grtrace::render_tool

@@ -3,7 +3,7 @@
 
 namespace grtrace::render_tool {
 
-Frame render_wormhole_ef(const Request& q, SkyDirections* directions) {
+std::optional<Frame> render_wormhole_ef(const Request& q, SkyDirections* directions) {
   return render_one_of<AutoEllisWormhole, AutoEddingtonFinkelstein>(q, directions);
 }
 

@@ -55,3 +55,36 @@ Camera make_camera(const M& metric, const CameraSpec& spec) {
 }
 
 }  // namespace grtrace
+
+namespace grtrace {
+
+/// The look rule of a camera carried by a given 4-velocity (a flight along a worldline, observer/worldline.hpp):
+/// look and up are components along the chart's axes (r, theta, phi in a spherical chart) as the moving observer
+/// sees them (each axis with its part along u removed, then orthonormalised: ObserverFrame(g, u)), so "look at the
+/// hole" (-1, 0, 0) stays at the hole all along the path while aberration and Doppler come from u itself.
+struct CameraView {
+  Vec3 look{-1.0, 0.0, 0.0};
+  Vec3 up{0.0, -1.0, 0.0};
+  int width = 1024, height = 1024;
+  double fov_degrees = 90.0;
+};
+
+/// The camera at event x moving with the future-directed unit timelike u, pointed by `view`.
+/// Look and up are read along the moving observer's own axes. Where they have no component along the motion this
+/// is make_camera's static observer boosted to u (make_camera reads look/up in the static frame; the two readings
+/// differ only in a component along the motion, by the Lorentz factor): tests/render/flight_test.cpp checks both.
+/// Throws std::invalid_argument (what to change) for a u that is not timelike and future-directed, a position on
+/// or inside the horizon, a zero or degenerate look/up.
+template <MetricPolicy M>
+Camera make_moving_camera(const M& metric, const Vec4& x, const Vec4& u, const CameraView& view) {
+  if (!x.allFinite() || !u.allFinite()) throw std::invalid_argument("camera: position and 4-velocity must be finite");
+  if (const double rh = metric.horizon_radius(); rh > 0.0 && !(metric.radius(x) > rh))
+    throw std::invalid_argument("camera: the position r = " + std::to_string(metric.radius(x)) +
+                                " is on or inside the horizon (r = " + std::to_string(rh) + "); move the camera out");
+  const Mat4 g = metric.metric(x);
+  const ObserverFrame frame(g, u);
+  const Tetrad tetrad = make_tetrad(g, frame.e[0], frame.spatial(view.look), frame.spatial(view.up));
+  return Camera(x, tetrad, view.width, view.height, view.fov_degrees);
+}
+
+}  // namespace grtrace

@@ -68,6 +68,9 @@ struct RenderOptions {
   ProgressMode progress = ProgressMode::automatic;   ///< bar on stderr only if it is a terminal
   std::string progress_label = "render";             ///< first word of the progress line
   std::array<float, 3> error_rgb{1.0f, 0.0f, 1.0f};  ///< linear colour written where a pixel's colour was not finite
+  /// A bar owned by the caller that this render advances instead of drawing its own (progress and progress_label
+  /// are then unused): one bar over a sequence of frames (render/flight.hpp). Must outlive the call.
+  ProgressBar* shared_progress = nullptr;
 };
 
 struct RenderStats {
@@ -176,7 +179,9 @@ requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int
   for (int t = 0; t < requested; ++t) slots.push_back(std::make_unique<Slot>(make_scratch));
   std::vector<detail::RenderTally> tallies(static_cast<std::size_t>(requested));
 
-  ProgressBar progress(static_cast<long>(image.pixel_count()), options.progress_label, options.progress);
+  ProgressBar own_progress(options.shared_progress ? 0L : static_cast<long>(image.pixel_count()),
+                           options.progress_label, options.shared_progress ? ProgressMode::never : options.progress);
+  ProgressBar& progress = options.shared_progress ? *options.shared_progress : own_progress;
   std::atomic<bool> failed{false};
   std::exception_ptr first_error;
   std::mutex error_mutex;
@@ -221,7 +226,7 @@ requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int
     }
   }
 
-  progress.finish();
+  own_progress.finish();
   if (first_error) std::rethrow_exception(first_error);
 
   RenderStats stats;

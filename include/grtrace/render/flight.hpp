@@ -1,0 +1,96 @@
+// grtrace/render/flight.hpp
+// A camera flight: one frame per camera along a path, through the same pixel pipeline as a single frame
+// (render/frame.hpp), with one progress bar over the whole sequence.
+//
+//   const TimelikeStart start = seed_orbit_start(metric);                              // observer/timelike_start.hpp
+//   const Worldline path = sample_worldline(metric, start, dtau, 300);                  // observer/worldline.hpp
+//   const auto cameras = flight_cameras(metric, path, CameraView{...});
+//   render_flight(cameras, auto_tracer_per_camera<Tsitouras54, IController>(metric, settings, correction, scene),
+//                 [](int) { return false; },                                            // nothing to skip
+//                 [](int i, Frame& frame, const auto& tracer) { /* write frame i */ });
+//
+// Takes:   the cameras; with_tracer(camera, f), which builds the scene tracer for a camera and calls f(tracer)
+//          once (auto_tracer_per_camera: the fastest exact tracer, trace/auto_tracer.hpp, per frame; the planar
+//          tracer's table depends on the camera's radius and angle range, so it is built per frame); skip(i):
+//          true for a frame already on disk (resumed flights: render/flight_files.hpp); sink(i, frame, tracer):
+//          receives each rendered frame in order (its Image may be moved from).
+// Returns: FlightStats: frames rendered and skipped, rays and their statuses summed over the rendered frames.
+// Guarantees: frame i is exactly render_frame(cameras[i], tracer) for the tracer with_tracer builds (the flight
+//          adds no state between frames: tests/render/flight_test.cpp compares bit for bit).
+#pragma once
+
+#include "grtrace/core/ray_status.hpp"
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/observer/worldline.hpp"
+#include "grtrace/render/frame.hpp"
+#include "grtrace/render/parallel_render.hpp"
+#include "grtrace/render/progress_bar.hpp"
+#include "grtrace/trace/auto_tracer.hpp"
+
+#include <array>
+#include <chrono>
+#include <vector>
+
+namespace grtrace {
+
+struct FlightStats {
+  int frames = 0;    ///< cameras in the flight
+  int rendered = 0;  ///< frames traced in this call
+  int skipped = 0;   ///< frames skip() declared done
+  long rays = 0;     ///< pixels traced (rendered frames only)
+  std::array<long, kRayStatusCount> status_counts{};
+  double seconds = 0.0;  ///< wall time of the whole call, the sink's included
+  long count(RayStatus s) const { return status_counts[static_cast<std::size_t>(s)]; }
+};
+
+/// One camera per sample of the worldline, each pointed by `view` (make_moving_camera: its look rule).
+template <MetricPolicy M>
+std::vector<Camera> flight_cameras(const M& metric, const Worldline& path, const CameraView& view) {
+  std::vector<Camera> cameras;
+  cameras.reserve(path.samples.size());
+  for (const WorldlineSample& s : path.samples) cameras.push_back(make_moving_camera(metric, s.x, s.u, view));
+  return cameras;
+}
+
+/// with_auto_tracer (trace/auto_tracer.hpp) as a with_tracer for render_flight. Keeps references to the metric
+/// and the scene: both must outlive the flight.
+template <ExplicitTableau T, StepController C, MetricPolicy M, class SceneT>
+auto auto_tracer_per_camera(const M& metric, const TraceSettings& settings, AngleCorrection correction,
+                            const SceneT& scene, int table_rays) {
+  return [&metric, &scene, settings, correction, table_rays](const Camera& camera, auto&& f) {
+    with_auto_tracer<T, C>(metric, settings, camera, correction, scene, table_rays, f);
+  };
+}
+
+template <class WithTracer, class Skip, class Sink>
+FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_tracer, Skip&& skip, Sink&& sink,
+                          RenderOptions options = {}) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FlightStats stats;
+  stats.frames = static_cast<int>(cameras.size());
+  std::vector<bool> to_render(cameras.size());
+  long total_pixels = 0;
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    to_render[i] = !skip(static_cast<int>(i));
+    if (to_render[i]) total_pixels += static_cast<long>(cameras[i].width()) * cameras[i].height();
+    else ++stats.skipped;
+  }
+  ProgressBar bar(total_pixels, "flight", options.progress);
+  options.shared_progress = &bar;
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    if (!to_render[i]) continue;
+    with_tracer(cameras[i], [&](const auto& tracer) {
+      Frame frame = render_frame(cameras[i], tracer, options);
+      ++stats.rendered;
+      stats.rays += frame.stats.rays;
+      for (std::size_t s = 0; s < kRayStatusCount; ++s) stats.status_counts[s] += frame.stats.status_counts[s];
+      sink(static_cast<int>(i), frame, tracer);
+    });
+  }
+  bar.finish();
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return stats;
+}
+
+}  // namespace grtrace

@@ -1,0 +1,159 @@
+// grtrace-render --flight (issue 15, item 1): numbered frames with their PNGs and one JSON line, a re-run that
+// skips the frames written whole (and renders again those of another flight), the MP4 from ffmpeg, the frames'
+// headers (proper time, camera on the orbit), and bad input refused before any work (exit 2, nothing written).
+#include "grtrace/render/exr_io.hpp"
+
+#include "../common/tool_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+#ifndef GRTRACE_RENDER_BINARY
+#error "GRTRACE_RENDER_BINARY must name the grtrace-render executable"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using grtrace::tool_tests::run_command;
+using grtrace::tool_tests::ToolRun;
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    char tmpl[] = "/tmp/grtrace-flight-cli-XXXXXX";
+    path = ::mkdtemp(tmpl);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  std::size_t files() const { return static_cast<std::size_t>(std::distance(fs::directory_iterator(path), {})); }
+};
+
+ToolRun render(const std::string& args) { return run_command(std::string(GRTRACE_RENDER_BINARY) + " " + args); }
+
+/// The number after "key": in a one-line JSON object (NaN if absent).
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\":");
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
+const std::string kSmall = "--width 24 --height 16 --fov 50 --threads 2 ";
+
+TEST(FlightCli, SeedFlightWritesNumberedFramesAndResumes) {
+  TempDir dir;
+  const std::string out = (dir.path / "orbit.exr").string();
+  const std::string args = kSmall + "--scene disk --flight seed --frames 3 --out " + out;
+  const ToolRun first = render(args);
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_EQ(json_number(first.output, "frames"), 3.0) << first.output;
+  EXPECT_EQ(json_number(first.output, "frames_rendered"), 3.0);
+  EXPECT_EQ(json_number(first.output, "frames_skipped"), 0.0);
+  EXPECT_NE(first.output.find("\"tracer\":\"planar\""), std::string::npos) << first.output;
+  for (const char* name : {"orbit-0000.exr", "orbit-0000.png", "orbit-0001.exr", "orbit-0001.png", "orbit-0002.exr",
+                           "orbit-0002.png"})
+    EXPECT_TRUE(fs::is_regular_file(dir.path / name)) << name;
+  EXPECT_EQ(dir.files(), 6u);  // no temporaries left behind
+
+  // Frames spaced evenly in proper time over one revolution; each header records its tau and its camera.
+  const double dtau = json_number(first.output, "proper_time_step");
+  EXPECT_GT(dtau, 1000.0);  // the seed orbit's period is ~3.6e3 M of proper time: a third of it per frame
+  for (int i = 0; i < 3; ++i) {
+    const grtrace::Image image = grtrace::read_exr(dir.path / ("orbit-000" + std::to_string(i) + ".exr"));
+    EXPECT_EQ(std::stod(image.metadata.at("flight_tau")), i * dtau);
+    EXPECT_EQ(image.metadata.at("flight"), "seed");
+    EXPECT_EQ(image.metadata.at("tracer"), "planar");
+    std::stringstream position(image.metadata.at("camera_position"));
+    double t = 0, r = 0;
+    char comma = 0;
+    position >> t >> comma >> r;
+    if (i == 0) EXPECT_EQ(r, 100.0);
+    else EXPECT_LT(r, 100.0);  // falling towards periapsis
+  }
+
+  // A re-run of the same flight skips every frame and leaves the files as they were.
+  const auto before = fs::last_write_time(dir.path / "orbit-0001.exr");
+  const ToolRun second = render(args);
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_EQ(json_number(second.output, "frames_rendered"), 0.0) << second.output;
+  EXPECT_EQ(json_number(second.output, "frames_skipped"), 3.0);
+  EXPECT_EQ(fs::last_write_time(dir.path / "orbit-0001.exr"), before);
+
+  // A lost frame is rendered again, alone.
+  fs::remove(dir.path / "orbit-0001.png");
+  const ToolRun third = render(args);
+  ASSERT_EQ(third.status, 0) << third.output;
+  EXPECT_EQ(json_number(third.output, "frames_rendered"), 1.0) << third.output;
+  EXPECT_TRUE(fs::is_regular_file(dir.path / "orbit-0001.png"));
+
+  // Another flight into the same names (a different look) renders every frame again.
+  const ToolRun other = render(args + " --look -1,0.1,0");
+  ASSERT_EQ(other.status, 0) << other.output;
+  EXPECT_EQ(json_number(other.output, "frames_rendered"), 3.0) << other.output;
+}
+
+TEST(FlightCli, Mp4HasEveryFrame) {
+  if (run_command("ffprobe -version").status != 0) GTEST_SKIP() << "ffprobe missing (bash cmake/install-deps.sh)";
+  TempDir dir;
+  const std::string out = (dir.path / "circle.exr").string();
+  const ToolRun run = render(kSmall + "--flight circular --camera-r 30 --frames 4 --mp4 --fps 12 --out " + out);
+  ASSERT_EQ(run.status, 0) << run.output;
+  const fs::path mp4 = dir.path / "circle.mp4";
+  ASSERT_TRUE(fs::is_regular_file(mp4)) << run.output;
+  EXPECT_NE(run.output.find("\"mp4\":"), std::string::npos);
+  const ToolRun probe = run_command("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                                    "stream=nb_read_frames,width,height -of csv=p=0 " + mp4.string());
+  ASSERT_EQ(probe.status, 0) << probe.output;
+  EXPECT_EQ(probe.output.substr(0, probe.output.find('\n')), "24,16,4") << probe.output;
+  EXPECT_EQ(dir.files(), 9u);  // 4 EXR + 4 PNG + the MP4
+}
+
+// A camera path from a CSV: the frames are the rows.
+TEST(FlightCli, CsvPathGivesOneFramePerRow) {
+  TempDir dir;
+  const fs::path csv = dir.path / "path.csv";
+  // Static cameras at r = 50 and r = 60 (u = d_t / sqrt(1 - 2/r)).
+  std::ofstream(csv) << std::setprecision(17) << "tau,t,r,theta,phi,ut,ur,utheta,uphi\n"
+                     << "0,0,50,1.5707963267948966,0," << 1.0 / std::sqrt(1.0 - 2.0 / 50.0) << ",0,0,0\n"
+                     << "1,0,60,1.5707963267948966,0," << 1.0 / std::sqrt(1.0 - 2.0 / 60.0) << ",0,0,0\n";
+  const ToolRun run = render(kSmall + "--flight csv --flight-csv " + csv.string() + " --out " +
+                             (dir.path / "c.exr").string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(json_number(run.output, "frames"), 2.0);
+  EXPECT_TRUE(fs::is_regular_file(dir.path / "c-0001.exr"));
+  EXPECT_FALSE(fs::exists(dir.path / "c-0002.exr"));
+}
+
+TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
+  TempDir dir;
+  const std::string out = " --out " + (dir.path / "f.exr").string();
+  const std::pair<std::string, std::string> cases[] = {
+      {"--flight loop", "unknown --flight 'loop'"},
+      {"--flight seed --frames 0", "--frames must be in 1 .. 100000"},
+      {"--flight seed --frame-dtau -1", "--frame-dtau must be >= 0"},
+      {"--flight seed --velocity 0,0,0.1", "--velocity sets a single frame's camera"},
+      {"--flight csv", "--flight csv goes with --flight-csv"},
+      {"--flight csv --flight-csv " + (dir.path / "none.csv").string(), "cannot read the camera path"},
+      {"--frames 10", "--frames and --mp4 need --flight"},
+      {"--flight infall --camera-r 20 --frames 5 --frame-dtau 40", "the camera's path ends (captured"},
+      {"--flight circular --camera-r 2.5", "no timelike circular orbit at r = 2.5"},
+      {"--flight seed --metric kerr --spin 0.5 --chart ks", "--flight needs a spherical chart"},
+      {"--flight seed --status-map", "are for single frames"},
+      {"--flight seed --tracer symmetric", "--tracer symmetric does not fly"},
+  };
+  for (const auto& [args, says] : cases) {
+    const ToolRun r = render(kSmall + args + out);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(dir.files(), 0u) << args;
+  }
+}
+
+}  // namespace

@@ -635,7 +635,7 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   q.flight.skip = [&](int i) { return flight_frame_done(flight_exr_path(q, i), png_path(flight_exr_path(q, i)), signature); };
   TableStats table;
   std::string tracer = "none";
-  q.flight.sink = [&](int i, Frame& frame, const TableStats& t) {
+  q.flight.sink = [&](int i, Frame& frame, const TracerReport& t) {
     Image& image = frame.image;
     describe_frame(image, q, cli, argc, argv);
     image.metadata["flight"] = q.flight.name;
@@ -643,9 +643,9 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
     image.metadata["flight_frames"] = std::to_string(frames);
     image.metadata["flight_tau"] = JsonObject::number(q.flight.tau[static_cast<std::size_t>(i)]);
     image.metadata["flight_signature"] = signature;
-    tracer = image.metadata["tracer"];
-    table.rays += t.rays;
-    table.steps += t.steps;
+    tracer = t.name;
+    table.rays += t.table_rays;
+    table.steps += t.table_steps;
     table.fallback_rays += t.fallback_rays;
     OutputSet outputs;
     const std::string path = flight_exr_path(q, i);

@@ -41,7 +41,7 @@ struct FlightRequest {
   std::vector<double> tau;         ///< each frame's proper time on the path
   double dtau = 0.0;               ///< proper time between frames (csv: as given)
   std::function<bool(int)> skip;                              ///< frame i is already on disk, written whole
-  std::function<void(int, Frame&, const TableStats&)> sink;  ///< writes frame i
+  std::function<void(int, Frame&, const TracerReport&)> sink;  ///< writes frame i (on the flight's writer thread)
   FlightStats* stats = nullptr;                              ///< receives the flight's statistics
 };
 
@@ -62,15 +62,10 @@ struct Request {
 using SkyDirections = std::vector<SkyDirection>;
 
 /// The table statistics of a tracer that builds one (planar, symmetric-sky); zero for the others.
+inline TableStats table_stats_of(const TracerReport& r) { return {r.table_rays, r.table_steps, r.fallback_rays}; }
 template <class Tracer>
 TableStats table_stats_of(const Tracer& tracer) {
-  TableStats t;
-  if constexpr (requires { tracer.table().table_rays(); }) {
-    t.rays = tracer.table().table_rays();
-    t.steps = tracer.table().table_steps();
-  }
-  if constexpr (requires { tracer.fallback_rays(); }) t.fallback_rays = tracer.fallback_rays();
-  return t;
+  return table_stats_of(tracer_report(tracer));
 }
 
 /// The frame for any metric through the tracer asked for: --tracer general, or auto / planar: the fastest whose
@@ -88,7 +83,7 @@ std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyD
     with_standard_scene(q.scene, [&]<class Scene>(Scene scene) {
       if constexpr (scene_fits_metric<Metric, Scene>) {
         if (!q.flight.cameras.empty()) {
-          auto sink = [&](int i, Frame& f, const auto& tracer) { q.flight.sink(i, f, table_stats_of(tracer)); };
+          auto sink = [&](int i, Frame&& f, const TracerReport& r) { q.flight.sink(i, f, r); };
           const FlightStats stats =
               q.tracer == "general"
                   ? render_flight(

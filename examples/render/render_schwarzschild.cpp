@@ -19,7 +19,7 @@ std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* direc
       if (q.flight.cameras.empty()) return render_frame(cam, tracer, options, directions);
       const FlightStats stats = render_flight(
           q.flight.cameras, [&](const Camera&, auto&& f) { f(tracer); }, q.flight.skip,
-          [&](int i, Frame& frame, const auto&) { q.flight.sink(i, frame, TableStats{}); }, options);
+          [&](int i, Frame&& frame, const TracerReport& r) { q.flight.sink(i, frame, r); }, options);
       if (q.flight.stats) *q.flight.stats = stats;
       return std::nullopt;
     });

@@ -178,9 +178,10 @@ TEST(Flight, FramesEqualSingleRendersBitForBit) {
   const FlightStats stats = render_flight(
       cameras, auto_tracer_per_camera<Tsitouras54, IController>(metric, settings, AngleCorrection::exact, scene, 512),
       [](int) { return false; },
-      [&](int i, Frame& f, const auto& tracer) {
+      [&](int i, Frame&& f, const TracerReport& report) {
         EXPECT_EQ(i, static_cast<int>(flown.size()));
-        tracers.emplace_back(std::remove_cvref_t<decltype(tracer)>::name);
+        tracers.push_back(report.name);
+        EXPECT_GT(report.table_rays, 0);
         flown.push_back(std::move(f));
       },
       options);
@@ -226,10 +227,24 @@ TEST(Flight, SkippedFramesAreNotRendered) {
   std::vector<int> seen;
   const FlightStats stats = render_flight(
       cameras, auto_tracer_per_camera<Tsitouras54, IController>(metric, flight_settings(), AngleCorrection::exact, scene, 64),
-      [](int i) { return i % 2 == 0; }, [&](int i, Frame&, const auto&) { seen.push_back(i); }, options);
+      [](int i) { return i % 2 == 0; }, [&](int i, Frame&&, const TracerReport&) { seen.push_back(i); }, options);
   EXPECT_EQ(seen, (std::vector<int>{1, 3}));
   EXPECT_EQ(stats.skipped, 2);
   EXPECT_EQ(stats.rendered, 2);
+  // A sink that fails (a full disk) stops the flight: the error reaches the caller, no later frame is written.
+  seen.clear();
+  EXPECT_THROW(render_flight(
+                   cameras,
+                   auto_tracer_per_camera<Tsitouras54, IController>(metric, flight_settings(), AngleCorrection::exact,
+                                                                    scene, 64),
+                   [](int) { return false; },
+                   [&](int i, Frame&&, const TracerReport&) {
+                     seen.push_back(i);
+                     if (i == 1) throw std::runtime_error("disk full");
+                   },
+                   options),
+               std::runtime_error);
+  EXPECT_EQ(seen, (std::vector<int>{0, 1}));
 }
 
 struct TempDir {

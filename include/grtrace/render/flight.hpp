@@ -7,13 +7,16 @@
 //   const auto cameras = flight_cameras(metric, path, CameraView{...});
 //   render_flight(cameras, auto_tracer_per_camera<Tsitouras54, IController>(metric, settings, correction, scene),
 //                 [](int) { return false; },                                            // nothing to skip
-//                 [](int i, Frame& frame, const auto& tracer) { /* write frame i */ });
+//                 [](int i, Frame&& frame, const TracerReport& tracer) { /* write frame i */ });
 //
 // Takes:   the cameras; with_tracer(camera, f), which builds the scene tracer for a camera and calls f(tracer)
 //          once (auto_tracer_per_camera: the fastest exact tracer, trace/auto_tracer.hpp, per frame; the planar
 //          tracer's table depends on the camera's radius and angle range, so it is built per frame); skip(i):
-//          true for a frame already on disk (resumed flights: render/flight_files.hpp); sink(i, frame, tracer):
-//          receives each rendered frame in order (its Image may be moved from).
+//          true for a frame already on disk (resumed flights: render/flight_files.hpp); sink(i, frame, report):
+//          receives each rendered frame, in order, with what its tracer reported (trace/tracer_report.hpp).
+//          The sink runs on a thread of its own while the next frame is traced (writing a frame, mostly EXR and
+//          PNG compression, costs about half as much as tracing it), one call at a time; an exception it throws
+//          stops the flight and propagates from render_flight.
 // Returns: FlightStats: frames rendered and skipped, rays and their statuses summed over the rendered frames.
 // Guarantees: frame i is exactly render_frame(cameras[i], tracer) for the tracer with_tracer builds (the flight
 //          adds no state between frames: tests/render/flight_test.cpp compares bit for bit).
@@ -27,9 +30,14 @@
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/render/progress_bar.hpp"
 #include "grtrace/trace/auto_tracer.hpp"
+#include "grtrace/trace/tracer_report.hpp"
 
 #include <array>
+#include <optional>
 #include <chrono>
+#include <exception>
+#include <thread>
+#include <utility>
 #include <vector>
 
 namespace grtrace {
@@ -78,15 +86,39 @@ FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_
   }
   ProgressBar bar(total_pixels, "flight", options.progress);
   options.shared_progress = &bar;
-  for (std::size_t i = 0; i < cameras.size(); ++i) {
-    if (!to_render[i]) continue;
-    with_tracer(cameras[i], [&](const auto& tracer) {
-      Frame frame = render_frame(cameras[i], tracer, options);
+  // One frame is written (by the sink, on `writer`) while the next is traced.
+  std::thread writer;
+  std::exception_ptr write_error;
+  auto wait_for_writer = [&] {
+    if (writer.joinable()) writer.join();
+    if (write_error) std::rethrow_exception(std::exchange(write_error, nullptr));
+  };
+  try {
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+      if (!to_render[i]) continue;
+      std::optional<Frame> frame;
+      TracerReport report;
+      with_tracer(cameras[i], [&](const auto& tracer) {
+        frame.emplace(render_frame(cameras[i], tracer, options));
+        report = tracer_report(tracer);
+      });
       ++stats.rendered;
-      stats.rays += frame.stats.rays;
-      for (std::size_t s = 0; s < kRayStatusCount; ++s) stats.status_counts[s] += frame.stats.status_counts[s];
-      sink(static_cast<int>(i), frame, tracer);
-    });
+      stats.rays += frame->stats.rays;
+      for (std::size_t s = 0; s < kRayStatusCount; ++s) stats.status_counts[s] += frame->stats.status_counts[s];
+      wait_for_writer();
+      writer = std::thread([&sink, &write_error, index = static_cast<int>(i), f = std::move(*frame),
+                            r = std::move(report)]() mutable {
+        try {
+          sink(index, std::move(f), std::as_const(r));
+        } catch (...) {
+          write_error = std::current_exception();
+        }
+      });
+    }
+    wait_for_writer();
+  } catch (...) {
+    if (writer.joinable()) writer.join();  // never leave a running thread behind (std::terminate)
+    throw;
   }
   bar.finish();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -19,6 +19,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -26,6 +28,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -33,17 +36,38 @@
 
 namespace grtrace::viz {
 
-bool display_available() {
-  // Cached: connecting to the X server once per process is enough (and tests call this per case).
-  static const bool available = [] {
+namespace {
+
+/// Takes nothing; returns a new connection to the X server at DISPLAY, or null when none answers. Assumes DISPLAY
+/// is set. A busy server (Xvfb under load) refuses some connections for a moment: its listen queue is full
+/// (EAGAIN), or it resets or drops a pending one (ECONNRESET, or no errno at all). Those attempts are repeated
+/// (up to about two seconds); a missing server (ENOENT, ECONNREFUSED) is answered at once.
+Display* open_display() {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    errno = 0;
+    if (Display* display = XOpenDisplay(nullptr)) return display;
+    if (errno == ENOENT || errno == ECONNREFUSED) return nullptr;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+void* x_display() {
+  // Opened once and kept for the life of the process (the OS closes it at exit), so every window shares it.
+  static Display* const display = [] {
     const char* d = std::getenv("DISPLAY");
-    if (d == nullptr || *d == '\0') return false;
-    Display* display = XOpenDisplay(nullptr);
-    if (display == nullptr) return false;
-    XCloseDisplay(display);
-    return true;
+    return d == nullptr || *d == '\0' ? nullptr : open_display();
   }();
-  return available;
+  return display;
+}
+
+bool display_available() { return x_display() != nullptr; }
+
+void prepare_window(vtkRenderWindow* window) {
+  if (void* display = x_display()) window->SetDisplayId(display);
+  if (window->GetOffScreenRendering()) window->SetInteractor(nullptr);
 }
 
 void require_display(const std::string& program, const std::string& alternative) {
@@ -174,6 +198,7 @@ ViewerWindow::ViewerWindow(SceneView& scene, FrameView* frame, const WindowOptio
   m.window->SetWindowName(options.title.c_str());
   m.window->SetMultiSamples(0);  // exact pixels (the frame must show its colours unchanged)
   if (options.offscreen) m.window->SetOffScreenRendering(1);
+  prepare_window(m.window);
   const double split = frame ? options.split : 1.0;
   scene.renderer()->SetViewport(0.0, 0.0, split, 1.0);
   m.window->AddRenderer(scene.renderer());

@@ -30,9 +30,23 @@ namespace grtrace::viz {
 class SceneView;
 class FrameView;
 
-/// True when an X server answers at DISPLAY (checked once with XOpenDisplay, then cached). Without one, VTK
-/// here (Debian: X only, no EGL/OSMesa) crashes on the first render, offscreen or not.
+/// Takes nothing; returns the process's one X connection (an Xlib Display*), opened on first use and kept until
+/// exit, or null when no X server answers at DISPLAY. A server that is only busy (Xvfb under load refuses or drops
+/// some connections for a moment) is asked again for up to about two seconds. Every window the viz library makes
+/// draws through this connection (prepare_window): VTK 9.1 opens one of its own per window and per interactor and
+/// does not check it (a refused XOpenDisplay in vtkXRenderWindowInteractor::Initialize is a null Display and a
+/// segfault in XSync), and one connection per process is also one chance of refusal instead of several.
+void* x_display();
+
+/// True when an X server answers at DISPLAY (x_display() is not null). Without one, VTK here (Debian: X only, no
+/// EGL/OSMesa) crashes on the first render, offscreen or not.
 bool display_available();
+
+/// Takes a render window before its first render (offscreen rendering already set or not); gives it the process's
+/// X connection (x_display()) and, when it renders offscreen, removes its interactor (vtkContextView makes one, and
+/// the first Render() would initialise it: an offscreen picture takes no input). Every tool that makes a VTK window
+/// calls this. Assumes the window is an X window (Debian's VTK) or ignores SetDisplayId.
+void prepare_window(vtkRenderWindow* window);
 
 /// Thrown by require_display(); tools report it as bad input (exit 2).
 struct NoDisplayError : std::runtime_error {

@@ -75,7 +75,9 @@ CommandLine make_command_line() {
   CommandLine cli("grtrace-view",
                   "The VTK frontend: traced rays in 3D beside the frame they make, and the seed's orbit charts.\n"
                   "Interactive when a display exists; --screenshot renders offscreen and exits.\n"
-                  "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png");
+                  "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png\n"
+                  "Window: mouse turns/pans/zooms the 3D view; a left click on the frame picks that pixel's ray; keys "
+                  "1-9, 0 layers, m markers, c ray colouring, x clear picks, r reset view, s screenshot, h help, q quit.");
   cli.option("screenshot", "", "render offscreen to this PNG and exit")
       .option("export", "", "write the 3D scene (rays, surfaces, frame) as VTK XML files for ParaView into this "
                             "directory (created if missing; open DIR/scene.vtm) and exit; needs no display")

@@ -44,6 +44,23 @@ struct FrameView::Impl {
   }
 };
 
+namespace {
+
+/// Takes the frame's renderer, an actor, the polydata of its squares, a colour and a line width; draws the squares
+/// with that actor (unlit lines) in the renderer. Assumes the actor has no mapper yet.
+void add_marker_layer(vtkRenderer* renderer, vtkActor* actor, vtkPolyData* squares, std::array<double, 3> color,
+                      float line_width) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(squares);
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(color.data());
+  actor->GetProperty()->LightingOff();
+  actor->GetProperty()->SetLineWidth(line_width);
+  renderer->AddViewProp(actor);
+}
+
+}  // namespace
+
 FrameView::FrameView() : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.renderer->SetBackground(kBackground.data());
@@ -57,32 +74,10 @@ FrameView::FrameView() : impl_(std::make_unique<Impl>()) {
   m.image_actor->SetVisibility(false);
   m.renderer->AddViewProp(m.image_actor);
 
-  vtkNew<vtkPolyDataMapper> mm, sm;
-  mm->SetInputData(m.marker_data);
-  sm->SetInputData(m.shadow_data);
-  m.markers->SetMapper(mm);
-  m.markers->GetProperty()->SetColor(1.0, 1.0, 1.0);
-  m.markers->GetProperty()->LightingOff();
-  m.markers->GetProperty()->SetLineWidth(1.0f);
-  m.marker_shadow->SetMapper(sm);
-  m.marker_shadow->GetProperty()->SetColor(0.0, 0.0, 0.0);
-  m.marker_shadow->GetProperty()->LightingOff();
-  m.marker_shadow->GetProperty()->SetLineWidth(3.0f);
-  m.renderer->AddViewProp(m.marker_shadow);
-  m.renderer->AddViewProp(m.markers);
-  vtkNew<vtkPolyDataMapper> pm, psm;
-  pm->SetInputData(m.pick_data);
-  psm->SetInputData(m.pick_shadow_data);
-  m.pick_markers->SetMapper(pm);
-  m.pick_markers->GetProperty()->SetColor(1.0, 0.25, 0.85);
-  m.pick_markers->GetProperty()->LightingOff();
-  m.pick_markers->GetProperty()->SetLineWidth(2.0f);
-  m.pick_shadow->SetMapper(psm);
-  m.pick_shadow->GetProperty()->SetColor(0.0, 0.0, 0.0);
-  m.pick_shadow->GetProperty()->LightingOff();
-  m.pick_shadow->GetProperty()->SetLineWidth(4.0f);
-  m.renderer->AddViewProp(m.pick_shadow);
-  m.renderer->AddViewProp(m.pick_markers);
+  add_marker_layer(m.renderer, m.marker_shadow, m.shadow_data, {0.0, 0.0, 0.0}, 3.0f);
+  add_marker_layer(m.renderer, m.markers, m.marker_data, {1.0, 1.0, 1.0}, 1.0f);
+  add_marker_layer(m.renderer, m.pick_shadow, m.pick_shadow_data, {0.0, 0.0, 0.0}, 4.0f);
+  add_marker_layer(m.renderer, m.pick_markers, m.pick_data, {1.0, 0.25, 0.85}, 2.0f);
 
   vtkCamera* cam = m.renderer->GetActiveCamera();
   cam->ParallelProjectionOn();

@@ -102,7 +102,7 @@ struct SceneView::Impl {
   vtkNew<vtkScalarBarActor> bar;
   vtkNew<vtkTextActor> legend;  // what the visible layers are, bottom left
   vtkSmartPointer<vtkPolyData> pick_data;
-  vtkNew<vtkTextActor> pick_text;  // the picks' outcomes, bottom right
+  vtkNew<vtkTextActor> pick_text;  // the picks' outcomes, top left under the caption
 
   void update_legend() {
     std::string text;
@@ -122,7 +122,7 @@ struct SceneView::Impl {
       text += ray_field == ScalarField::pixel_color ? "rays: colour of their frame pixel\n"
                                                     : "rays: " + std::string(scalar_title(ray_field)) + "\n";
     line(Layer::orbit, "timelike orbit (tube)");
-    line(Layer::picks, "picked rays (magenta; outcomes bottom right)");
+    line(Layer::picks, "picked rays (magenta; outcomes top left)");
     if (!text.empty()) text.pop_back();
     legend->SetInput(text.c_str());
   }
@@ -280,9 +280,9 @@ SceneView::SceneView(const SceneLayout& layout) : impl_(std::make_unique<Impl>()
   m.renderer->AddViewProp(m.legend);
   m.pick_text->GetTextProperty()->SetFontSize(13);
   m.pick_text->GetTextProperty()->SetColor(1.0, 0.75, 0.95);
-  m.pick_text->GetTextProperty()->SetJustificationToRight();
+  m.pick_text->GetTextProperty()->SetVerticalJustificationToTop();
   m.pick_text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
-  m.pick_text->GetPositionCoordinate()->SetValue(0.985, 0.015);
+  m.pick_text->GetPositionCoordinate()->SetValue(0.015, 0.935);  // under the window's caption
   m.renderer->AddViewProp(m.pick_text);
   m.wanted[Layer::colorbar] = true;
   m.update_legend();

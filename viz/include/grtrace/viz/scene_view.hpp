@@ -78,7 +78,7 @@ class SceneView {
   /// and colours it.
   void set_orbit(vtkPolyData* orbit, ScalarField color_by = ScalarField::lambda, double tube_radius = 0.0);
   /// Replaces the picked rays (pick.hpp; polylines from paths_to_polydata, drawn thick in magenta) and the text
-  /// that lists their outcomes (bottom right). Null or no points: no picks layer and no text.
+  /// that lists their outcomes (top left, under the caption). Null or no points: no picks layer and no text.
   void set_picks(vtkPolyData* picks, const std::string& text);
   /// The picked rays as drawn (null when there are none).
   vtkPolyData* picks() const;

@@ -258,7 +258,8 @@ TEST(VizRender, KeysToggleLayersAndSaveScreenshots) {
   EXPECT_EQ(window.handle_key("m"), "markers off");
   EXPECT_EQ(window.handle_key("q"), "quit");
   EXPECT_EQ(window.handle_key("Escape"), "quit");
-  EXPECT_EQ(window.handle_key("x"), "");
+  EXPECT_EQ(window.handle_key("z"), "");  // unbound
+  EXPECT_EQ(window.handle_key("x"), "picks cleared (0)");
   const auto prefix = scratch_dir() / "shot";
   window.set_screenshot_prefix(prefix.string());
   EXPECT_EQ(window.handle_key("s"), "saved " + prefix.string() + "-001.png");

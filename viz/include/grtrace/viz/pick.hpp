@@ -97,8 +97,8 @@ RayPick pick_ray(const SceneTracer& scene_tracer, const PixelState& pixel_state,
   if (!is_failure(pick.outcome.status)) {
     const std::vector<std::string> names = scene_tracer.scene().object_names();
     const auto index = static_cast<std::size_t>(pick.outcome.object);
-    pick.object_name = pick.outcome.object >= 0 && index < names.size() ? names[index] : "object " +
-                                                                                          std::to_string(index);
+    const bool named = pick.outcome.object >= 0 && index < names.size();
+    pick.object_name = named ? names[index] : "object " + std::to_string(pick.outcome.object);
   }
   return pick;
 }

@@ -382,6 +382,7 @@ void write_png(OutputSet& set, const std::filesystem::path& file, const std::vec
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(1100, 1100);
+  viz::prepare_window(view->GetRenderWindow());  // the shared X connection; no interactor offscreen
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   vtkNew<vtkChartMatrix> matrix;
   view->GetScene()->AddItem(matrix);

@@ -172,6 +172,7 @@ void write_chart_png(OutputSet& set, const std::filesystem::path& file, const st
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(width, height);
+  viz::prepare_window(view->GetRenderWindow());  // the shared X connection; no interactor offscreen
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   vtkNew<vtkChartXY> chart;
   view->GetScene()->AddItem(chart);

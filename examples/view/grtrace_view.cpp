@@ -6,6 +6,9 @@
 //   * Frame (right): the picture the camera sees, from an EXR written by grtrace-render (--frame FILE.exr) or
 //     rendered here; the bundle's pixels are marked, and each bundle ray keeps its pixel's colour.
 //   * --chart orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts).
+//   * Picks: a left click on the frame traces that pixel's ray (the general scene tracer) and draws it in the 3D
+//     view (magenta), its outcome (status, object, hit radius, redshift, steps) listed there and printed; 'x' clears
+//     the picks. --pick COL,ROW[/COL,ROW...] picks at start-up (so picked rays show in --screenshot and --export).
 // Interactive when a display exists; --screenshot FILE.png --size WxH renders offscreen and exits.
 // --export DIR writes the 3D scene (rays with their point data, surfaces, the frame as an image, scene.vtm) as VTK XML
 // files for ParaView (grtrace/viz/vtk_export.hpp) and exits; alone it opens no window and needs no display.
@@ -72,7 +75,9 @@ CommandLine make_command_line() {
   CommandLine cli("grtrace-view",
                   "The VTK frontend: traced rays in 3D beside the frame they make, and the seed's orbit charts.\n"
                   "Interactive when a display exists; --screenshot renders offscreen and exits.\n"
-                  "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png");
+                  "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png\n"
+                  "Window: mouse turns/pans/zooms the 3D view; a left click on the frame picks that pixel's ray; keys "
+                  "1-9, 0 layers, m markers, c ray colouring, x clear picks, r reset view, s screenshot, h help, q quit.");
   cli.option("screenshot", "", "render offscreen to this PNG and exit")
       .option("export", "", "write the 3D scene (rays, surfaces, frame) as VTK XML files for ParaView into this "
                             "directory (created if missing; open DIR/scene.vtm) and exit; needs no display")
@@ -113,6 +118,9 @@ CommandLine make_command_line() {
       .option("beam-width", "", "beam: largest impact parameter (default 3 x the critical 3 sqrt(3) M)")
       .option("samples-per-step", "8", "points drawn per accepted step (dense output)")
       .option("color-by", "pixel", "ray colouring: pixel | redshift | h | lambda | status | none")
+      .option("pick", "", "frame pixels to pick at start-up, COL,ROW (column, row from the top), several "
+                          "separated by '/' (e.g. 160,120/40,200): each ray is traced, drawn in magenta and its outcome "
+                          "printed, as a left click on the frame does; interactive keys: x clears the picks")
       // orbit
       .flag("orbit", "show the timelike orbit (a tube) in the 3D view")
       .option("orbit-r", "100", "orbit: start radius (equatorial plane, phi = 0, no radial velocity)")
@@ -125,7 +133,7 @@ CommandLine make_command_line() {
       .option("orbit-step", "0", "orbit: initial step (0 = automatic; the step of --orbit-control fixed)")
       // 3D view
       .option("hide", "", "comma-separated layers to hide: horizon,photon-sphere,isco,disk,sky,camera,rays,orbit,"
-                          "colorbar")
+                          "colorbar,picks")
       .flag("checkerboard", "draw the horizon with the renderer's theta-phi checkerboard")
       .option("view-from", "", "3D view: eye position x,y,z (default: framing the hole and the camera)")
       .option("view-at", "0,0,0", "3D view: focal point x,y,z")
@@ -311,6 +319,27 @@ Camera camera_from_header(const std::map<std::string, std::string>& meta, int wi
   }
 }
 
+/// Takes --pick's text and the frame's size; returns the pixels (column, row from the top), in order. Throws
+/// UsageError for a malformed list or a pixel outside the frame.
+std::vector<std::array<int, 2>> parse_picks(const std::string& text, int width, int height) {
+  std::vector<std::array<int, 2>> pixels;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, '/');) {
+    int column = 0, row = 0;
+    char comma = 0, extra = 0;
+    std::istringstream in(item);
+    if (!(in >> column >> comma >> row) || comma != ',' || (in >> extra))
+      throw UsageError("--pick expects pixels COL,ROW (whole numbers, several separated by '/', e.g. 160,120/40,200), "
+                       "got '" + item + "' in '" + text + "'");
+    if (column < 0 || row < 0 || column >= width || row >= height)
+      throw UsageError("--pick " + item + " is outside the " + std::to_string(width) + "x" + std::to_string(height) +
+                       " frame: columns 0.." + std::to_string(width - 1) + ", rows 0.." + std::to_string(height - 1));
+    pixels.push_back({column, row});
+  }
+  if (pixels.empty()) throw UsageError("--pick needs at least one pixel COL,ROW (e.g. 160,120)");
+  return pixels;
+}
+
 Request read_request(const CommandLine& cli) {
   Request q;
   q.screenshot = cli.text("screenshot");
@@ -456,6 +485,11 @@ Request read_request(const CommandLine& cli) {
   if (q.color_by == viz::ScalarField::redshift && q.bundle == "beam")
     throw UsageError("--color-by redshift needs camera rays (a beam has no observer); use --bundle grid, row or column");
 
+  if (cli.given("pick")) {
+    if (!q.chart.empty()) throw UsageError("--pick picks frame pixels; not with --chart");
+    q.picks = parse_picks(cli.text("pick"), q.width, q.height);
+  }
+
   q.show_orbit = cli.flag_set("orbit");
   if (q.kerr && q.show_orbit) throw UsageError("--orbit traces a Schwarzschild orbit; not with --metric kerr");
   q.orbit.mass = q.mass;
@@ -477,7 +511,7 @@ Request read_request(const CommandLine& cli) {
     const auto l = viz::layer_from_string(item);
     if (!l)
       throw UsageError("--hide: unknown layer '" + item +
-                       "' (horizon, photon-sphere, isco, disk, sky, camera, rays, orbit, colorbar)");
+                       "' (horizon, photon-sphere, isco, disk, sky, camera, rays, orbit, colorbar, picks)");
     q.hidden.push_back(*l);
   }
   q.checkerboard = cli.flag_set("checkerboard");
@@ -565,12 +599,19 @@ int run_view(const Request& q) {
   const std::vector<viz::TracedPath> rays = view::trace_bundle(q, pixels, frame_rgb);
   std::optional<viz::TracedPath> orbit;
   if (q.show_orbit) orbit = view::trace_orbit(q);
+  std::vector<viz::RayPick> picks;
+  for (const auto& pixel : q.picks) {
+    picks.push_back(view::pick_ray(q, pixel, frame_rgb));
+    std::cout << "pick " << viz::describe(picks.back()) << "\n";
+  }
 
   if (!q.export_dir.empty()) {
     viz::SceneExport ex;
     ex.layout = layout;
     ex.hidden = q.hidden;
-    ex.rays = rays;
+    std::vector<viz::TracedPath> exported = rays;  // the bundle, then the picked rays
+    for (const auto& pick : picks) exported.push_back(pick.path);
+    ex.rays = exported;
     ex.orbit = orbit ? &*orbit : nullptr;
     if (q.bundle != "beam")
       ex.camera = viz::CameraRecord{camera.position(), camera.tetrad().e, q.fov, q.width, q.height};
@@ -580,7 +621,8 @@ int run_view(const Request& q) {
     std::cout << "wrote " << files.back().path.string() << " (" << files.size() - 1 << " files: ";
     for (std::size_t i = 0; i + 1 < files.size(); ++i)
       std::cout << (i ? ", " : "") << files[i].path.filename().string();
-    std::cout << "; " << rays.size() << " rays)\n";
+    std::cout << "; " << rays.size() << " rays" << (picks.empty() ? "" : " + " + std::to_string(picks.size()) + " picked")
+              << ")\n";
     if (q.screenshot.empty()) return 0;  // export only: no window
   }
 
@@ -628,6 +670,8 @@ int run_view(const Request& q) {
   opt.scene_caption = scene_caption;
   opt.frame_caption = frame_caption;
   viz::ViewerWindow window(scene, &frame, opt);
+  window.set_pick_handler([&](std::array<int, 2> pixel) { return view::pick_ray(q, pixel, frame_rgb); });
+  for (auto& pick : picks) window.add_pick(std::move(pick));
   if (!q.screenshot.empty()) {
     window.save_png(q.screenshot);
     std::cout << "wrote " << q.screenshot << " (" << q.size[0] << "x" << q.size[1] << ")\n";

@@ -4,6 +4,7 @@
 //   view_orbit.cpp  trace_orbit   the timelike orbit (charts, orbit layer)
 //   view_rays.cpp   trace_bundle  the bundle's rays through the scene (camera pixels or a parallel beam)
 //   view_frame.cpp  render_frame  the frame rendered in-process, as grtrace-render does
+//   view_pick.cpp   pick_ray      one picked pixel's ray (--pick, clicks on the frame)
 #pragma once
 
 #include "grtrace/observer/camera.hpp"
@@ -14,6 +15,7 @@
 #include "grtrace/viz/frame_image.hpp"
 #include "grtrace/viz/geodesic_data.hpp"
 #include "grtrace/viz/orbits.hpp"
+#include "grtrace/viz/pick.hpp"
 #include "grtrace/viz/scene_view.hpp"
 #include "grtrace/viz/traced_path.hpp"
 
@@ -65,6 +67,7 @@ struct Request {
   std::optional<Vec3> view_from;
   Vec3 view_at = Vec3::Zero();
   double view_angle = 30.0;
+  std::vector<std::array<int, 2>> picks;  ///< --pick: frame pixels (column, row from the top) picked at start-up
 };
 
 /// The preset scene of the request (scene/standard_scenes.hpp), as grtrace-render builds it.
@@ -90,5 +93,10 @@ std::vector<viz::TracedPath> trace_bundle(const Request& q, std::span<const std:
 
 /// The frame as grtrace-render renders it (--tracer auto) (view_frame.cpp).
 Image render_frame(const Request& q);
+
+/// One frame pixel (column, row from the top) of q.camera picked: its ray traced with q.rays through the scene by
+/// the general scene tracer (path drawn and outcome listed), coloured from `frame` (view_pick.cpp). Assumes the
+/// pixel lies in the frame.
+viz::RayPick pick_ray(const Request& q, std::array<int, 2> pixel, const viz::Rgb8Image& frame);
 
 }  // namespace grtrace::view

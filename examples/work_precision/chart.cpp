@@ -87,6 +87,7 @@ void write_loglog_chart(OutputSet& set, const std::string& png, const ChartSpec&
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(spec.width, spec.height);
+  viz::prepare_window(view->GetRenderWindow());  // the shared X connection; no interactor offscreen
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
 
   vtkNew<vtkChartXY> chart;

@@ -13,6 +13,9 @@
 #include <gtest/gtest.h>
 
 #include <vtkCommand.h>
+#include <vtkContextView.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 
 #include <cmath>
@@ -255,7 +258,8 @@ TEST(VizRender, KeysToggleLayersAndSaveScreenshots) {
   EXPECT_EQ(window.handle_key("m"), "markers off");
   EXPECT_EQ(window.handle_key("q"), "quit");
   EXPECT_EQ(window.handle_key("Escape"), "quit");
-  EXPECT_EQ(window.handle_key("x"), "");
+  EXPECT_EQ(window.handle_key("z"), "");  // unbound
+  EXPECT_EQ(window.handle_key("x"), "picks cleared (0)");
   const auto prefix = scratch_dir() / "shot";
   window.set_screenshot_prefix(prefix.string());
   EXPECT_EQ(window.handle_key("s"), "saved " + prefix.string() + "-001.png");
@@ -276,6 +280,43 @@ TEST(VizRender, KeysToggleLayersAndSaveScreenshots) {
   press('s');
   EXPECT_TRUE(std::filesystem::exists(prefix.string() + "-003.png"));
   std::filesystem::remove_all(scratch_dir());
+}
+
+}  // namespace
+
+namespace {
+
+// The flaky chart segfault (viz_tool_test ChartsAreWritten, ~1 run in 100): vtkContextView gives its window an
+// interactor; the first Render() initialised it, and VTK 9.1's vtkXRenderWindowInteractor::Initialize opened an X
+// connection of its own without checking it: a busy Xvfb refusing that connection meant a null Display and a
+// segfault in XSync. prepare_window gives every window the process's one connection and drops the interactor of
+// offscreen windows, so no window opens a connection of its own.
+TEST(VizRender, WindowsDrawThroughTheSharedDisplay) {
+  REQUIRE_DISPLAY();
+  ASSERT_NE(x_display(), nullptr);
+  EXPECT_EQ(x_display(), x_display());  // one connection per process
+  vtkNew<vtkContextView> view;
+  vtkRenderWindow* offscreen = view->GetRenderWindow();
+  ASSERT_NE(offscreen->GetInteractor(), nullptr);  // what vtkContextView gives it
+  offscreen->SetOffScreenRendering(1);
+  prepare_window(offscreen);
+  EXPECT_EQ(offscreen->GetInteractor(), nullptr);
+  EXPECT_EQ(offscreen->GetGenericDisplayId(), x_display());
+  offscreen->SetSize(120, 100);
+  offscreen->Render();
+  EXPECT_EQ(offscreen->GetGenericDisplayId(), x_display());  // rendering kept it (did not open its own)
+  offscreen->Finalize();
+
+  // The viewer's window, on screen with an interactor: the interactor uses the window's connection too.
+  SceneView scene(SceneLayout{});
+  WindowOptions opt;
+  opt.width = 160;
+  opt.height = 120;
+  ViewerWindow window(scene, nullptr, opt);
+  EXPECT_EQ(window.window()->GetGenericDisplayId(), x_display());
+  vtkRenderWindowInteractor* iren = window.interactor();
+  iren->Initialize();
+  EXPECT_EQ(window.window()->GetGenericDisplayId(), x_display());
 }
 
 }  // namespace

@@ -12,6 +12,12 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -162,6 +168,72 @@ TEST(ViewTool, ChartsAreWritten) {
     EXPECT_EQ(png.height, 300);
   }
   std::filesystem::remove_all(scratch("x").parent_path());
+}
+
+// ---- --pick: a frame pixel's ray traced at start-up, as a click on the frame does -----------------------------
+
+TEST(ViewTool, PicksAreTracedPrintedAndExported) {
+  // --export alone needs no display.
+  const auto dir = scratch("picked-scene");
+  const ToolRun r = run("--export " + dir.string() + " --width 48 --height 36 --bundle-size 2x2 --pick 24,10/5,30");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* line : {"pick pixel (24, 10): ", "pick pixel (5, 30): ", " steps\n", "+ 2 picked"})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+  // rays.vtp: the 4 bundle rays, then the 2 picked ones with their pixels.
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName((dir / "rays.vtp").c_str());
+  reader->Update();
+  vtkPolyData* rays = reader->GetOutput();
+  ASSERT_EQ(rays->GetNumberOfCells(), 6);
+  vtkDataArray* pixel = rays->GetCellData()->GetArray("pixel");
+  ASSERT_NE(pixel, nullptr);
+  ASSERT_EQ(pixel->GetNumberOfComponents(), 2);
+  EXPECT_EQ(pixel->GetComponent(4, 0), 24);
+  EXPECT_EQ(pixel->GetComponent(4, 1), 10);
+  EXPECT_EQ(pixel->GetComponent(5, 0), 5);
+  EXPECT_EQ(pixel->GetComponent(5, 1), 30);
+  std::filesystem::remove_all(dir.parent_path());
+}
+
+/// Pixels of the 3D half of a screenshot drawn in the picks' magenta.
+int magenta_pixels(const grtrace::PngRgb8& png) {
+  int n = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width / 2; ++x) {
+      const auto o = static_cast<std::size_t>(3 * (y * png.width + x));
+      n += png.rgb[o] > 230 && png.rgb[o + 1] > 40 && png.rgb[o + 1] < 90 && png.rgb[o + 2] > 190 && png.rgb[o + 2] < 240;
+    }
+  return n;
+}
+
+TEST(ViewTool, PickedRaysAppearInTheScreenshot) {
+  if (!grtrace::viz::display_available()) GTEST_SKIP() << "no DISPLAY (run under xvfb-run)";
+  const auto with = scratch("picked.png"), without = scratch("unpicked.png");
+  const std::string common = " --size 400x200 --width 48 --height 36 --bundle none";
+  const ToolRun r = run("--screenshot " + with.string() + common + " --pick 24,10");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("pick pixel (24, 10): "), std::string::npos) << r.output;
+  const ToolRun plain = run("--screenshot " + without.string() + common);
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  EXPECT_GT(magenta_pixels(grtrace::read_png_rgb8(with)), 20);
+  EXPECT_EQ(magenta_pixels(grtrace::read_png_rgb8(without)), 0);
+  std::filesystem::remove_all(with.parent_path());
+}
+
+TEST(ViewTool, BadPicksAreRefusedBeforeAnyWork) {
+  const auto dir = scratch("refused-scene");
+  std::filesystem::remove_all(dir);
+  for (const char* pick : {"48,0", "0,36", "-1,3", "12", "a,b", "1,2,3", "1,2x", "3,4//5,6", "''"}) {
+    const ToolRun r = run("--export " + dir.string() + " --width 48 --height 36 --pick " + pick);
+    EXPECT_EQ(r.status, 2) << pick << "\n" << r.output;
+    EXPECT_NE(r.output.find("--pick"), std::string::npos) << pick << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir)) << pick;
+  }
+  const ToolRun chart = run("--chart orbit --pick 1,1 --screenshot " + scratch("chart.png").string());
+  EXPECT_EQ(chart.status, 2) << chart.output;
+  EXPECT_NE(chart.output.find("--pick"), std::string::npos) << chart.output;
+  EXPECT_FALSE(std::filesystem::exists(scratch("chart.png")));
+  std::filesystem::remove_all(dir.parent_path());
 }
 
 }  // namespace

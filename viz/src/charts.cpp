@@ -153,6 +153,7 @@ Rgb8Image render_chart(const ChartSpec& spec, int width, int height) {
   vtkRenderWindow* window = view->GetRenderWindow();
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
+  prepare_window(window);
   build_chart(view, chart, title, note, spec, width, height);
   window->Render();
   Rgb8Image out = capture_window(window);
@@ -168,6 +169,7 @@ void show_chart(const ChartSpec& spec, int width, int height) {
   vtkNew<vtkContextView> view;
   vtkNew<vtkChartXY> chart;
   vtkNew<vtkTextActor> title, note;
+  prepare_window(view->GetRenderWindow());
   build_chart(view, chart, title, note, spec, width, height);
   view->GetRenderWindow()->SetWindowName(spec.title.c_str());
   view->GetRenderWindow()->Render();

@@ -27,10 +27,15 @@ struct FrameView::Impl {
   vtkNew<vtkImageData> image;
   vtkNew<vtkActor> markers, marker_shadow;  // a white outline over a wider black one: visible on any picture
   vtkNew<vtkPolyData> marker_data, shadow_data;
+  vtkNew<vtkActor> pick_markers, pick_shadow;  // picked pixels: magenta over black
+  vtkNew<vtkPolyData> pick_data, pick_shadow_data;
   vtkNew<vtkCallbackCommand> on_start;
   Rgb8Image frame;
   double scale = 1.0;
   int vw = 1, vh = 1;
+
+  double marker_half() const { return std::max(1.5, std::max(frame.width, frame.height) / 200.0); }
+  FrameFit placement() const { return {frame.width, frame.height, vw, vh}; }
 
   static void before_render(vtkObject*, unsigned long, void* client, void*) {
     auto* self = static_cast<FrameView*>(client);
@@ -38,6 +43,23 @@ struct FrameView::Impl {
     if (size[0] > 0 && size[1] > 0) self->fit(size[0], size[1]);
   }
 };
+
+namespace {
+
+/// Takes the frame's renderer, an actor, the polydata of its squares, a colour and a line width; draws the squares
+/// with that actor (unlit lines) in the renderer. Assumes the actor has no mapper yet.
+void add_marker_layer(vtkRenderer* renderer, vtkActor* actor, vtkPolyData* squares, std::array<double, 3> color,
+                      float line_width) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(squares);
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(color.data());
+  actor->GetProperty()->LightingOff();
+  actor->GetProperty()->SetLineWidth(line_width);
+  renderer->AddViewProp(actor);
+}
+
+}  // namespace
 
 FrameView::FrameView() : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
@@ -52,19 +74,10 @@ FrameView::FrameView() : impl_(std::make_unique<Impl>()) {
   m.image_actor->SetVisibility(false);
   m.renderer->AddViewProp(m.image_actor);
 
-  vtkNew<vtkPolyDataMapper> mm, sm;
-  mm->SetInputData(m.marker_data);
-  sm->SetInputData(m.shadow_data);
-  m.markers->SetMapper(mm);
-  m.markers->GetProperty()->SetColor(1.0, 1.0, 1.0);
-  m.markers->GetProperty()->LightingOff();
-  m.markers->GetProperty()->SetLineWidth(1.0f);
-  m.marker_shadow->SetMapper(sm);
-  m.marker_shadow->GetProperty()->SetColor(0.0, 0.0, 0.0);
-  m.marker_shadow->GetProperty()->LightingOff();
-  m.marker_shadow->GetProperty()->SetLineWidth(3.0f);
-  m.renderer->AddViewProp(m.marker_shadow);
-  m.renderer->AddViewProp(m.markers);
+  add_marker_layer(m.renderer, m.marker_shadow, m.shadow_data, {0.0, 0.0, 0.0}, 3.0f);
+  add_marker_layer(m.renderer, m.markers, m.marker_data, {1.0, 1.0, 1.0}, 1.0f);
+  add_marker_layer(m.renderer, m.pick_shadow, m.pick_shadow_data, {0.0, 0.0, 0.0}, 4.0f);
+  add_marker_layer(m.renderer, m.pick_markers, m.pick_data, {1.0, 0.25, 0.85}, 2.0f);
 
   vtkCamera* cam = m.renderer->GetActiveCamera();
   cam->ParallelProjectionOn();
@@ -94,25 +107,43 @@ void FrameView::set_frame(const Rgb8Image& frame) {
   m.image_actor->SetVisibility(!frame.empty());
 }
 
+namespace {
+
+/// Takes a marker polydata, frame pixels (x, y from the top), the frame's height, the half side of a square in
+/// frame pixels and a depth z; fills the polydata with one closed square around each pixel's centre.
+void draw_squares(vtkPolyData* data, std::span<const std::array<int, 2>> pixels, int frame_height, double half,
+                  double z) {
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> lines;
+  for (const auto& p : pixels) {
+    const double cx = p[0], cy = frame_height - 1 - p[1];
+    vtkIdType ids[5];
+    const double corner[4][2] = {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
+    for (int i = 0; i < 4; ++i) ids[i] = pts->InsertNextPoint(cx + corner[i][0], cy + corner[i][1], z);
+    ids[4] = ids[0];
+    lines->InsertNextCell(5, ids);
+  }
+  data->SetPoints(pts);
+  data->SetLines(lines);
+  data->Modified();
+}
+
+}  // namespace
+
 void FrameView::set_markers(std::span<const std::array<int, 2>> pixels) {
   Impl& m = *impl_;
   // A square of side 2 * half frame pixels around each marked pixel's centre (at least 3 pixels across).
-  const double half = std::max(1.5, std::max(m.frame.width, m.frame.height) / 200.0);
-  for (auto [data, z] : {std::pair{m.shadow_data.Get(), 1.0}, std::pair{m.marker_data.Get(), 2.0}}) {
-    vtkNew<vtkPoints> pts;
-    vtkNew<vtkCellArray> lines;
-    for (const auto& p : pixels) {
-      const double cx = p[0], cy = m.frame.height - 1 - p[1];
-      vtkIdType ids[5];
-      const double corner[4][2] = {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
-      for (int i = 0; i < 4; ++i) ids[i] = pts->InsertNextPoint(cx + corner[i][0], cy + corner[i][1], z);
-      ids[4] = ids[0];
-      lines->InsertNextCell(5, ids);
-    }
-    data->SetPoints(pts);
-    data->SetLines(lines);
-    data->Modified();
-  }
+  const double half = m.marker_half();
+  draw_squares(m.shadow_data, pixels, m.frame.height, half, 1.0);
+  draw_squares(m.marker_data, pixels, m.frame.height, half, 2.0);
+}
+
+void FrameView::set_pick_markers(std::span<const std::array<int, 2>> pixels) {
+  Impl& m = *impl_;
+  // A little larger than the bundle's squares, so a picked bundle pixel shows both.
+  const double half = 1.6 * m.marker_half();
+  draw_squares(m.pick_shadow_data, pixels, m.frame.height, half, 3.0);
+  draw_squares(m.pick_data, pixels, m.frame.height, half, 4.0);
 }
 
 void FrameView::set_markers_visible(bool on) {
@@ -126,10 +157,9 @@ void FrameView::fit(int viewport_width, int viewport_height) {
   m.vw = viewport_width;
   m.vh = viewport_height;
   if (m.frame.empty()) return;
-  const double w = m.frame.width, h = m.frame.height;
-  m.scale = std::min(viewport_width / w, viewport_height / h);
+  m.scale = m.placement().scale();
   vtkCamera* cam = m.renderer->GetActiveCamera();
-  const double cx = 0.5 * (w - 1.0), cy = 0.5 * (h - 1.0);
+  const double cx = 0.5 * (m.frame.width - 1.0), cy = 0.5 * (m.frame.height - 1.0);
   cam->SetFocalPoint(cx, cy, 0.0);
   cam->SetPosition(cx, cy, 100.0);
   cam->SetViewUp(0.0, 1.0, 0.0);
@@ -139,11 +169,10 @@ void FrameView::fit(int viewport_width, int viewport_height) {
 
 double FrameView::scale() const { return impl_->scale; }
 
+FrameFit FrameView::placement() const { return impl_->placement(); }
+
 std::array<double, 2> FrameView::frame_to_viewport(double x, double y) const {
-  const Impl& m = *impl_;
-  const double cx = 0.5 * (m.frame.width - 1.0), cy = 0.5 * (m.frame.height - 1.0);
-  const double vy = m.frame.height - 1.0 - y;
-  return {0.5 * m.vw + (x - cx) * m.scale, 0.5 * m.vh + (vy - cy) * m.scale};
+  return impl_->placement().to_viewport(x, y);
 }
 
 }  // namespace grtrace::viz

@@ -43,6 +43,7 @@ std::string_view to_string(Layer layer) {
     case Layer::orbit: return "orbit";
     case Layer::colorbar: return "colorbar";
     case Layer::ergosphere: return "ergosphere";
+    case Layer::picks: return "picks";
   }
   return "";
 }
@@ -100,6 +101,8 @@ struct SceneView::Impl {
   ScalarField ray_field = ScalarField::none, orbit_field = ScalarField::none;
   vtkNew<vtkScalarBarActor> bar;
   vtkNew<vtkTextActor> legend;  // what the visible layers are, bottom left
+  vtkSmartPointer<vtkPolyData> pick_data;
+  vtkNew<vtkTextActor> pick_text;  // the picks' outcomes, top left under the caption
 
   void update_legend() {
     std::string text;
@@ -119,8 +122,16 @@ struct SceneView::Impl {
       text += ray_field == ScalarField::pixel_color ? "rays: colour of their frame pixel\n"
                                                     : "rays: " + std::string(scalar_title(ray_field)) + "\n";
     line(Layer::orbit, "timelike orbit (tube)");
+    line(Layer::picks, "picked rays (magenta; outcomes top left)");
     if (!text.empty()) text.pop_back();
     legend->SetInput(text.c_str());
+  }
+
+  void remove(Layer l) {
+    if (auto it = props.find(l); it != props.end()) {
+      renderer->RemoveViewProp(it->second);
+      props.erase(it);
+    }
   }
 
   void add(Layer l, vtkProp* p) {
@@ -267,6 +278,12 @@ SceneView::SceneView(const SceneLayout& layout) : impl_(std::make_unique<Impl>()
   m.legend->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   m.legend->GetPositionCoordinate()->SetValue(0.015, 0.015);
   m.renderer->AddViewProp(m.legend);
+  m.pick_text->GetTextProperty()->SetFontSize(13);
+  m.pick_text->GetTextProperty()->SetColor(1.0, 0.75, 0.95);
+  m.pick_text->GetTextProperty()->SetVerticalJustificationToTop();
+  m.pick_text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  m.pick_text->GetPositionCoordinate()->SetValue(0.015, 0.935);  // under the window's caption
+  m.renderer->AddViewProp(m.pick_text);
   m.wanted[Layer::colorbar] = true;
   m.update_legend();
   set_view(default_view());
@@ -290,6 +307,32 @@ void SceneView::set_rays(vtkPolyData* rays, ScalarField color_by) {
   m.add(Layer::rays, actor);
   set_color_by(Layer::rays, color_by);
 }
+
+void SceneView::set_picks(vtkPolyData* picks, const std::string& text) {
+  Impl& m = *impl_;
+  if (picks == nullptr || picks->GetNumberOfPoints() == 0) {
+    m.pick_data = nullptr;
+    m.remove(Layer::picks);
+    m.pick_text->SetInput("");
+    m.update_legend();
+    return;
+  }
+  m.pick_data = picks;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(picks);
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(1.0, 0.25, 0.85);
+  actor->GetProperty()->LightingOff();
+  actor->GetProperty()->SetLineWidth(4.0f);
+  m.add(Layer::picks, actor);
+  m.pick_text->SetInput(text.c_str());
+  m.pick_text->SetVisibility(m.wanted[Layer::picks]);
+  m.update_legend();
+}
+
+vtkPolyData* SceneView::picks() const { return impl_->pick_data; }
 
 void SceneView::set_orbit(vtkPolyData* orbit, ScalarField color_by, double tube_radius) {
   Impl& m = *impl_;
@@ -354,6 +397,7 @@ void SceneView::set_visible(Layer layer, bool on) {
   Impl& m = *impl_;
   m.wanted[layer] = on;
   if (auto it = m.props.find(layer); it != m.props.end()) it->second->SetVisibility(on);
+  if (layer == Layer::picks) m.pick_text->SetVisibility(on);
   m.update_bar();
 }
 

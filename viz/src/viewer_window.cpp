@@ -2,10 +2,12 @@
 #include "grtrace/viz/viewer_window.hpp"
 
 #include "grtrace/viz/frame_view.hpp"
+#include "grtrace/viz/geodesic_data.hpp"
 #include "grtrace/viz/scene_view.hpp"
 #include "grtrace/render/output_file.hpp"
 
 #include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
@@ -19,6 +21,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -26,6 +30,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -33,17 +38,38 @@
 
 namespace grtrace::viz {
 
-bool display_available() {
-  // Cached: connecting to the X server once per process is enough (and tests call this per case).
-  static const bool available = [] {
+namespace {
+
+/// Takes nothing; returns a new connection to the X server at DISPLAY, or null when none answers. Assumes DISPLAY
+/// is set. A busy server (Xvfb under load) refuses some connections for a moment: its listen queue is full
+/// (EAGAIN), or it resets or drops a pending one (ECONNRESET, or no errno at all). Those attempts are repeated
+/// (up to about two seconds); a missing server (ENOENT, ECONNREFUSED) is answered at once.
+Display* open_display() {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    errno = 0;
+    if (Display* display = XOpenDisplay(nullptr)) return display;
+    if (errno == ENOENT || errno == ECONNREFUSED) return nullptr;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+void* x_display() {
+  // Opened once and kept for the life of the process (the OS closes it at exit), so every window shares it.
+  static Display* const display = [] {
     const char* d = std::getenv("DISPLAY");
-    if (d == nullptr || *d == '\0') return false;
-    Display* display = XOpenDisplay(nullptr);
-    if (display == nullptr) return false;
-    XCloseDisplay(display);
-    return true;
+    return d == nullptr || *d == '\0' ? nullptr : open_display();
   }();
-  return available;
+  return display;
+}
+
+bool display_available() { return x_display() != nullptr; }
+
+void prepare_window(vtkRenderWindow* window) {
+  if (void* display = x_display()) window->SetDisplayId(display);
+  if (window->GetOffScreenRendering()) window->SetInteractor(nullptr);
 }
 
 void require_display(const std::string& program, const std::string& alternative) {
@@ -140,6 +166,25 @@ struct ViewerWindow::Impl {
   vtkSmartPointer<vtkTextActor> scene_caption, frame_caption;
   vtkSmartPointer<vtkRenderWindowInteractor> interactor;
   std::string prefix = "grtrace-view";
+  PickHandler pick_handler;
+  std::vector<RayPick> picks;
+
+  /// Redraws the picks layer, the pick text (the last kShownPicks lines) and the frame's pick markers.
+  void show_picks() {
+    constexpr std::size_t kShownPicks = 8;
+    std::vector<TracedPath> paths;
+    std::vector<std::array<int, 2>> pixels;
+    std::string text;
+    if (picks.size() > kShownPicks) text = std::to_string(picks.size() - kShownPicks) + " earlier picks\n";
+    for (std::size_t i = 0; i < picks.size(); ++i) {
+      paths.push_back(picks[i].path);
+      pixels.push_back(picks[i].pixel);
+      if (i + kShownPicks >= picks.size()) text += describe(picks[i]) + "\n";
+    }
+    if (!text.empty()) text.pop_back();
+    scene->set_picks(paths.empty() ? nullptr : paths_to_polydata(paths).Get(), text);
+    if (frame) frame->set_pick_markers(pixels);
+  }
 
   std::array<int, 4> viewport_pixels(vtkRenderer* r) const {
     const int* size = window->GetSize();
@@ -163,6 +208,33 @@ struct ViewerWindow::Impl {
   static void on_char(vtkObject* caller, unsigned long, void* client, void*);
 };
 
+namespace {
+
+/// Left button on the frame viewport: picks the pixel under the pointer and keeps the event from the trackball
+/// style (which would start turning the 3D view). Elsewhere the event goes on to the style.
+class FrameClick : public vtkCommand {
+ public:
+  static FrameClick* New() { return new FrameClick; }
+  ViewerWindow* window = nullptr;
+
+  void Execute(vtkObject* caller, unsigned long, void*) override {
+    auto* iren = static_cast<vtkRenderWindowInteractor*>(caller);
+    const int* at = iren->GetEventPosition();
+    if (!window->frame_pixel_at(at[0], at[1])) return;
+    SetAbortFlag(1);
+    std::string said;
+    try {
+      said = window->pick_at(at[0], at[1]);
+    } catch (const std::exception& e) {
+      said = std::string("pick failed: ") + e.what();
+    }
+    if (!said.empty()) std::cout << said << std::endl;
+    window->render();
+  }
+};
+
+}  // namespace
+
 ViewerWindow::ViewerWindow(SceneView& scene, FrameView* frame, const WindowOptions& options)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
@@ -174,6 +246,7 @@ ViewerWindow::ViewerWindow(SceneView& scene, FrameView* frame, const WindowOptio
   m.window->SetWindowName(options.title.c_str());
   m.window->SetMultiSamples(0);  // exact pixels (the frame must show its colours unchanged)
   if (options.offscreen) m.window->SetOffScreenRendering(1);
+  prepare_window(m.window);
   const double split = frame ? options.split : 1.0;
   scene.renderer()->SetViewport(0.0, 0.0, split, 1.0);
   m.window->AddRenderer(scene.renderer());
@@ -242,7 +315,8 @@ std::array<int, 4> ViewerWindow::scene_viewport_pixels() const {
 
 std::string ViewerWindow::key_help() {
   return "keys: 1 horizon, 2 photon sphere, 3 ISCO, 4 disk, 5 sky, 6 camera, 7 rays, 8 orbit, 9 colour bar, "
-         "0 ergosphere, m frame markers, c ray colouring, r reset view, s screenshot, h help, q quit";
+         "0 ergosphere, m frame markers, c ray colouring, x clear picks, r reset view, s screenshot, h help, q quit; "
+         "left click on the frame: pick that pixel's ray";
 }
 
 std::string ViewerWindow::handle_key(const std::string& key) {
@@ -270,6 +344,7 @@ std::string ViewerWindow::handle_key(const std::string& key) {
       m.frame->set_markers_visible(!m.frame->markers_visible());
       return m.frame->markers_visible() ? "markers on" : "markers off";
     case 'c': return "rays coloured by " + std::string(to_string(m.scene->cycle_ray_coloring()));
+    case 'x': return clear_picks();
     case 'r': m.scene->set_view(m.scene->default_view()); return "view reset";
     case 's': {
       const std::string file = m.next_screenshot();
@@ -317,9 +392,56 @@ vtkRenderWindowInteractor* ViewerWindow::interactor() {
     keys->SetClientData(this);
     keys->SetAbortFlagOnExecute(1);  // the style's own key bindings (w, s, e, 3, f, p ...) never see our keys
     m.interactor->AddObserver(vtkCommand::CharEvent, keys, 10.0f);
+    vtkNew<FrameClick> click;
+    click->window = this;
+    m.interactor->AddObserver(vtkCommand::LeftButtonPressEvent, click, 10.0f);
   }
   return m.interactor;
 }
+
+void ViewerWindow::set_pick_handler(PickHandler handler) { impl_->pick_handler = std::move(handler); }
+
+std::optional<std::array<int, 2>> ViewerWindow::frame_pixel_at(int display_x, int display_y) {
+  Impl& m = *impl_;
+  if (!m.frame || m.frame->frame().empty()) return std::nullopt;
+  const auto [x0, y0, w, h] = frame_viewport_pixels();
+  if (display_x < x0 || display_y < y0 || display_x >= x0 + w || display_y >= y0 + h) return std::nullopt;
+  m.frame->fit(w, h);
+  // The centre of the display pixel, in the viewport's continuous coordinates.
+  return m.frame->placement().pixel_at(display_x - x0 + 0.5, display_y - y0 + 0.5);
+}
+
+std::string ViewerWindow::pick_at(int display_x, int display_y) {
+  const auto pixel = frame_pixel_at(display_x, display_y);
+  return pixel ? pick_pixel(*pixel) : std::string();
+}
+
+std::string ViewerWindow::pick_pixel(std::array<int, 2> pixel) {
+  Impl& m = *impl_;
+  if (!m.pick_handler) throw std::logic_error("no pick handler: nothing to trace a picked pixel with");
+  const Rgb8Image* shown = m.frame ? &m.frame->frame() : nullptr;
+  if (shown && (pixel[0] < 0 || pixel[1] < 0 || pixel[0] >= shown->width || pixel[1] >= shown->height))
+    throw std::out_of_range("pixel (" + std::to_string(pixel[0]) + ", " + std::to_string(pixel[1]) +
+                            ") is outside the frame");
+  return add_pick(m.pick_handler(pixel));
+}
+
+std::string ViewerWindow::add_pick(RayPick pick) {
+  Impl& m = *impl_;
+  m.picks.push_back(std::move(pick));
+  m.show_picks();
+  return describe(m.picks.back());
+}
+
+std::string ViewerWindow::clear_picks() {
+  Impl& m = *impl_;
+  const std::size_t n = m.picks.size();
+  m.picks.clear();
+  m.show_picks();
+  return "picks cleared (" + std::to_string(n) + ")";
+}
+
+const std::vector<RayPick>& ViewerWindow::picks() const { return impl_->picks; }
 
 void ViewerWindow::interact(const std::string& screenshot_prefix) {
   set_screenshot_prefix(screenshot_prefix);

@@ -24,6 +24,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 
 class vtkRenderer;
@@ -31,12 +32,12 @@ class vtkPolyData;
 
 namespace grtrace::viz {
 
-enum class Layer { horizon, photon_sphere, isco, disk, sky, camera, rays, orbit, colorbar, ergosphere };
-inline constexpr std::array<Layer, 10> kAllLayers = {Layer::horizon, Layer::photon_sphere, Layer::isco,
+enum class Layer { horizon, photon_sphere, isco, disk, sky, camera, rays, orbit, colorbar, ergosphere, picks };
+inline constexpr std::array<Layer, 11> kAllLayers = {Layer::horizon, Layer::photon_sphere, Layer::isco,
                                                      Layer::disk,    Layer::sky,           Layer::camera,
                                                      Layer::rays,    Layer::orbit,         Layer::colorbar,
-                                                     Layer::ergosphere};
-/// "horizon", "photon-sphere", "isco", "disk", "sky", "camera", "rays", "orbit", "colorbar", "ergosphere".
+                                                     Layer::ergosphere, Layer::picks};
+/// "horizon", "photon-sphere", "isco", "disk", "sky", "camera", "rays", "orbit", "colorbar", "ergosphere", "picks".
 std::string_view to_string(Layer layer);
 std::optional<Layer> layer_from_string(std::string_view name);
 
@@ -76,6 +77,11 @@ class SceneView {
   /// Replaces the orbit layer (drawn as tubes of the given radius; <= 0: 0.5% of its extent, at least 0.3 M)
   /// and colours it.
   void set_orbit(vtkPolyData* orbit, ScalarField color_by = ScalarField::lambda, double tube_radius = 0.0);
+  /// Replaces the picked rays (pick.hpp; polylines from paths_to_polydata, drawn thick in magenta) and the text
+  /// that lists their outcomes (top left, under the caption). Null or no points: no picks layer and no text.
+  void set_picks(vtkPolyData* picks, const std::string& text);
+  /// The picked rays as drawn (null when there are none).
+  vtkPolyData* picks() const;
   /// Recolours the rays or the orbit (layer must be Layer::rays or Layer::orbit). Throws if the data lacks the array.
   void set_color_by(Layer layer, ScalarField field);
   ScalarField color_by(Layer layer) const;

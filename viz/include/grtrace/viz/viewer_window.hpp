@@ -3,20 +3,25 @@
 // offscreen capture to PNG, and the interactive loop with key bindings.
 //
 // Keys (interactive): 1 horizon, 2 photon sphere, 3 ISCO, 4 disk, 5 sky, 6 camera, 7 rays, 8 orbit, 9 colour bar,
-// 0 ergosphere, m frame markers, c cycle the ray colouring, r reset the 3D view, s save a screenshot
-// (<prefix>-NNN.png in the working directory), h print the key list, q / Escape quit.
-// Mouse: trackball camera in the 3D view (left rotate, middle pan, right / wheel zoom).
+// 0 ergosphere, m frame markers, c cycle the ray colouring, x clear the picks, r reset the 3D view, s save a
+// screenshot (<prefix>-NNN.png in the working directory), h print the key list, q / Escape quit.
+// Mouse: trackball camera in the 3D view (left rotate, middle pan, right / wheel zoom); a left click on the frame
+// picks that pixel: its ray is traced (the pick handler, pick.hpp) and drawn in the 3D view, its outcome listed.
 //
 // Rendering needs an X display (Debian's VTK has no EGL/OSMesa): run headless under
 //   xvfb-run -a -s "-screen 0 1280x1024x24" ...
 #pragma once
 
 #include "grtrace/viz/frame_image.hpp"
+#include "grtrace/viz/pick.hpp"
 
 #include <array>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 class vtkRenderWindow;
 class vtkRenderWindowInteractor;
@@ -30,9 +35,23 @@ namespace grtrace::viz {
 class SceneView;
 class FrameView;
 
-/// True when an X server answers at DISPLAY (checked once with XOpenDisplay, then cached). Without one, VTK
-/// here (Debian: X only, no EGL/OSMesa) crashes on the first render, offscreen or not.
+/// Takes nothing; returns the process's one X connection (an Xlib Display*), opened on first use and kept until
+/// exit, or null when no X server answers at DISPLAY. A server that is only busy (Xvfb under load refuses or drops
+/// some connections for a moment) is asked again for up to about two seconds. Every window the viz library makes
+/// draws through this connection (prepare_window): VTK 9.1 opens one of its own per window and per interactor and
+/// does not check it (a refused XOpenDisplay in vtkXRenderWindowInteractor::Initialize is a null Display and a
+/// segfault in XSync), and one connection per process is also one chance of refusal instead of several.
+void* x_display();
+
+/// True when an X server answers at DISPLAY (x_display() is not null). Without one, VTK here (Debian: X only, no
+/// EGL/OSMesa) crashes on the first render, offscreen or not.
 bool display_available();
+
+/// Takes a render window before its first render (offscreen rendering already set or not); gives it the process's
+/// X connection (x_display()) and, when it renders offscreen, removes its interactor (vtkContextView makes one, and
+/// the first Render() would initialise it: an offscreen picture takes no input). Every tool that makes a VTK window
+/// calls this. Assumes the window is an X window (Debian's VTK) or ignores SetDisplayId.
+void prepare_window(vtkRenderWindow* window);
 
 /// Thrown by require_display(); tools report it as bad input (exit 2).
 struct NoDisplayError : std::runtime_error {
@@ -82,6 +101,26 @@ class ViewerWindow {
   std::string handle_key(const std::string& key);
   /// The key list printed by 'h'.
   static std::string key_help();
+
+  /// Traces a frame pixel (column, row from the top) for a pick: the tool binds its tracer here (pick_ray).
+  using PickHandler = std::function<RayPick(std::array<int, 2>)>;
+  void set_pick_handler(PickHandler handler);
+  /// Takes a display position (window pixel, x from the left, y from the bottom, as VTK reports mouse events);
+  /// returns the frame pixel under it, or nothing outside the frame (another viewport, the letterbox margin, no
+  /// frame). Fits the frame to the window's current size first, so it holds before the first render too.
+  std::optional<std::array<int, 2>> frame_pixel_at(int display_x, int display_y);
+  /// What a left click at a display position does: picks the frame pixel under it (pick_pixel) and returns the
+  /// pick's line (describe); "" outside the frame. Throws std::logic_error without a pick handler.
+  std::string pick_at(int display_x, int display_y);
+  /// Traces the pixel with the pick handler and adds the pick. Throws std::logic_error without a handler and
+  /// std::out_of_range for a pixel outside the frame.
+  std::string pick_pixel(std::array<int, 2> pixel);
+  /// Adds a pick traced elsewhere (e.g. before an export): its path joins the picks layer, its pixel is marked on
+  /// the frame, its line is listed. Returns the line.
+  std::string add_pick(RayPick pick);
+  /// Removes every pick (the 'x' key). Returns what it did ("picks cleared (N)").
+  std::string clear_picks();
+  const std::vector<RayPick>& picks() const;
 
  private:
   struct Impl;

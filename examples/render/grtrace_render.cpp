@@ -10,8 +10,7 @@
 
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/observer/camera_spec.hpp"
-#include "grtrace/observer/timelike_start.hpp"
-#include "grtrace/observer/worldline.hpp"
+#include "grtrace/observer/flight_path.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/flight_files.hpp"
 #include "grtrace/render/frame.hpp"
@@ -196,7 +195,7 @@ void read_flight(const CommandLine& cli, Request& q) {
     if (cli.given("frames") || cli.flag_set("mp4")) throw UsageError("--frames and --mp4 need --flight (a camera path)");
     return;
   }
-  if (f.name != "seed" && f.name != "circular" && f.name != "orbit" && f.name != "infall" && f.name != "csv")
+  if (!is_flight_path_kind(f.name))
     throw UsageError("unknown --flight '" + f.name + "'; choose seed, circular, orbit, infall or csv");
   for (const char* name : {"velocity", "observer"})
     if (cli.given(name))
@@ -207,68 +206,39 @@ void read_flight(const CommandLine& cli, Request& q) {
   if (q.tracer == "symmetric") throw UsageError("--tracer symmetric does not fly; use auto (or general)");
   if ((f.name == "csv") != !cli.text("flight-csv").empty())
     throw UsageError("--flight csv goes with --flight-csv FILE (and --flight-csv only with --flight csv)");
+  FlightPathSpec spec;
+  spec.kind = f.name;
+  spec.mass = q.metric.mass;
+  spec.r = cli.number("camera-r");
+  spec.theta = cli.number("camera-theta") * std::numbers::pi / 180.0;
+  spec.phi = cli.number("camera-phi") * std::numbers::pi / 180.0;
+  spec.dr_dtau = cli.number("orbit-dr");
+  spec.dphi_dtau = cli.number("orbit-dphi");
   const long frames = cli.integer("frames");
   if (frames < 1 || frames > 100000) throw UsageError("--frames must be in 1 .. 100000");
-  const double dtau = cli.number("frame-dtau");
-  if (!(dtau >= 0.0)) throw UsageError("--frame-dtau must be >= 0 (0: automatic), got " + cli.text("frame-dtau"));
+  spec.frames = static_cast<int>(frames);
+  spec.dtau = cli.number("frame-dtau");
+  spec.csv = cli.text("flight-csv");
+  spec.sky_radius = q.settings.escape_radius;
   if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
-  const double r = cli.number("camera-r");
-  const double theta = cli.number("camera-theta") * std::numbers::pi / 180.0;
-  const double phi = cli.number("camera-phi") * std::numbers::pi / 180.0;
   const CameraView view{triple(cli, "look"), triple(cli, "up"), q.camera->width(), q.camera->height(),
                         q.camera->fov_degrees()};
-  const MetricSpec& ms = q.metric;
   Worldline path;
   try {
-    with_named_metric(ms, [&](const auto& m) {
+    with_named_metric(q.metric, [&](const auto& m) {
       using M = std::remove_cvref_t<decltype(m)>;
       if constexpr (M::chart != Chart::spherical) {
         throw UsageError("--flight needs a spherical chart (the camera path is integrated in (t, r, theta, phi)); "
                          "use --chart bl");
       } else {
-        const double rh = m.horizon_radius();
-        if (f.name == "csv") {
-          path = read_worldline_csv(cli.text("flight-csv"));
-          check_worldline(m, path);
-          f.dtau = path.samples.size() > 1 ? path.samples[1].tau - path.samples[0].tau : 0.0;
-        } else {
-          const TimelikeStart start = f.name == "seed"       ? seed_orbit_start(m, ms.mass)
-                                      : f.name == "circular" ? circular_orbit_start(m, r)
-                                      : f.name == "infall"   ? radial_infall_start(m, r, theta, phi)
-                                                             : orbit_start(m, r, theta, phi, cli.number("orbit-dr"),
-                                                                           cli.number("orbit-dphi"));
-          f.dtau = dtau;
-          if (f.dtau == 0.0 && f.name == "infall") {
-            const auto fall = rh > 0.0 ? proper_time_until(m, start, RadiusEvent{1.1 * rh}) : std::nullopt;
-            if (!fall || !(start.x[1] > 1.1 * rh))
-              throw UsageError("--flight infall: no fall to 1.1 r_h from --camera-r " + cli.text("camera-r") +
-                               " (no horizon, or already inside 1.1 r_h); give --frame-dtau");
-            f.dtau = *fall / static_cast<double>(std::max(frames - 1, 1L));
-          } else if (f.dtau == 0.0) {
-            const auto turn = proper_time_until(m, start, revolution_event(start));
-            if (!turn)
-              throw UsageError("--flight " + f.name + ": the camera does not complete a revolution in phi (it falls "
-                               "in or escapes first); give --frame-dtau");
-            f.dtau = *turn / static_cast<double>(frames);
-          }
-          path = sample_worldline(m, start, f.dtau, static_cast<int>(frames));
-          if (!path.complete())
-            throw UsageError("--flight " + f.name + ": the camera's path ends (" +
-                             std::string(kRayStatusNames[static_cast<std::size_t>(*path.stopped)]) + " at tau = " +
-                             JsonObject::number(path.samples.back().tau) + ") before frame " +
-                             std::to_string(path.samples.size()) + "; use fewer --frames or a smaller --frame-dtau");
-        }
-        for (std::size_t i = 0; i < path.samples.size(); ++i)
-          if (!(m.radius(path.samples[i].x) < q.settings.escape_radius))
-            throw UsageError("--flight: frame " + std::to_string(i) + " is at r = " +
-                             JsonObject::number(m.radius(path.samples[i].x)) +
-                             ", outside the sky sphere; raise --sky-radius");
+        path = flight_path(m, spec);
         f.cameras = flight_cameras(m, path, view);
       }
     });
   } catch (const std::invalid_argument& e) {
     throw UsageError("--flight " + f.name + ": " + e.what());
   }
+  f.dtau = frame_step(path);
   for (const WorldlineSample& s : path.samples) f.tau.push_back(s.tau);
   q.camera = f.cameras.front();
 }

@@ -1,0 +1,114 @@
+// grtrace/observer/flight_path.hpp
+// A camera flight's path from what a person asks for: a named start (or a CSV of camera states), a number of frames
+// and the proper time between them, sampled into a Worldline (observer/worldline.hpp). One definition for every
+// program that flies a camera (grtrace-render --flight renders it, grtrace-view --flight draws it).
+//
+//   kind      start                                                              default frame step (dtau = 0)
+//   seed      the seed report's orbit: r = 100 M, dphi/dtau = 0.00075 / M         one revolution in phi / frames
+//   circular  the circular orbit at r (metric/circular_orbits.hpp)               one revolution / frames
+//   orbit     (r, theta, phi) with dr/dtau and dphi/dtau                          one revolution / frames
+//   infall    released from rest at (r, theta, phi)                              the fall to 1.1 r_h / (frames - 1)
+//   csv       the rows of a CSV file (observer/worldline_csv.hpp), as given      -
+// Takes:   a metric with a spherical chart and the spec. Returns: the samples, every one of them (complete).
+// Throws:  std::invalid_argument saying what to change, before any rendering: an unknown kind, frames outside
+//          1 .. 100000, dtau < 0, a start that cannot exist (observer/timelike_start.hpp), an automatic step that
+//          has no revolution or fall to measure, a path that ends (horizon) before its last frame or leaves the
+//          sky sphere, a bad CSV.
+#pragma once
+
+#include "grtrace/core/ray_status.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/observer/timelike_start.hpp"
+#include "grtrace/observer/worldline.hpp"
+#include "grtrace/observer/worldline_csv.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace grtrace {
+
+inline constexpr std::array<std::string_view, 5> kFlightPathKinds = {"seed", "circular", "orbit", "infall", "csv"};
+
+struct FlightPathSpec {
+  std::string kind = "seed";  ///< one of kFlightPathKinds
+  double mass = 1.0;          ///< seed: the hole's mass M (r = 100 M, dphi/dtau = 0.00075 / M)
+  double r = 100.0, theta = std::numbers::pi / 2.0, phi = 0.0;  ///< circular (r), orbit and infall: the start
+  double dr_dtau = 0.0, dphi_dtau = 0.00075;                    ///< orbit: the start's velocity
+  int frames = 300;
+  double dtau = 0.0;  ///< proper time between frames; 0: automatic (see the table above)
+  std::filesystem::path csv;  ///< csv: the camera states
+  double sky_radius = std::numeric_limits<double>::infinity();  ///< every frame must lie inside it
+};
+
+inline bool is_flight_path_kind(std::string_view kind) {
+  return std::find(kFlightPathKinds.begin(), kFlightPathKinds.end(), kind) != kFlightPathKinds.end();
+}
+
+template <MetricPolicy M>
+  requires(M::chart == Chart::spherical)
+Worldline flight_path(const M& metric, const FlightPathSpec& spec) {
+  auto number = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return std::string(buf);
+  };
+  if (!is_flight_path_kind(spec.kind))
+    throw std::invalid_argument("unknown flight '" + spec.kind + "'; choose seed, circular, orbit, infall or csv");
+  Worldline path;
+  if (spec.kind == "csv") {
+    path = read_worldline_csv(spec.csv);
+    check_worldline(metric, path);
+  } else {
+    if (spec.frames < 1 || spec.frames > 100000) throw std::invalid_argument("--frames must be in 1 .. 100000");
+    if (!(spec.dtau >= 0.0) || !std::isfinite(spec.dtau))
+      throw std::invalid_argument("--frame-dtau must be >= 0 (0: automatic)");
+    const TimelikeStart start = spec.kind == "seed"       ? seed_orbit_start(metric, spec.mass)
+                                : spec.kind == "circular" ? circular_orbit_start(metric, spec.r)
+                                : spec.kind == "infall"   ? radial_infall_start(metric, spec.r, spec.theta, spec.phi)
+                                                          : orbit_start(metric, spec.r, spec.theta, spec.phi,
+                                                                        spec.dr_dtau, spec.dphi_dtau);
+    double dtau = spec.dtau;
+    if (dtau == 0.0 && spec.kind == "infall") {
+      const double rh = metric.horizon_radius();
+      const auto fall = rh > 0.0 && start.x[1] > 1.1 * rh ? proper_time_until(metric, start, RadiusEvent{1.1 * rh})
+                                                           : std::nullopt;
+      if (!fall)
+        throw std::invalid_argument("no fall to 1.1 r_h from r = " + number(start.x[1]) +
+                                    " (no horizon, or already inside 1.1 r_h); give --frame-dtau");
+      dtau = *fall / static_cast<double>(std::max(spec.frames - 1, 1));
+    } else if (dtau == 0.0) {
+      const auto turn = proper_time_until(metric, start, revolution_event(start));
+      if (!turn)
+        throw std::invalid_argument("the camera does not complete a revolution in phi (it falls in or escapes "
+                                    "first); give --frame-dtau");
+      dtau = *turn / static_cast<double>(spec.frames);
+    }
+    path = sample_worldline(metric, start, dtau, spec.frames);
+    if (!path.complete())
+      throw std::invalid_argument("the camera's path ends (" +
+                                  std::string(kRayStatusNames[static_cast<std::size_t>(*path.stopped)]) +
+                                  " at tau = " + number(path.samples.back().tau) + ") before frame " +
+                                  std::to_string(path.samples.size()) +
+                                  "; use fewer --frames or a smaller --frame-dtau");
+  }
+  for (std::size_t i = 0; i < path.samples.size(); ++i)
+    if (!(metric.radius(path.samples[i].x) < spec.sky_radius))
+      throw std::invalid_argument("frame " + std::to_string(i) + " is at r = " +
+                                  number(metric.radius(path.samples[i].x)) +
+                                  ", outside the sky sphere; raise --sky-radius");
+  return path;
+}
+
+/// The proper time between the path's first two frames (0 for a single frame).
+inline double frame_step(const Worldline& path) {
+  return path.samples.size() > 1 ? path.samples[1].tau - path.samples[0].tau : 0.0;
+}
+
+}  // namespace grtrace

@@ -480,6 +480,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
     // Every option's effective value (given or default), so the frame can be reproduced from its header alone.
     for (const auto& [name, value] : cli.values()) image.metadata["option_" + name] = value;
+    image.metadata["options_given"] = cli.given_names();  // so --config of this EXR tells given from default
     auto num = [](double v) { return JsonObject::number(v); };
     image.metadata["scene"] = q.scene.name;
     image.metadata["metric"] = q.metric.name;

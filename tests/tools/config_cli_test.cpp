@@ -30,14 +30,8 @@ namespace fs = std::filesystem;
 using grtrace::tool_tests::run_command;
 using grtrace::tool_tests::ToolRun;
 
-/// The tools built on CommandLine, by name (from CMake: "name=path|name=path").
-std::map<std::string, std::string> tools() {
-  std::map<std::string, std::string> out;
-  std::stringstream ss(GRTRACE_CONFIG_TOOLS);
-  for (std::string item; std::getline(ss, item, '|');)
-    if (const auto eq = item.find('='); eq != std::string::npos) out[item.substr(0, eq)] = item.substr(eq + 1);
-  return out;
-}
+/// The tools built on CommandLine, by name (from CMake).
+std::map<std::string, std::string> tools() { return grtrace::tool_tests::named_paths(GRTRACE_CONFIG_TOOLS); }
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -201,11 +201,15 @@ class CommandLine {
       if (s.takes_value && !s.default_value.empty()) h += " (default: " + s.default_value + ")";
       h += "\n";
     }
-    h += "  --config FILE                  read options from a TOML scene file (keys: the option names above, flags\n"
-         "                                 true/false) or an EXR's header; options given here override it\n";
-    h += "  --write-config FILE            save the effective options as a TOML scene file and exit\n";
-    h += "  --help                         print this help and exit\n";
-    h += "  --version                      print \"" + program_ + " <version>\" and exit\n";
+    const auto built_in = [](std::string left, const std::string& text) {  // aligned like the options above
+      left.resize(30, ' ');
+      return left + " " + text + "\n";
+    };
+    h += built_in("  --config FILE", "read options from a TOML scene file (keys: the option names above, flags");
+    h += built_in("", "true/false) or an EXR's header; options given here override it");
+    h += built_in("  --write-config FILE", "save the effective options as a TOML scene file and exit");
+    h += built_in("  --help", "print this help and exit");
+    h += built_in("  --version", "print \"" + program_ + " <version>\" and exit");
     return h;
   }
 

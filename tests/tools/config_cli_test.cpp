@@ -146,10 +146,10 @@ TEST_F(ConfigCli, WrittenConfigReadsBackToTheSameValues) {
   ASSERT_EQ(render(given + " --write-config " + one.string()).status, 0);
   const std::string text = slurp(one);
   EXPECT_NE(text.find("\nfov = 33.5\n"), std::string::npos) << text;  // numbers stay numbers
-  EXPECT_NE(text.find("\nrtol = '2e-9'\n"), std::string::npos) << text;  // kept exactly as typed
-  EXPECT_NE(text.find("\nvelocity = '0,0,0.25'\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nrtol = \"2e-9\"\n"), std::string::npos) << text;  // kept exactly as typed
+  EXPECT_NE(text.find("\nvelocity = \"0,0,0.25\"\n"), std::string::npos) << text;
   EXPECT_NE(text.find("\nstatus-map = true\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("quote\"d.exr'\n"), std::string::npos) << "a string with a quote: " << text;
+  EXPECT_NE(text.find("quote\\\"d.exr\"\n"), std::string::npos) << "a quote in a string is escaped: " << text;
   EXPECT_NE(text.find("\n# height = 1024\n"), std::string::npos) << "defaults are written, commented: " << text;
   EXPECT_NE(text.find("\n# error-map = false\n"), std::string::npos) << text;
   ASSERT_EQ(render("--config " + one.string() + " --write-config " + two.string()).status, 0);
@@ -279,6 +279,11 @@ TEST_F(ConfigCli, ConfigValuesCountAsGivenAndTheCommandLineClearsFlags) {
   const auto values = cleared.values();
   ASSERT_EQ(values.size(), 3u);
   EXPECT_EQ(values[2], (std::pair<std::string, std::string>{"json", "false"}));
+  // Any text survives a written config, a line break and a quote too (one-line TOML strings, never multi-line).
+  bool went_on = true;
+  parsed({"--width", "4\n8 \"x\"", "--write-config", at("w.toml").string()}, &went_on);
+  EXPECT_FALSE(went_on) << "--write-config does not go on to the work";
+  EXPECT_EQ(parsed({"--config", at("w.toml").string()}).text("width"), "4\n8 \"x\"") << slurp(at("w.toml"));
 }
 
 TEST(JsonWriter, NumbersReadBackAsTheSameDoublesAndNonFiniteIsNull) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "command_line.hpp"
+#include "json_writer.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/render/frame_files.hpp"
@@ -68,8 +69,11 @@ inline void write_example_frame(const ExampleArgs& a, const grtrace::Frame& fram
   grtrace::OutputSet files;
   grtrace::write_exr_and_preview(files, a.out, png, frame.image);
   files.commit();
-  std::cout << "{\"out\":\"" << a.out << "\",\"png\":\"" << png << "\",\"seconds\":" << frame.stats.seconds
-            << ",\"status_counts\":" << frame.image.metadata.at("status_counts") << "}\n";
+  grtrace::tools::JsonObject counts, json;
+  for (std::size_t i = 0; i < grtrace::kRayStatusCount; ++i)
+    counts.add(grtrace::kRayStatusNames[i], frame.stats.status_counts[i]);
+  json.add("out", a.out).add("png", png).add("seconds", frame.stats.seconds).add("status_counts", counts);
+  std::cout << json.str() << "\n";
 }
 
 /// Runs an example's body: exits 0 after --help/--version/--write-config (NothingMoreToDo), 2 with the message

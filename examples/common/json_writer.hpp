@@ -1,6 +1,10 @@
 // examples/common/json_writer.hpp
-// One-line JSON objects for the tools' machine-readable output. Non-finite numbers become null.
+// One-line JSON objects for the tools' machine-readable output, on nlohmann-json (ordered: keys stay in the order
+// the tool adds them). Numbers are printed in the shortest form that reads back as the same double; non-finite
+// numbers become null; strings are escaped as JSON requires (bytes that are not UTF-8 become U+FFFD).
 #pragma once
+
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -11,17 +15,20 @@ namespace grtrace::tools {
 
 class JsonObject {
  public:
-  JsonObject& add(std::string_view key, double v) { return raw(key, number(v)); }
-  JsonObject& add(std::string_view key, long v) { return raw(key, std::to_string(v)); }
-  JsonObject& add(std::string_view key, int v) { return raw(key, std::to_string(v)); }
-  JsonObject& add(std::string_view key, bool v) { return raw(key, v ? "true" : "false"); }
-  JsonObject& add(std::string_view key, std::string_view v) { return raw(key, quote(v)); }
-  JsonObject& add(std::string_view key, const char* v) { return raw(key, quote(v)); }
-  JsonObject& add(std::string_view key, const JsonObject& v) { return raw(key, v.str()); }
-  JsonObject& add_null(std::string_view key) { return raw(key, "null"); }
+  JsonObject& add(std::string_view key, double v) { return set(key, std::isfinite(v) ? Json(v) : Json(nullptr)); }
+  JsonObject& add(std::string_view key, long v) { return set(key, Json(v)); }
+  JsonObject& add(std::string_view key, int v) { return set(key, Json(v)); }
+  JsonObject& add(std::string_view key, bool v) { return set(key, Json(v)); }
+  JsonObject& add(std::string_view key, std::string_view v) { return set(key, Json(std::string(v))); }
+  JsonObject& add(std::string_view key, const char* v) { return set(key, Json(std::string(v))); }
+  JsonObject& add(std::string_view key, const JsonObject& v) { return set(key, v.json_); }
+  JsonObject& add_null(std::string_view key) { return set(key, Json(nullptr)); }
 
-  std::string str() const { return "{" + body_ + "}"; }
+  /// The object on one line ("{}" when empty).
+  std::string str() const { return dump(json_); }
 
+  /// Takes any double; returns "%.17g" text (exact; "null" when non-finite). For messages and header attributes,
+  /// which are not JSON output and keep the form they always had.
   static std::string number(double v) {
     if (!std::isfinite(v)) return "null";
     char buf[32];
@@ -29,26 +36,21 @@ class JsonObject {
     return buf;
   }
 
-  static std::string quote(std::string_view s) {
-    std::string q = "\"";
-    for (char c : s) {
-      if (c == '"' || c == '\\') q += '\\';
-      if (c == '\n') {
-        q += "\\n";
-        continue;
-      }
-      q += c;
-    }
-    return q + "\"";
-  }
+  /// Takes any bytes; returns them as a quoted JSON string.
+  static std::string quote(std::string_view s) { return dump(Json(std::string(s))); }
 
  private:
-  JsonObject& raw(std::string_view key, const std::string& value) {
-    if (!body_.empty()) body_ += ",";
-    body_ += quote(key) + ":" + value;
+  using Json = nlohmann::ordered_json;
+
+  /// Takes a JSON value; returns it on one line. Invalid UTF-8 is replaced rather than thrown on: a file name is
+  /// reported, not refused, after the work is done.
+  static std::string dump(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
+  JsonObject& set(std::string_view key, Json value) {
+    json_[std::string(key)] = std::move(value);
     return *this;
   }
-  std::string body_;
+  Json json_ = Json::object();
 };
 
 }  // namespace grtrace::tools

@@ -553,6 +553,7 @@ struct PhaseTimer {
 void describe_frame(Image& image, const Request& q, const CommandLine& cli, int argc, char** argv) {
   for (int i = 1; i < argc; ++i) image.metadata["command_line"] += (i > 1 ? " " : "") + std::string(argv[i]);
   for (const auto& [name, value] : cli.values()) image.metadata["option_" + name] = value;
+  image.metadata["options_given"] = cli.given_names();  // so --config of this EXR tells given from default
   auto num = [](double v) { return JsonObject::number(v); };
   image.metadata["scene"] = q.scene.name;
   image.metadata["metric"] = q.metric.name;

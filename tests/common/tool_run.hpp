@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cstdio>
+#include <map>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
@@ -26,6 +28,15 @@ inline ToolRun run_command(const std::string& command) {
   const int w = ::pclose(p);
   r.status = WIFEXITED(w) ? WEXITSTATUS(w) : -1;
   return r;
+}
+
+/// Takes "name=path|name=path" (CMake's grtrace_tool_paths); returns path by name.
+inline std::map<std::string, std::string> named_paths(const std::string& joined) {
+  std::map<std::string, std::string> out;
+  std::stringstream ss(joined);
+  for (std::string item; std::getline(ss, item, '|');)
+    if (const auto eq = item.find('='); eq != std::string::npos) out[item.substr(0, eq)] = item.substr(eq + 1);
+  return out;
 }
 
 }  // namespace grtrace::tool_tests

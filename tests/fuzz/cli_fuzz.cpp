@@ -1,6 +1,7 @@
 // Fuzz target for the tools' command-line parser (examples/common/command_line.hpp; AFL++, see README.md).
 // The input file is split at newlines into arguments, parsed against options and flags like grtrace-render's,
-// and every value is read as text, number, integer and list. UsageError is a refusal (fine); anything else
+// and every value is read as text, number, integer and list (also --config FILE, read only; inputs naming
+// --write-config are skipped). UsageError is a refusal (fine); anything else
 // -- another exception type, a crash, a sanitizer report, a hang -- is a finding.
 //   cli_fuzz FILE...   (afl-fuzz runs: cli_fuzz @@)
 #include "command_line.hpp"
@@ -29,6 +30,10 @@ int main(int argc, char** argv) {
       }
     }
     if (!cur.empty()) args.push_back(cur);
+    // --write-config would write wherever the input points: not from a fuzzer (--config only reads, and stays in).
+    bool writes = false;
+    for (const auto& arg : args) writes = writes || arg.find("write-config") != std::string::npos;
+    if (writes) continue;
     std::vector<char*> av;
     for (auto& a : args) av.push_back(a.data());
     av.push_back(nullptr);

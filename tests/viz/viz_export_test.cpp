@@ -12,6 +12,7 @@
 #include "grtrace/viz/vtk_export.hpp"
 
 #include "../common/tool_run.hpp"
+#include "view_export_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -47,9 +48,6 @@
 #include <unistd.h>
 #include <vector>
 
-#ifndef GRTRACE_VIEW_EXE
-#error "GRTRACE_VIEW_EXE (path of grtrace-view) must be defined by the build"
-#endif
 #ifndef GRTRACE_GEODESIC_EXE
 #error "GRTRACE_GEODESIC_EXE (path of grtrace-geodesic) must be defined by the build"
 #endif
@@ -62,26 +60,16 @@ using namespace grtrace;
 using grtrace::tool_tests::ToolRun;
 const auto run = grtrace::tool_tests::run_command;
 
-std::string view(const std::string& args) { return std::string("env -u DISPLAY ") + GRTRACE_VIEW_EXE + " " + args; }
+using grtrace::view_tests::read_vtp;
+using grtrace::view_tests::view;
 std::string geodesic(const std::string& args) { return std::string(GRTRACE_GEODESIC_EXE) + " " + args; }
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("grtrace-export-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return grtrace::view_tests::scratch("export-test", name); }
 
 std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> out;
   for (const auto& e : fs::directory_iterator(dir)) out.insert(e.path().filename().string());
   return out;
-}
-
-vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& file) {
-  vtkNew<vtkXMLPolyDataReader> r;
-  r->SetFileName(file.c_str());
-  r->Update();
-  return r->GetOutput();
 }
 
 /// The named point arrays exist with one tuple per point (and `components` components).

@@ -718,8 +718,8 @@ int run_view(const Request& q) {
   }
   char flight_caption[160] = "";
   if (q.flight)
-    std::snprintf(flight_caption, sizeof flight_caption, "flight %s, frame %d of 0..%d at tau = %.6g M; ",
-                  q.flight->kind.c_str(), q.flight->frame, q.flight->frames - 1, q.flight->tau);
+    std::snprintf(flight_caption, sizeof flight_caption, "flight %s: frame %d of %d, tau = %.6g M; ",
+                  q.flight->kind.c_str(), q.flight->frame, q.flight->frames, q.flight->tau);
   char scene_caption[400];
   std::snprintf(scene_caption, sizeof scene_caption,
                 "%sM = %g; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", flight_caption,

@@ -152,7 +152,8 @@ TEST_F(ViewFlightExport, CameraIsTheMovingCameraOfTheFrame) {
     EXPECT_EQ(fd->GetArray("frame_size")->GetComponent(0, 0), kW);
     EXPECT_EQ(fd->GetArray("frame_size")->GetComponent(0, 1), kH);
   }
-  vtkFieldData* fd = read_vtp(dir_ / "flight.vtp")->GetFieldData();
+  const auto flight = read_vtp(dir_ / "flight.vtp");
+  vtkFieldData* fd = flight->GetFieldData();
   ASSERT_NE(fd->GetArray("flight_frame"), nullptr);
   EXPECT_EQ(fd->GetArray("flight_frame")->GetComponent(0, 0), kFrame);
   expect_close(fd->GetArray("flight_frame_tau")->GetComponent(0, 0), path.samples[kFrame].tau, "flight_frame_tau");

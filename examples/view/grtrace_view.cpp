@@ -6,6 +6,9 @@
 //   * Frame (right): the picture the camera sees, from an EXR written by grtrace-render (--frame FILE.exr) or
 //     rendered here; the bundle's pixels are marked, and each bundle ray keeps its pixel's colour.
 //   * --chart orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts).
+//   * --flight KIND (grtrace-render's camera flights, options shared through examples/common/flight_options.hpp):
+//     the whole path as a tube with its frames as beads (the orbit layer), and the camera, the frame and the
+//     bundle at frame --flight-frame, its camera make_moving_camera's; --export adds flight.vtp.
 //   * Picks: a left click on the frame traces that pixel's ray (the general scene tracer) and draws it in the 3D
 //     view (magenta), its outcome (status, object, hit radius, redshift, steps) listed there and printed; 'x' clears
 //     the picks. --pick COL,ROW[/COL,ROW...] picks at start-up (so picked rays show in --screenshot and --export).

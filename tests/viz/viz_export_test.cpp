@@ -30,7 +30,6 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkVariant.h>
-#include <vtkXMLImageDataReader.h>
 #include <vtkXMLMultiBlockDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
@@ -88,19 +87,15 @@ void expect_point_arrays(vtkPolyData* poly) {
 
 constexpr int kW = 48, kH = 36;
 
-class ViewExport : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = scratch("scene");
-    fs::remove_all(dir_);
-    result_ = run(view("--export " + dir_.string() + " --width " + std::to_string(kW) + " --height " +
-                       std::to_string(kH) + " --bundle-size 3x3 --threads 2"));
+/// The default scene at kW x kH with a 3x3 bundle, exported once for the ViewExport tests.
+struct DefaultSceneExport {
+  static constexpr const char* program = "export-test";
+  static constexpr const char* name = "scene";
+  static std::string options() {
+    return "--width " + std::to_string(kW) + " --height " + std::to_string(kH) + " --bundle-size 3x3 --threads 2";
   }
-  static fs::path dir_;
-  static ToolRun result_;
 };
-fs::path ViewExport::dir_;
-ToolRun ViewExport::result_;
+using ViewExport = grtrace::view_tests::ExportSuite<DefaultSceneExport>;
 
 TEST_F(ViewExport, ExitsZeroWithoutADisplayAndWritesTheFiles) {
   ASSERT_EQ(result_.status, 0) << result_.output;
@@ -221,10 +216,7 @@ TEST_F(ViewExport, HorizonLiesAtTwoM) {
 
 TEST_F(ViewExport, FrameImageHasTheFramesSizeChannelsAndOrientation) {
   ASSERT_EQ(result_.status, 0) << result_.output;
-  vtkNew<vtkXMLImageDataReader> r;
-  r->SetFileName((dir_ / "frame.vti").c_str());
-  r->Update();
-  vtkImageData* image = r->GetOutput();
+  const auto image = grtrace::view_tests::read_vti(dir_ / "frame.vti");
   int dims[3];
   image->GetDimensions(dims);
   EXPECT_EQ(dims[0], kW);

@@ -16,19 +16,14 @@
 
 #include <gtest/gtest.h>
 
-#include <vtkCompositeDataSet.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
-#include <vtkInformation.h>
-#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
-#include <vtkXMLImageDataReader.h>
-#include <vtkXMLMultiBlockDataReader.h>
 
 #include <algorithm>
 #include <cmath>
@@ -75,31 +70,21 @@ void expect_close(double a, double b, const std::string& what) {
   EXPECT_NEAR(a, b, 1e-12 * std::max(1.0, std::abs(b))) << what;
 }
 
-class ViewFlightExport : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = scratch("flight");
-    fs::remove_all(dir_);
-    result_ = run(view("--flight seed --frames " + std::to_string(kFrames) + " --flight-frame " +
-                       std::to_string(kFrame) + " --export " + dir_.string() + " --width " + std::to_string(kW) +
-                       " --height " + std::to_string(kH) + " --bundle-size 3x3 --threads 2"));
+/// --flight seed --frames kFrames --flight-frame kFrame at kW x kH, exported once for the ViewFlightExport tests.
+struct SeedFlightExport {
+  static constexpr const char* program = "flight-test";
+  static constexpr const char* name = "flight";
+  static std::string options() {
+    return "--flight seed --frames " + std::to_string(kFrames) + " --flight-frame " + std::to_string(kFrame) +
+           " --width " + std::to_string(kW) + " --height " + std::to_string(kH) + " --bundle-size 3x3 --threads 2";
   }
-  static fs::path dir_;
-  static ToolRun result_;
 };
-fs::path ViewFlightExport::dir_;
-ToolRun ViewFlightExport::result_;
+using ViewFlightExport = grtrace::view_tests::ExportSuite<SeedFlightExport>;
 
 TEST_F(ViewFlightExport, WritesTheFlightAndTheCollectionOpensIt) {
   ASSERT_EQ(result_.status, 0) << result_.output;
   ASSERT_TRUE(fs::exists(dir_ / "flight.vtp")) << result_.output;
-  vtkNew<vtkXMLMultiBlockDataReader> r;
-  r->SetFileName((dir_ / "scene.vtm").c_str());
-  r->Update();
-  auto* mb = vtkMultiBlockDataSet::SafeDownCast(r->GetOutput());
-  ASSERT_NE(mb, nullptr);
-  std::set<std::string> names;
-  for (unsigned i = 0; i < mb->GetNumberOfBlocks(); ++i) names.insert(mb->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()));
+  const std::set<std::string> names = grtrace::view_tests::block_names(dir_ / "scene.vtm");
   EXPECT_TRUE(names.count("flight")) << result_.output;
   EXPECT_TRUE(names.count("rays"));
   EXPECT_TRUE(names.count("frame"));
@@ -186,10 +171,7 @@ TEST_F(ViewFlightExport, FrameIsTheRenderOfThatCamera) {
                                                       frame.emplace(render_frame(camera, tracer, options));
                                                     });
   });
-  vtkNew<vtkXMLImageDataReader> r;
-  r->SetFileName((dir_ / "frame.vti").c_str());
-  r->Update();
-  vtkImageData* image = r->GetOutput();
+  const auto image = grtrace::view_tests::read_vti(dir_ / "frame.vti");
   int dims[3];
   image->GetDimensions(dims);
   ASSERT_EQ(dims[0], kW);

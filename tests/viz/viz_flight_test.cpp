@@ -6,6 +6,7 @@
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/observer/flight_path.hpp"
+#include "grtrace/observer/worldline_csv.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
@@ -29,6 +30,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <set>
 #include <string>
@@ -187,6 +189,32 @@ TEST_F(ViewFlightExport, FrameIsTheRenderOfThatCamera) {
           ++differing;
     EXPECT_EQ(differing, 0) << channel;
   }
+}
+
+TEST(ViewFlightCsv, FollowsTheCsvAndItsFrameCountBoundsTheFrame) {
+  // The seed path written as a camera-path CSV (observer/worldline_csv.hpp) and flown again: the same points.
+  const Worldline path = expected_path();
+  const fs::path csv = scratch("seed.csv");
+  std::ofstream(csv) << worldline_csv(path);
+  const fs::path dir = scratch("csv");
+  fs::remove_all(dir);
+  const std::string flight = "--flight csv --flight-csv " + csv.string() + " --width 16 --height 12 --bundle none";
+  const ToolRun ok = run(view(flight + " --flight-frame " + std::to_string(kFrames - 1) + " --export " + dir.string()));
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  const auto data = read_vtp(dir / "flight.vtp");
+  ASSERT_EQ(data->GetNumberOfPoints(), kFrames);
+  vtkDataArray* coordinates = data->GetPointData()->GetArray("coordinates");
+  ASSERT_NE(coordinates, nullptr);
+  for (vtkIdType i = 0; i < kFrames; ++i)
+    for (int mu = 0; mu < 4; ++mu)
+      expect_close(coordinates->GetComponent(i, mu), path.samples[static_cast<std::size_t>(i)].x[mu], "csv x");
+  // One frame past the CSV's rows: refused after reading it, before anything is written.
+  const fs::path refused = scratch("csv-refused");
+  fs::remove_all(refused);
+  const ToolRun bad = run(view(flight + " --flight-frame " + std::to_string(kFrames) + " --export " + refused.string()));
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--flight-frame"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 TEST(ViewFlightRefusals, BadFlightInputExitsTwoNamingTheOptionAndWritesNothing) {

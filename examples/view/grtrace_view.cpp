@@ -6,6 +6,9 @@
 //   * Frame (right): the picture the camera sees, from an EXR written by grtrace-render (--frame FILE.exr) or
 //     rendered here; the bundle's pixels are marked, and each bundle ray keeps its pixel's colour.
 //   * --chart orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts).
+//   * --flight KIND (grtrace-render's camera flights, options shared through examples/common/flight_options.hpp):
+//     the whole path as a tube with its frames as beads (the orbit layer), and the camera, the frame and the
+//     bundle at frame --flight-frame, its camera make_moving_camera's; --export adds flight.vtp.
 //   * Picks: a left click on the frame traces that pixel's ray (the general scene tracer) and draws it in the 3D
 //     view (magenta), its outcome (status, object, hit radius, redshift, steps) listed there and printed; 'x' clears
 //     the picks. --pick COL,ROW[/COL,ROW...] picks at start-up (so picked rays show in --screenshot and --export).
@@ -18,6 +21,7 @@
 // own camera; options given on the command line override the method and scene settings, never the camera.
 // Bad input: a message on stderr and exit status 2. Other failures: exit status 1.
 #include "command_line.hpp"
+#include "flight_options.hpp"
 #include "json_writer.hpp"
 #include "view_request.hpp"
 
@@ -123,8 +127,7 @@ CommandLine make_command_line() {
                           "printed, as a left click on the frame does; interactive keys: x clears the picks")
       // orbit
       .flag("orbit", "show the timelike orbit (a tube) in the 3D view")
-      .option("orbit-r", "100", "orbit: start radius (equatorial plane, phi = 0, no radial velocity)")
-      .option("orbit-dphi", "0.00075", "orbit: initial dphi/dtau")
+      .option("orbit-r", "100", "orbit: start radius (equatorial plane, phi = 0; velocity --orbit-dr, --orbit-dphi)")
       .option("orbit-revolutions", "12", "orbit: turns in phi to trace")
       .option("orbit-tableau", "rk4", "orbit: tableau (the seed used classic RK4 with step doubling)")
       .option("orbit-control", "doubling", "orbit: step control: fixed | doubling | i | pi")
@@ -138,6 +141,13 @@ CommandLine make_command_line() {
       .option("view-from", "", "3D view: eye position x,y,z (default: framing the hole and the camera)")
       .option("view-at", "0,0,0", "3D view: focal point x,y,z")
       .option("view-angle", "30", "3D view: vertical view angle in degrees");
+  // One --orbit-dr/--orbit-dphi for the flight's orbit and the --orbit tube: both mean a timelike orbit's start
+  // velocity, with the same defaults (grtrace-render's names).
+  tools::declare_flight_options(
+      cli, "Draws the whole path as a tube in the orbit layer (frames as white beads; not with --orbit) and puts "
+           "the camera, the frame and the bundle at frame --flight-frame; --export also writes flight.vtp",
+      "; also the --orbit tube's and --chart's start velocity");
+  cli.option("flight-frame", "0", "flight: the frame (0 .. --frames - 1) whose camera the viewer uses");
   return cli;
 }
 
@@ -340,6 +350,43 @@ std::vector<std::array<int, 2>> parse_picks(const std::string& text, int width, 
   return pixels;
 }
 
+/// Takes the command line, the request read so far (mass, metric, sky radius, the single-frame camera checked)
+/// and the flight spec of read_flight_spec. Builds the path with the library (flight_path), checks --flight-frame
+/// against it and returns it with the camera of that frame (make_moving_camera with --look/--up and the
+/// single-frame camera's size and field of view). Throws UsageError naming the option for what cannot fly.
+view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const FlightPathSpec& spec, Request& q) {
+  for (const char* name : {"frame", "velocity"})
+    if (cli.given(name))
+      throw UsageError(std::string("--") + name + " sets a single frame's camera; a flight's camera moves with its "
+                       "path (its 4-velocity): leave it out");
+  if (cli.flag_set("orbit"))
+    throw UsageError("--orbit draws the seed orbit in the orbit layer, where --flight draws its path: choose one");
+  const long frame = cli.integer("flight-frame");
+  auto check_frame = [&](long frames) {
+    if (frame < 0 || frame >= frames)
+      throw UsageError("--flight-frame " + cli.text("flight-frame") + " is not a frame of the flight: frames 0 .. " +
+                       std::to_string(frames - 1) + " (--frames - 1)");
+  };
+  if (spec.kind != "csv") check_frame(spec.frames);  // before the path is sampled: no work for a bad index
+  view::FlightView f;
+  f.kind = spec.kind;
+  f.frame = static_cast<int>(frame);
+  const CameraView look{triple(p, "look"), triple(p, "up"), q.camera->width(), q.camera->height(),
+                        q.camera->fov_degrees()};
+  auto fly = [&](const auto& metric) {
+    const Worldline path = tools::checked_flight_path(metric, spec);
+    check_frame(static_cast<long>(path.samples.size()));
+    const WorldlineSample& at = path.samples[static_cast<std::size_t>(f.frame)];
+    q.camera = make_moving_camera(metric, at.x, at.u, look);
+    f.frames = static_cast<int>(path.samples.size());
+    f.tau = at.tau;
+    f.path = viz::worldline_path(metric, path);
+  };
+  if (q.kerr) fly(KerrMetric{q.mass, q.spin});
+  else fly(SchwarzschildMetric{q.mass});
+  return f;
+}
+
 Request read_request(const CommandLine& cli) {
   Request q;
   q.screenshot = cli.text("screenshot");
@@ -419,6 +466,10 @@ Request read_request(const CommandLine& cli) {
                                    q.frame ? q.frame->height() : -1, q.kerr, q.spin);
     q.fov = p.number("fov");
   }
+  if (const auto spec = tools::read_flight_spec(cli, q.mass, q.sky_radius, {"flight-frame"})) {
+    if (!q.chart.empty()) throw UsageError("--flight draws a camera path in the 3D view; not with --chart");
+    q.flight = read_flight_view(cli, p, *spec, q);
+  }
   q.width = q.camera->width();
   q.height = q.camera->height();
   q.disk = {p.number("disk-inner"), p.number("disk-outer")};
@@ -495,6 +546,7 @@ Request read_request(const CommandLine& cli) {
   q.orbit.mass = q.mass;
   q.orbit.r0 = cli.number("orbit-r");
   q.orbit.dphi_dtau = cli.number("orbit-dphi");
+  q.orbit.dr_dtau = cli.number("orbit-dr");
   q.orbit.revolutions = positive(p, "orbit-revolutions");
   if (q.orbit.revolutions > 1000) throw UsageError("--orbit-revolutions: at most 1000");
   if (!(q.orbit.r0 > 2.0 * q.mass * 1.01)) throw UsageError("--orbit-r must lie outside the horizon r = 2M");
@@ -613,8 +665,9 @@ int run_view(const Request& q) {
     for (const auto& pick : picks) exported.push_back(pick.path);
     ex.rays = exported;
     ex.orbit = orbit ? &*orbit : nullptr;
-    if (q.bundle != "beam")
-      ex.camera = viz::CameraRecord{camera.position(), camera.tetrad().e, q.fov, q.width, q.height};
+    const viz::CameraRecord record{camera.position(), camera.tetrad().e, q.fov, q.width, q.height};
+    if (q.flight) ex.flight = viz::FlightExport{&q.flight->path, q.flight->kind, q.flight->frame, record};
+    if (q.bundle != "beam") ex.camera = record;  // a beam does not start at the camera
     ex.frame = &frame_rgb;
     ex.frame_channels = &frame_image;
     const auto files = viz::export_scene(q.export_dir, ex);
@@ -633,6 +686,12 @@ int run_view(const Request& q) {
     scene.set_rays(viz::paths_to_polydata(rays), field);
   }
   if (orbit) scene.set_orbit(viz::paths_to_polydata(std::span(&*orbit, 1)), viz::ScalarField::lambda);
+  if (q.flight) {
+    std::vector<Vec3> frame_positions;
+    for (const viz::PathSample& s : q.flight->path.samples) frame_positions.push_back(s.position);
+    scene.set_orbit(viz::paths_to_polydata(std::span(&q.flight->path, 1)), viz::ScalarField::lambda, 0.0,
+                    frame_positions);
+  }
   for (viz::Layer l : q.hidden) scene.set_visible(l, false);
   viz::ViewPose pose = scene.default_view();
   if (q.view_from) {
@@ -654,13 +713,20 @@ int run_view(const Request& q) {
   } else {
     // The header names the tracer that ran (trace/auto_tracer.hpp picks the fastest exact one).
     const auto tracer = frame_image.metadata.find("tracer");
-    std::snprintf(frame_caption, sizeof frame_caption, "frame (%dx%d, %s tracer, rendered in %.2f s)%s", q.width,
-                  q.height, tracer == frame_image.metadata.end() ? "?" : tracer->second.c_str(), frame_seconds, marked);
+    const std::string which =
+        q.flight ? " " + std::to_string(q.flight->frame) + " of flight " + q.flight->kind : std::string();
+    std::snprintf(frame_caption, sizeof frame_caption, "frame%s (%dx%d, %s tracer, rendered in %.2f s)%s",
+                  which.c_str(), q.width, q.height, tracer == frame_image.metadata.end() ? "?" : tracer->second.c_str(),
+                  frame_seconds, marked);
   }
-  char scene_caption[256];
+  char flight_caption[160] = "";
+  if (q.flight)
+    std::snprintf(flight_caption, sizeof flight_caption, "flight %s: frame %d of %d, tau = %.6g M; ",
+                  q.flight->kind.c_str(), q.flight->frame, q.flight->frames, q.flight->tau);
+  char scene_caption[400];
   std::snprintf(scene_caption, sizeof scene_caption,
-                "M = %g; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", q.mass,
-                camera.position()[1], camera.position()[2] / kDeg, q.fov, rays.size(),
+                "%sM = %g; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", flight_caption,
+                q.mass, camera.position()[1], camera.position()[2] / kDeg, q.fov, rays.size(),
                 std::string(viz::to_string(scene.color_by(viz::Layer::rays))).c_str());
 
   viz::WindowOptions opt;

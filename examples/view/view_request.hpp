@@ -33,6 +33,15 @@ struct MethodChoice {
   TraceSettings settings;
 };
 
+/// --flight: the camera's path and the frame the viewer looks through (its camera is Request::camera).
+struct FlightView {
+  std::string kind;     ///< --flight: seed, circular, orbit, infall or csv
+  int frame = 0;        ///< --flight-frame: index of the frame in use
+  int frames = 0;       ///< frames on the path
+  double tau = 0.0;     ///< the proper time of the frame in use
+  viz::TracedPath path; ///< the whole path, one sample per frame (viz::worldline_path)
+};
+
 struct Request {
   std::string screenshot;
   std::string export_dir;  ///< --export: write the scene as VTK XML files here (viz/vtk_export.hpp)
@@ -61,6 +70,7 @@ struct Request {
   viz::ScalarField color_by = viz::ScalarField::pixel_color;
   bool show_orbit = false;
   viz::OrbitSpec orbit;
+  std::optional<FlightView> flight;  ///< --flight: drawn in the orbit layer, its frame's camera is `camera`
   MethodChoice orbit_method;
   std::vector<viz::Layer> hidden;
   bool checkerboard = false;

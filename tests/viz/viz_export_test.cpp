@@ -12,6 +12,7 @@
 #include "grtrace/viz/vtk_export.hpp"
 
 #include "../common/tool_run.hpp"
+#include "view_export_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -29,7 +30,6 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkVariant.h>
-#include <vtkXMLImageDataReader.h>
 #include <vtkXMLMultiBlockDataReader.h>
 #include <vtkXMLPolyDataReader.h>
 
@@ -47,9 +47,6 @@
 #include <unistd.h>
 #include <vector>
 
-#ifndef GRTRACE_VIEW_EXE
-#error "GRTRACE_VIEW_EXE (path of grtrace-view) must be defined by the build"
-#endif
 #ifndef GRTRACE_GEODESIC_EXE
 #error "GRTRACE_GEODESIC_EXE (path of grtrace-geodesic) must be defined by the build"
 #endif
@@ -62,26 +59,16 @@ using namespace grtrace;
 using grtrace::tool_tests::ToolRun;
 const auto run = grtrace::tool_tests::run_command;
 
-std::string view(const std::string& args) { return std::string("env -u DISPLAY ") + GRTRACE_VIEW_EXE + " " + args; }
+using grtrace::view_tests::read_vtp;
+using grtrace::view_tests::view;
 std::string geodesic(const std::string& args) { return std::string(GRTRACE_GEODESIC_EXE) + " " + args; }
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("grtrace-export-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return grtrace::view_tests::scratch("export-test", name); }
 
 std::set<std::string> listing(const fs::path& dir) {
   std::set<std::string> out;
   for (const auto& e : fs::directory_iterator(dir)) out.insert(e.path().filename().string());
   return out;
-}
-
-vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& file) {
-  vtkNew<vtkXMLPolyDataReader> r;
-  r->SetFileName(file.c_str());
-  r->Update();
-  return r->GetOutput();
 }
 
 /// The named point arrays exist with one tuple per point (and `components` components).
@@ -100,19 +87,15 @@ void expect_point_arrays(vtkPolyData* poly) {
 
 constexpr int kW = 48, kH = 36;
 
-class ViewExport : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = scratch("scene");
-    fs::remove_all(dir_);
-    result_ = run(view("--export " + dir_.string() + " --width " + std::to_string(kW) + " --height " +
-                       std::to_string(kH) + " --bundle-size 3x3 --threads 2"));
+/// The default scene at kW x kH with a 3x3 bundle, exported once for the ViewExport tests.
+struct DefaultSceneExport {
+  static constexpr const char* program = "export-test";
+  static constexpr const char* name = "scene";
+  static std::string options() {
+    return "--width " + std::to_string(kW) + " --height " + std::to_string(kH) + " --bundle-size 3x3 --threads 2";
   }
-  static fs::path dir_;
-  static ToolRun result_;
 };
-fs::path ViewExport::dir_;
-ToolRun ViewExport::result_;
+using ViewExport = grtrace::view_tests::ExportSuite<DefaultSceneExport>;
 
 TEST_F(ViewExport, ExitsZeroWithoutADisplayAndWritesTheFiles) {
   ASSERT_EQ(result_.status, 0) << result_.output;
@@ -233,10 +216,7 @@ TEST_F(ViewExport, HorizonLiesAtTwoM) {
 
 TEST_F(ViewExport, FrameImageHasTheFramesSizeChannelsAndOrientation) {
   ASSERT_EQ(result_.status, 0) << result_.output;
-  vtkNew<vtkXMLImageDataReader> r;
-  r->SetFileName((dir_ / "frame.vti").c_str());
-  r->Update();
-  vtkImageData* image = r->GetOutput();
+  const auto image = grtrace::view_tests::read_vti(dir_ / "frame.vti");
   int dims[3];
   image->GetDimensions(dims);
   EXPECT_EQ(dims[0], kW);

@@ -9,15 +9,18 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkDataArray.h>
+#include <vtkGlyph3D.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkPropAssembly.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
+#include <vtkSphereSource.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkTubeFilter.h>
@@ -98,6 +101,8 @@ struct SceneView::Impl {
   std::map<Layer, bool> wanted;  // user visibility (the colour bar also depends on what is coloured)
   vtkSmartPointer<vtkPolyData> ray_data, orbit_data;
   vtkSmartPointer<vtkPolyDataMapper> ray_mapper, orbit_mapper;
+  vtkSmartPointer<vtkActor> orbit_actor;  // the tube (the layer's prop is an assembly when marks are drawn)
+  bool orbit_marked = false;               // the orbit is a camera flight with its frames marked
   ScalarField ray_field = ScalarField::none, orbit_field = ScalarField::none;
   vtkNew<vtkScalarBarActor> bar;
   vtkNew<vtkTextActor> legend;  // what the visible layers are, bottom left
@@ -121,7 +126,7 @@ struct SceneView::Impl {
     if (props.count(Layer::rays) && wanted[Layer::rays])
       text += ray_field == ScalarField::pixel_color ? "rays: colour of their frame pixel\n"
                                                     : "rays: " + std::string(scalar_title(ray_field)) + "\n";
-    line(Layer::orbit, "timelike orbit (tube)");
+    line(Layer::orbit, orbit_marked ? "camera flight path (tube; frames: white beads)" : "timelike orbit (tube)");
     line(Layer::picks, "picked rays (magenta; outcomes top left)");
     if (!text.empty()) text.pop_back();
     legend->SetInput(text.c_str());
@@ -334,19 +339,41 @@ void SceneView::set_picks(vtkPolyData* picks, const std::string& text) {
 
 vtkPolyData* SceneView::picks() const { return impl_->pick_data; }
 
-void SceneView::set_orbit(vtkPolyData* orbit, ScalarField color_by, double tube_radius) {
+void SceneView::set_orbit(vtkPolyData* orbit, ScalarField color_by, double tube_radius, std::span<const Vec3> marks) {
   Impl& m = *impl_;
   double b[6];
   orbit->GetBounds(b);
   double extent = 0.0;
   for (double v : b) extent = std::max(extent, std::abs(v));
-  m.orbit_data = tube(orbit, tube_radius > 0.0 ? tube_radius : std::max(0.3 * m.layout.mass, 0.005 * extent), 10);
+  const double radius = tube_radius > 0.0 ? tube_radius : std::max(0.3 * m.layout.mass, 0.005 * extent);
+  m.orbit_data = tube(orbit, radius, 10);
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(m.orbit_data);
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
+  m.orbit_actor = vtkSmartPointer<vtkActor>::New();
+  m.orbit_actor->SetMapper(mapper);
   m.orbit_mapper = mapper.Get();
-  m.add(Layer::orbit, actor);
+  m.orbit_marked = !marks.empty();
+  if (marks.empty()) {
+    m.add(Layer::orbit, m.orbit_actor);
+  } else {
+    vtkNew<vtkPoints> centres;
+    for (const Vec3& p : marks) centres->InsertNextPoint(p.data());
+    vtkNew<vtkPolyData> at;
+    at->SetPoints(centres);
+    vtkNew<vtkSphereSource> bead;
+    bead->SetRadius(2.5 * radius);
+    bead->SetThetaResolution(12);
+    bead->SetPhiResolution(8);
+    vtkNew<vtkGlyph3D> beads;
+    beads->SetInputData(at);
+    beads->SetSourceConnection(bead->GetOutputPort());
+    beads->ScalingOff();
+    beads->Update();
+    vtkNew<vtkPropAssembly> path;
+    path->AddPart(m.orbit_actor);
+    path->AddPart(make_actor(beads->GetOutput(), {0.95, 0.95, 0.95}));
+    m.add(Layer::orbit, path);
+  }
   set_color_by(Layer::orbit, color_by);
 }
 
@@ -354,7 +381,7 @@ void SceneView::set_color_by(Layer layer, ScalarField field) {
   Impl& m = *impl_;
   if (layer != Layer::rays && layer != Layer::orbit) throw std::invalid_argument("only rays and orbits are coloured");
   if (!m.props.count(layer)) throw std::invalid_argument("no " + std::string(to_string(layer)) + " layer yet");
-  auto* actor = vtkActor::SafeDownCast(m.props[layer]);
+  auto* actor = layer == Layer::orbit ? m.orbit_actor.Get() : vtkActor::SafeDownCast(m.props[layer]);
   if (layer == Layer::rays) {
     m.color(m.ray_mapper, m.ray_data, field, {0.9, 0.9, 0.6}, actor);
     m.ray_field = field;

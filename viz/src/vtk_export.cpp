@@ -134,6 +134,34 @@ void add_camera_record(vtkPolyData* data, const CameraRecord& camera) {
   for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{pos, tetrad, fov, size}) fd->AddArray(a);
 }
 
+vtkSmartPointer<vtkPolyData> flight_to_export_polydata(const TracedPath& flight, const std::string& kind, int frame,
+                                                       const std::optional<CameraRecord>& camera) {
+  if (frame < 0 || static_cast<std::size_t>(frame) >= flight.samples.size())
+    throw std::invalid_argument("flight_to_export_polydata: frame " + std::to_string(frame) + " is not on the path");
+  auto poly = paths_to_export_polydata(std::span(&flight, 1));
+  const auto n = static_cast<vtkIdType>(flight.samples.size());
+  const auto tau = named<vtkDoubleArray>("tau", 1, n);
+  const auto index = named<vtkIntArray>("frame", 1, n);
+  for (const PathSample& s : flight.samples) {
+    tau->InsertNextValue(s.lambda);
+    index->InsertNextValue(s.step);
+  }
+  poly->GetPointData()->AddArray(tau);
+  poly->GetPointData()->AddArray(index);
+  poly->GetPointData()->SetActiveScalars("tau");
+  vtkNew<vtkStringArray> name;
+  name->SetName("flight");
+  name->InsertNextValue(kind);
+  const auto in_use = named<vtkIntArray>("flight_frame", 1, 1);
+  in_use->InsertNextValue(frame);
+  const auto in_use_tau = named<vtkDoubleArray>("flight_frame_tau", 1, 1);
+  in_use_tau->InsertNextValue(flight.samples[static_cast<std::size_t>(frame)].lambda);
+  vtkFieldData* fd = poly->GetFieldData();
+  for (vtkAbstractArray* a : std::initializer_list<vtkAbstractArray*>{name, in_use, in_use_tau}) fd->AddArray(a);
+  if (camera) add_camera_record(poly, *camera);
+  return poly;
+}
+
 vtkSmartPointer<vtkImageData> frame_to_imagedata(const Rgb8Image& rgb, const Image* channels) {
   if (rgb.empty()) throw std::invalid_argument("frame_to_imagedata: the frame is empty");
   if (channels && (channels->width() != rgb.width || channels->height() != rgb.height))
@@ -307,6 +335,10 @@ std::vector<ExportedFile> export_scene(const std::filesystem::path& dir, const S
   }
   if (scene.orbit && shown(Layer::orbit))
     pieces.push_back({"orbit", paths_to_export_polydata(std::span(scene.orbit, 1)), ".vtp"});
+  if (scene.flight && shown(Layer::orbit)) {
+    const FlightExport& f = *scene.flight;
+    pieces.push_back({"flight", flight_to_export_polydata(*f.path, f.kind, f.frame, f.camera), ".vtp"});
+  }
   for (SceneSurface& s : scene_surfaces(scene.layout))
     if (shown(s.layer)) pieces.push_back({s.name, s.data, ".vtp"});
   if (scene.frame) pieces.push_back({"frame", frame_to_imagedata(*scene.frame, scene.frame_channels), ".vti"});

@@ -24,6 +24,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -75,8 +76,10 @@ class SceneView {
   /// Replaces the ray layer (polylines, drawn as lines) and colours it.
   void set_rays(vtkPolyData* rays, ScalarField color_by = ScalarField::pixel_color);
   /// Replaces the orbit layer (drawn as tubes of the given radius; <= 0: 0.5% of its extent, at least 0.3 M)
-  /// and colours it.
-  void set_orbit(vtkPolyData* orbit, ScalarField color_by = ScalarField::lambda, double tube_radius = 0.0);
+  /// and colours it. `marks` (a camera flight's frame positions, embedding coordinates) are drawn on it as white
+  /// beads 2.5 times the tube's radius, in the same layer.
+  void set_orbit(vtkPolyData* orbit, ScalarField color_by = ScalarField::lambda, double tube_radius = 0.0,
+                 std::span<const Vec3> marks = {});
   /// Replaces the picked rays (pick.hpp; polylines from paths_to_polydata, drawn thick in magenta) and the text
   /// that lists their outcomes (top left, under the caption). Null or no points: no picks layer and no text.
   void set_picks(vtkPolyData* picks, const std::string& text);

@@ -28,9 +28,15 @@
 // same name (R, G, B linear radiance, object, status, redshift, sky_theta, sky_phi, steps). The image lives in
 // pixel units: show it in its own (2D) render view in ParaView.
 //
+// Flight (flight_to_export_polydata): a camera flight's path (orbits.hpp worldline_path: one sample per frame) as
+// the rays are written (coordinates = x, momentum = the 4-velocity u, affine_parameter = tau) plus
+//   point data  "tau" (the frame's proper time, double), "frame" (the frame's index, int)
+//   field data  "flight" (the kind, string), "flight_frame" (the frame whose camera the viewer used, int),
+//               "flight_frame_tau" (its proper time) and that camera (add_camera_record), when given
+//
 // Scene (export_scene): in the directory, whichever the layout and data have (the names are the scene.vtm
 // block names):
-//   rays.vtp, orbit.vtp, horizon.vtp (r_+; 2M without spin), photon_sphere.vtp (3M, Schwarzschild),
+//   rays.vtp, orbit.vtp, flight.vtp, horizon.vtp (r_+; 2M without spin), photon_sphere.vtp (3M, Schwarzschild),
 //   ergosphere.vtp (Kerr), isco.vtp (the ring, a closed polyline), disk.vtp, sky.vtp (wireframe),
 //   camera_frustum.vtp, camera_axes.vtp, frame.vti, and scene.vtm (written last, refers to the others by
 //   relative name). Open scene.vtm in ParaView.
@@ -74,6 +80,12 @@ struct CameraRecord {
 };
 void add_camera_record(vtkPolyData* data, const CameraRecord& camera);
 
+/// The flight above. Takes the path (one sample per frame), its kind, the frame in use (an index into the path's
+/// samples) and that frame's camera (nothing: not recorded). Throws std::invalid_argument for a frame outside
+/// the path.
+vtkSmartPointer<vtkPolyData> flight_to_export_polydata(const TracedPath& flight, const std::string& kind, int frame,
+                                                       const std::optional<CameraRecord>& camera);
+
 /// The frame: preview colours `rgb` and (if given) the float channels of the rendered image, of the same size
 /// (throws std::invalid_argument otherwise, or for an empty rgb).
 vtkSmartPointer<vtkImageData> frame_to_imagedata(const Rgb8Image& rgb, const Image* channels = nullptr);
@@ -104,12 +116,21 @@ struct ExportPathError : std::runtime_error {
 /// is not writable. Creates nothing else.
 void prepare_export_directory(const std::filesystem::path& dir);
 
+/// A camera flight for export_scene: the arguments of flight_to_export_polydata.
+struct FlightExport {
+  const TracedPath* path = nullptr;        ///< one sample per frame (orbits.hpp worldline_path); must not be null
+  std::string kind;                        ///< --flight
+  int frame = 0;                           ///< the frame in use
+  std::optional<CameraRecord> camera;      ///< its camera
+};
+
 struct SceneExport {
   SceneLayout layout;
   std::vector<Layer> hidden;               ///< layers not to write (the viewer's --hide)
   std::span<const TracedPath> rays;        ///< empty: no rays.vtp
   const TracedPath* orbit = nullptr;       ///< null: no orbit.vtp
   std::optional<CameraRecord> camera;      ///< recorded in rays.vtp's field data
+  std::optional<FlightExport> flight;      ///< flight.vtp (in the orbit layer); nothing: no flight
   const Rgb8Image* frame = nullptr;        ///< null: no frame.vti
   const Image* frame_channels = nullptr;   ///< the rendered image's float channels (optional)
 };

@@ -5,6 +5,7 @@
 //    "atol","out", ...}
 // All input is checked before any ray is traced; bad input exits with code 2 and leaves no file behind.
 #include "command_line.hpp"
+#include "flight_options.hpp"
 #include "json_writer.hpp"
 #include "render_request.hpp"
 
@@ -99,22 +100,13 @@ CommandLine make_command_line() {
             "(heat map, log scale 1e-12 .. 1e-2 rad) and report max_error/median_error in the JSON")
       .flag("disk-retrograde", "disk scene: the gas turns against the hole's rotation (default: with it; "
                                "towards +phi for a non-rotating hole)")
-      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)")
-      .option("flight", "", "render a sequence along a camera path instead of one frame: seed (the seed report's "
-                            "orbit: r = 100 M, dphi/dtau = 0.00075/M, equatorial) | circular (the circular orbit at "
-                            "--camera-r) | orbit (from --camera-r/-theta/-phi with --orbit-dr, --orbit-dphi) | infall "
-                            "(from rest at --camera-r) | csv (--flight-csv). Frames are spaced evenly in the camera's "
-                            "proper time; its tetrad is rebuilt in every frame from its 4-velocity with the fixed "
-                            "--look/--up rule (aberration and Doppler from u). Writes <out stem>-NNNN.exr and .png; "
-                            "a re-run skips the frames already written whole by the same flight")
-      .option("frames", "300", "flight: number of frames")
-      .option("frame-dtau", "0", "flight: proper time between frames; 0: one revolution in phi over the frames "
-                                 "(seed, circular, orbit) or the fall to 1.1 r_h (infall)")
-      .option("orbit-dr", "0", "flight orbit: initial dr/dtau")
-      .option("orbit-dphi", "0.00075", "flight orbit: initial dphi/dtau")
-      .option("flight-csv", "", "flight csv: camera states, a header line then rows "
-                                "tau,t,r,theta,phi,ut,ur,utheta,uphi (angles in radians, g(u,u) = 1)")
-      .option("fps", "30", "flight --mp4: frames per second")
+      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
+  tools::declare_flight_options(cli,
+                                "grtrace-render renders a sequence along it instead of one frame (aberration and "
+                                "Doppler from the camera's u): <out stem>-NNNN.exr and .png; a re-run skips the "
+                                "frames already written whole by the same flight",
+                                "");
+  cli.option("fps", "30", "flight --mp4: frames per second")
       .flag("mp4", "flight: also write <out stem>.mp4 from the PNG previews (ffmpeg, H.264)");
   return cli;
 }
@@ -188,15 +180,10 @@ void set_disk_sense_and_isco(const CommandLine& cli, const MetricSpec& ms, ThinD
 /// sky sphere) before its last frame, and the options that describe a single frame only.
 void read_flight(const CommandLine& cli, Request& q) {
   FlightRequest& f = q.flight;
-  f.name = cli.text("flight");
-  if (f.name.empty()) {
-    for (const char* name : {"flight-csv", "frame-dtau", "orbit-dr", "orbit-dphi", "fps"})
-      if (cli.given(name)) throw UsageError(std::string("--") + name + " needs --flight (a camera path)");
-    if (cli.given("frames") || cli.flag_set("mp4")) throw UsageError("--frames and --mp4 need --flight (a camera path)");
-    return;
-  }
-  if (!is_flight_path_kind(f.name))
-    throw UsageError("unknown --flight '" + f.name + "'; choose seed, circular, orbit, infall or csv");
+  const std::optional<FlightPathSpec> spec =
+      tools::read_flight_spec(cli, q.metric.mass, q.settings.escape_radius, {"fps", "mp4"});
+  if (!spec) return;
+  f.name = spec->kind;
   for (const char* name : {"velocity", "observer"})
     if (cli.given(name))
       throw UsageError(std::string("--") + name + " sets a single frame's camera; a flight's camera moves with its "
@@ -204,40 +191,14 @@ void read_flight(const CommandLine& cli, Request& q) {
   if (cli.flag_set("status-map") || q.error_map)
     throw UsageError("--status-map and --error-map are for single frames; leave them out with --flight");
   if (q.tracer == "symmetric") throw UsageError("--tracer symmetric does not fly; use auto (or general)");
-  if ((f.name == "csv") != !cli.text("flight-csv").empty())
-    throw UsageError("--flight csv goes with --flight-csv FILE (and --flight-csv only with --flight csv)");
-  FlightPathSpec spec;
-  spec.kind = f.name;
-  spec.mass = q.metric.mass;
-  spec.r = cli.number("camera-r");
-  spec.theta = cli.number("camera-theta") * std::numbers::pi / 180.0;
-  spec.phi = cli.number("camera-phi") * std::numbers::pi / 180.0;
-  spec.dr_dtau = cli.number("orbit-dr");
-  spec.dphi_dtau = cli.number("orbit-dphi");
-  const long frames = cli.integer("frames");
-  if (frames < 1 || frames > 100000) throw UsageError("--frames must be in 1 .. 100000");
-  spec.frames = static_cast<int>(frames);
-  spec.dtau = cli.number("frame-dtau");
-  spec.csv = cli.text("flight-csv");
-  spec.sky_radius = q.settings.escape_radius;
   if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
   const CameraView view{triple(cli, "look"), triple(cli, "up"), q.camera->width(), q.camera->height(),
                         q.camera->fov_degrees()};
   Worldline path;
-  try {
-    with_named_metric(q.metric, [&](const auto& m) {
-      using M = std::remove_cvref_t<decltype(m)>;
-      if constexpr (M::chart != Chart::spherical) {
-        throw UsageError("--flight needs a spherical chart (the camera path is integrated in (t, r, theta, phi)); "
-                         "use --chart bl");
-      } else {
-        path = flight_path(m, spec);
-        f.cameras = flight_cameras(m, path, view);
-      }
-    });
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("--flight " + f.name + ": " + e.what());
-  }
+  with_named_metric(q.metric, [&](const auto& m) {
+    path = tools::checked_flight_path(m, *spec);
+    if constexpr (std::remove_cvref_t<decltype(m)>::chart == Chart::spherical) f.cameras = flight_cameras(m, path, view);
+  });
   f.dtau = frame_step(path);
   for (const WorldlineSample& s : path.samples) f.tau.push_back(s.tau);
   q.camera = f.cameras.front();

@@ -4,6 +4,7 @@
 // to single renders at the same camera states, and the flight's files (names, resume test, CSV paths).
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/observer/flight_path.hpp"
 #include "grtrace/observer/timelike_start.hpp"
 #include "grtrace/observer/worldline.hpp"
 #include "grtrace/render/flight.hpp"
@@ -107,6 +108,60 @@ TEST(Worldline, SeedOrbitConservesEnergyAndAngularMomentum) {
   EXPECT_LT(r_min, 45.0);
   EXPECT_LT(w.samples.back().x[3], 2.0 * pi);
   EXPECT_GT(w.samples.back().x[3], 2.0 * pi * 0.95);
+}
+
+// flight_path: the automatic frame step (one revolution over the frames; the fall to 1.1 r_h over frames - 1)
+// and its refusals, each before any rendering.
+TEST(FlightPath, AutomaticStepsAndRefusals) {
+  const SchwarzschildMetric metric{1.0};
+  FlightPathSpec spec;
+  spec.frames = 30;
+  const Worldline seed = flight_path(metric, spec);
+  ASSERT_EQ(seed.samples.size(), 30u);
+  const auto turn = proper_time_until(metric, seed_orbit_start(metric), revolution_event(seed_orbit_start(metric)));
+  ASSERT_TRUE(turn);
+  EXPECT_DOUBLE_EQ(frame_step(seed), *turn / 30.0);
+  spec.kind = "infall";
+  spec.r = 20.0;
+  spec.frames = 11;
+  const Worldline fall = flight_path(metric, spec);
+  ASSERT_EQ(fall.samples.size(), 11u);
+  EXPECT_NEAR(fall.samples.back().x[1], 2.2, 1e-8);  // the last frame at 1.1 r_h
+  auto refused = [&](FlightPathSpec bad, const std::string& says) {
+    try {
+      (void)flight_path(metric, bad);
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  FlightPathSpec bad;
+  bad.kind = "spiral";
+  refused(bad, "unknown flight 'spiral'");
+  bad = {};
+  bad.frames = 0;
+  refused(bad, "--frames must be in 1 .. 100000");
+  bad = {};
+  bad.dtau = -1.0;
+  refused(bad, "--frame-dtau must be >= 0");
+  bad = {};
+  bad.kind = "circular";
+  bad.r = 2.5;
+  refused(bad, "no timelike circular orbit at r = 2.5");
+  bad = {};
+  bad.sky_radius = 90.0;
+  refused(bad, "frame 0 is at r = 100, outside the sky sphere");
+  bad = {};
+  bad.kind = "orbit";
+  bad.r = 20.0;
+  bad.dphi_dtau = 0.0;  // radial fall: no revolution to spread the frames over
+  refused(bad, "does not complete a revolution");
+  bad = {};
+  bad.kind = "infall";
+  bad.r = 20.0;
+  bad.frames = 5;
+  bad.dtau = 40.0;
+  refused(bad, "the camera's path ends (captured");
 }
 
 // make_moving_camera's look rule: look and up are components along the moving observer's own axes. With no

@@ -310,7 +310,7 @@ void write_charts(OutputSet& set, const Plan& plan, const std::vector<Record>& r
   std::ostringstream rays;
   if (plan.rays.kerr) {
     const auto pro = std::count_if(plan.rays.impacts.begin(), plan.rays.impacts.end(),
-                                   [&](const ImpactRay& r) { return r.b * plan.spin >= 0.0; });
+                                   [&](const ImpactRay& r) { return (plan.spin < 0.0 ? -r.b : r.b) > 0.0; });  // a = 0: b > 0
     rays << "Kerr a = " << plan.spin << ": " << plan.rays.impacts.size() << " equatorial impact rays (" << pro
          << " prograde, " << plan.rays.impacts.size() - static_cast<std::size_t>(pro) << " retrograde)";
   } else {

@@ -18,6 +18,7 @@
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
+#include "grtrace/trace/deflection.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 
 #include <Eigen/Dense>
@@ -409,18 +410,6 @@ TEST(KerrRays, EnergyAngularMomentumCarterAndNullConstraintConserved) {
   EXPECT_LT(std::max({guard.e, guard.l, guard.q, guard.null}), 1e-7);
 }
 
-/// Equatorial photon with E = 1, L_z = b moving inwards at r (BL).
-GeodesicState equatorial_photon(const KerrMetric& m, double b, double r) {
-  const Vec4 x(0.0, r, kPi / 2.0, 0.0);
-  const Mat4 gi = m.inverse_metric(x);
-  const Vec4 p(1.0, 0.0, 0.0, -b);
-  Vec4 k = gi * p;
-  // r^2 k^r = -sqrt(R(r)), R = r^4 + (a^2 - b^2) r^2 + 2M (b - a)^2 r.
-  const double a = m.spin;
-  k[1] = -std::sqrt(r * r * r * r + (a * a - b * b) * r * r + 2.0 * (b - a) * (b - a) * r) / (r * r);
-  return make_state(x, k);
-}
-
 TEST(KerrRays, CircularEquatorialPhotonOrbitStaysCircular) {
   for (double a : {0.0, 0.7, -0.5})
     for (auto orbit : {exact::Orbit::prograde, exact::Orbit::retrograde}) {
@@ -429,7 +418,7 @@ TEST(KerrRays, CircularEquatorialPhotonOrbitStaysCircular) {
       // Its impact parameter: xi of the spherical photon orbit at r (for a = 0: +-3 sqrt 3).
       const double sense = (orbit == exact::Orbit::prograde) == (a >= 0.0) ? 1.0 : -1.0;
       const double b = a == 0.0 ? sense * 3.0 * std::sqrt(3.0) : exact::spherical_photon_orbit(r, a).first;
-      GeodesicState y0 = equatorial_photon(m, b, r);
+      GeodesicState y0 = kerr_equatorial_photon(m, b, r);
       y0[5] = 0.0;
       TraceSettings s = tight_settings(1e-12, 100.0);
       s.max_steps = 4000;
@@ -450,18 +439,11 @@ TEST(KerrRays, CircularEquatorialPhotonOrbitStaysCircular) {
     }
 }
 
-/// Total deflection of an equatorial ray measured by tracing between r_s and r_s, plus the exact outer legs.
+/// Total deflection of an equatorial ray (b > 0 towards +phi) measured with measure_deflection: traced between
+/// r_s and r_s, plus the exact outer legs. NaN unless the ray escapes.
 double traced_equatorial_deflection(double a, double b, double rtol) {
-  const KerrMetric m{1.0, a};
-  const double rs = std::max(50.0, 4.0 * std::abs(b));
-  TraceSettings s = tight_settings(rtol, rs * (1.0 + 1e-9));
-  const Tracer tracer(m, s);
-  const TraceResult res = tracer.trace(equatorial_photon(m, b, rs));
-  if (res.status != RayStatus::escaped) return std::numeric_limits<double>::quiet_NaN();
-  const GeodesicState& y = res.step_end_state;
-  const double swept = y[3] + exact::equatorial_phi_from_infinity(b, 1.0 / rs, a) +
-                       exact::equatorial_phi_from_infinity(b, 1.0 / y[1], a);
-  return std::abs(swept) - kPi;
+  const Tracer tracer(KerrMetric{1.0, a}, tight_settings(rtol));
+  return measure_deflection(tracer, b).deflection;
 }
 
 TEST(KerrExact, EquatorialDeflectionQuadratureConvergesAndReducesToDarwin) {

@@ -305,18 +305,6 @@ JsonObject run(const Request& q, const Outputs& files) {
 
 // ---- Kerr ---------------------------------------------------------------------------------------------------
 
-/// The Boyer-Lindquist state of an equatorial photon at radius r moving inward with E = 1 and L_z = b (future-
-/// directed): p_t = 1, p_phi = -b, k = g^{-1} p, k^r < 0 from g(k, k) = 0.
-GeodesicState kerr_equatorial_photon(const KerrMetric& m, double r, double b) {
-  const Vec4 x(0.0, r, std::numbers::pi / 2.0, 0.0);
-  const Mat4 gi = m.inverse_metric(x), g = m.metric(x);
-  Vec4 k = gi * Vec4(1.0, 0.0, 0.0, -b);
-  k[1] = 0.0;
-  const double rest = k.dot(g * k);  // g(k, k) without the radial part
-  k[1] = -std::sqrt(std::max(0.0, -rest / g(1, 1)));
-  return make_state(x, k);
-}
-
 /// The chart's state for a Boyer-Lindquist one (Kerr-Schild: the slicing the ray's time direction crosses).
 template <class Metric>
 GeodesicState to_chart(const Metric& m, const GeodesicState& y_bl) {
@@ -344,7 +332,7 @@ JsonObject run_kerr(const Request& q, const Metric& metric, const Outputs& files
   if (q.impact_run) {
     // Start at half the escape radius (default 500 M), end on the escape sphere; the legs beyond are added exactly.
     start_radius = 0.5 * settings.escape_radius;
-    start_bl = kerr_equatorial_photon(bl, start_radius, q.impact);
+    start_bl = kerr_equatorial_photon(bl, q.impact, start_radius);  // grtrace/trace/deflection.hpp
   }
   const GeodesicState start = to_chart(metric, start_bl);
   const GeodesicTracer<Metric, T, C> tracer(metric, settings, controller);

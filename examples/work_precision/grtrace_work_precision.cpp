@@ -6,6 +6,8 @@
 // right-hand-side evaluations, accepted/rejected steps and wall time (work_precision.hpp). Adaptive controllers
 // sweep the relative tolerance; `fixed` sweeps the step size instead (same chart axes: error against cost).
 // Writes a CSV (--out-csv), log-log PNG charts drawn with VTK (--out-png), a table or ONE line of JSON (--json).
+// --metric kerr --spin A traces equatorial Kerr photons instead (prograde and retrograde impact rays judged against
+// Iyer & Hansen's exact deflection; no camera rays, which have no exact answer in Kerr).
 // --exit node continues escaped rays exactly from the last accepted step instead of the interpolated sky-sphere
 // crossing (which limits tableaux without their own dense output; see docs/benchmarks.md).
 #include "chart.hpp"
@@ -33,10 +35,14 @@ using tools::UsageError;
 
 CommandLine make_command_line() {
   CommandLine cli("grtrace-work-precision",
-                  "Sweep tableaux x controllers x tolerances over Schwarzschild rays with exact answers;\n"
+                  "Sweep tableaux x controllers x tolerances over Schwarzschild (or equatorial Kerr) rays with exact\n"
+                  "answers; "
                   "record max/median angular error, RHS evaluations, steps and wall time; write CSV and charts.\n"
                   "Charts need an X display: without one, run under xvfb-run -a -s \"-screen 0 1280x1024x24\".");
-  cli.option("tableaux", "all", "comma-separated tableaux to sweep: all | " + tools::join(tableau_names(), ","))
+  cli.option("metric", "schwarzschild",
+             "schwarzschild | kerr (Boyer-Lindquist; equatorial impact rays only: --grid defaults to 0 and must stay 0)")
+      .option("spin", "0.9", "Kerr spin a/M, |a| < 1 (with --metric kerr only)")
+      .option("tableaux", "all", "comma-separated tableaux to sweep: all | " + tools::join(tableau_names(), ","))
       .option("controllers", "all",
               "comma-separated controllers: all | fixed,doubling,i,pi (I/PI only with an "
               "embedded pair; invalid pairs are skipped)")
@@ -47,11 +53,13 @@ CommandLine make_command_line() {
       .option("atol-ratio", "1e-2", "absolute tolerance = this x relative tolerance")
       .option("steps", "4,2,1,0.5,0.25,0.125", "affine step sizes swept by the fixed-step controller")
       .option("impacts", "5.25,5.3,5.5,6,7,10,20,50,100,1000",
-              "impact parameters (M) of the deflection rays; 'none' for no impact rays")
+              "impact parameters (M) of the deflection rays; 'none' for no impact rays. Kerr: signed (b > 0 moves "
+              "towards +phi, prograde for a > 0), default the critical b_c of each sense times "
+              "1.02,1.1,1.3,2,4,10,100")
       .option("camera-r", "50", "radius of the static camera (M); it looks at the hole, up = +z")
       .option("sky-r", "400", "radius of the sky (escape) sphere of the camera rays (M)")
       .option("fov", "90", "horizontal field of view of the camera (degrees, 0 < fov < 180)")
-      .option("grid", "32", "camera pixels per side (0 = no camera rays)")
+      .option("grid", "32", "camera pixels per side (0 = no camera rays; --metric kerr: 0)")
       .option("exit", "surface",
               "where the exact continuation to infinity starts: surface (the sky-sphere crossing "
               "the tracer reports, read from the interpolant) | node (the last accepted step)")
@@ -88,6 +96,8 @@ struct Plan {
   std::vector<double> steps;       ///< large -> small
   double atol_ratio = 1e-2;
   RaySet rays;
+  std::string metric = "schwarzschild";
+  double spin = 0.0;
   RunOptions run;
   bool keep_going = false;
   double target_error = 1e-6;
@@ -155,16 +165,41 @@ Plan read_plan(const CommandLine& cli) {
     throw UsageError("--atol-ratio must lie in [0, 1] (atol = ratio x rtol < 1), got " + cli.text("atol-ratio"));
 
   // Rays.
+  p.metric = cli.text("metric");
+  if (p.metric != "schwarzschild" && p.metric != "kerr")
+    throw UsageError("--metric must be schwarzschild or kerr, got '" + p.metric + "'");
+  const bool kerr = p.metric == "kerr";
+  if (cli.given("spin") && !kerr) throw UsageError("--spin needs --metric kerr");
+  if (kerr) {
+    p.spin = cli.number("spin");
+    if (!(std::abs(p.spin) < 1.0)) throw UsageError("--spin must satisfy |a| < 1 (M = 1), got " + cli.text("spin"));
+  }
   std::vector<double> impacts;
-  if (cli.text("impacts") != "none") {
+  if (kerr && !cli.given("impacts")) {
+    impacts = default_kerr_impacts(p.spin);
+  } else if (cli.text("impacts") != "none") {
     impacts = cli.numbers("impacts", 0);
-    for (const double b : impacts)
-      if (!(b > 0.0 && b <= 1e6)) throw UsageError("--impacts: every impact parameter must be in (0, 1e6] M");
+    for (const double b : impacts) {
+      if (!kerr && !(b > 0.0 && b <= 1e6)) throw UsageError("--impacts: every impact parameter must be in (0, 1e6] M");
+      if (kerr && !(b != 0.0 && std::abs(b) <= 1e6))
+        throw UsageError("--impacts: every Kerr impact parameter must be nonzero with |b| <= 1e6 M");
+      // Kerr: a captured ray has no exact deflection (exact::equatorial_deflection refuses it).
+      if (kerr && !(std::abs(b) > std::abs(exact::equatorial_critical_impact(p.spin, b > 0.0 ? 1.0 : -1.0)))) {
+        std::ostringstream msg;
+        msg << "--impacts: the Kerr ray b = " << b << " is captured (critical b = "
+            << exact::equatorial_critical_impact(p.spin, b > 0.0 ? 1.0 : -1.0) << " M for a = " << p.spin
+            << "); give |b| beyond it";
+        throw UsageError(msg.str());
+      }
+    }
   }
   StaticCamera cam;
   cam.radius = cli.number("camera-r");
   cam.fov_degrees = cli.number("fov");
-  const long grid = cli.integer("grid");
+  const long grid = kerr && !cli.given("grid") ? 0 : cli.integer("grid");
+  if (kerr && grid != 0)
+    throw UsageError("--metric kerr has no camera rays (no exact answer for a Kerr pixel): leave out --grid or give "
+                     "--grid 0");
   const double sky = cli.number("sky-r");
   if (grid < 0 || grid > 4096) throw UsageError("--grid must be 0..4096, got " + cli.text("grid"));
   cam.width = cam.height = static_cast<int>(grid);
@@ -177,7 +212,7 @@ Plan read_plan(const CommandLine& cli) {
     if (!(cam.fov_degrees > 0.0 && cam.fov_degrees < 180.0)) throw UsageError("--fov must lie in (0, 180) degrees");
   }
   if (impacts.empty() && grid == 0) throw UsageError("no rays: give --impacts or --grid > 0");
-  p.rays = make_ray_set(impacts, cam, sky, 1.0);
+  p.rays = kerr ? make_kerr_ray_set(impacts, p.spin, 1.0) : make_ray_set(impacts, cam, sky, 1.0);
 
   // Run options and outputs.
   const long max_steps = cli.integer("max-steps"), threads = cli.integer("threads"), repeat = cli.integer("repeat");
@@ -273,11 +308,18 @@ void write_charts(OutputSet& set, const Plan& plan, const std::vector<Record>& r
   }
   const std::string which = plan.chart_median ? "median" : "max";
   std::ostringstream rays;
-  rays << plan.rays.impacts.size() << " impact rays + " << plan.rays.pixels.size()
-       << " camera pixels (r_c = " << plan.rays.camera.radius << " M)";
+  if (plan.rays.kerr) {
+    const auto pro = std::count_if(plan.rays.impacts.begin(), plan.rays.impacts.end(),
+                                   [&](const ImpactRay& r) { return (plan.spin < 0.0 ? -r.b : r.b) > 0.0; });  // a = 0: b > 0
+    rays << "Kerr a = " << plan.spin << ": " << plan.rays.impacts.size() << " equatorial impact rays (" << pro
+         << " prograde, " << plan.rays.impacts.size() - static_cast<std::size_t>(pro) << " retrograde)";
+  } else {
+    rays << "Schwarzschild: " << plan.rays.impacts.size() << " impact rays + " << plan.rays.pixels.size()
+         << " camera pixels (r_c = " << plan.rays.camera.radius << " M)";
+  }
   ChartSpec spec;
   spec.y_label = which + " angular error (rad)";
-  spec.title = "Work-precision, Schwarzschild: " + rays.str();
+  spec.title = "Work-precision, " + rays.str();
   spec.x_label = std::string(plan.chart_cpu ? "processor" : "wall") + " time per ray (microseconds, " +
                  std::to_string(plan.run.threads) + (plan.run.threads > 1 ? " threads)" : " thread)");
   write_loglog_chart(set, plan.out_png + "-time.png", spec, by_time);
@@ -336,6 +378,8 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < points.size(); ++i) {
         Record r = make_record(m.tableau, m.controller, m.order, points[i], plan.run.exit,
                                m.run(plan.rays, points[i], plan.run));
+        r.metric = plan.metric;
+        r.spin = plan.spin;
         if (!quiet) {
           std::fprintf(stderr, "%-16s %s %-8.3g max %.3e  median %.3e  evals/ray %9.1f  %8.3f s%s\n",
                        method_label(m).c_str(), points[i].fixed_step ? "h   " : "rtol",
@@ -379,6 +423,7 @@ int main(int argc, char** argv) {
       j.add("rays", static_cast<long>(plan.rays.size()));
       j.add("impact_rays", static_cast<long>(plan.rays.impacts.size()));
       j.add("camera_rays", static_cast<long>(plan.rays.pixels.size()));
+      j.add("metric", plan.metric).add("spin", plan.spin);
       j.add("exit", plan.run.exit == ExitPoint::node ? "node" : "surface");
       j.add("camera_r", plan.rays.camera.radius).add("sky_r", plan.rays.sky_radius);
       j.add("threads", plan.run.threads).add("seconds", total).add("target_error", plan.target_error);

@@ -7,7 +7,10 @@
 // ray plus the cost (right-hand-side evaluations, accepted/rejected steps, wall time):
 //   * impact rays: a photon from infinity with impact parameter b (near-critical 5.25 .. weak field 1000),
 //     traced with measure_deflection (the legs outside the start sphere are added exactly); error =
-//     |deflection - exact::deflection_angle(b)|.
+//     |deflection - exact::deflection_angle(b)|. In Kerr (RaySet::kerr) the impact rays are equatorial photons in
+//     Boyer-Lindquist coordinates, b > 0 moving towards +phi (prograde for a > 0) and b < 0 against it; error =
+//     |deflection - exact::equatorial_deflection(b, a)| (Iyer & Hansen 2009). Kerr ray sets have no camera rays:
+//     there is no exact answer for a general Kerr pixel.
 //   * camera rays: the pixels of a static camera at radius r_c in Schwarzschild (theta = pi/2, phi = 0,
 //     looking at the hole, up = +z), traced with GeodesicTracer to the sky sphere; the exact continuation
 //     exact::asymptotic_direction at the exit is compared (exact::angular_distance) with
@@ -20,7 +23,9 @@
 // (ExitPoint::node).
 #pragma once
 
+#include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/trace/deflection.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
@@ -35,6 +40,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #if defined(_OPENMP)
@@ -68,7 +74,7 @@ inline GeodesicState static_camera_pixel(const StaticCamera& cam, double mass, i
 
 struct ImpactRay {
   double b;
-  double exact_deflection;  ///< exact::deflection_angle(b); NaN when b <= b_c (captured)
+  double exact_deflection;  ///< exact::deflection_angle(b) (Kerr: equatorial_deflection); NaN when captured
 };
 
 struct CameraRay {
@@ -79,6 +85,7 @@ struct CameraRay {
 /// The fixed ray set every configuration is judged on; exact answers are computed once, here.
 struct RaySet {
   SchwarzschildMetric metric{1.0};
+  std::optional<KerrMetric> kerr;  ///< set: the impact rays are equatorial Kerr photons (and there are no pixels)
   double sky_radius = 400.0;  ///< escape sphere of the camera rays
   StaticCamera camera{};
   std::vector<ImpactRay> impacts;
@@ -102,6 +109,30 @@ inline RaySet make_ray_set(const std::vector<double>& impacts, const StaticCamer
       const GeodesicState y0 = static_camera_pixel(camera, mass, x, y);
       set.pixels.push_back({y0, exact::asymptotic_direction(y0, mass)});
     }
+  return set;
+}
+
+/// Takes the spin a (|a| < 1, M = 1); returns the default Kerr impact parameters: for each sense, prograde
+/// (b > 0 for a >= 0) and retrograde, the critical b_c times 1.02, 1.1, 1.3, 2, 4, 10, 100 (near-critical to weak
+/// field, all escaping, whatever the spin). a = 0.9: +2.91 .. +285 and -6.97 .. -683.
+inline std::vector<double> default_kerr_impacts(double spin) {
+  std::vector<double> out;
+  for (const double sense : {1.0, -1.0}) {
+    const double bc = exact::equatorial_critical_impact(spin, spin < 0.0 ? -sense : sense);
+    for (const double f : {1.02, 1.1, 1.3, 2.0, 4.0, 10.0, 100.0}) out.push_back(f * bc);
+  }
+  return out;
+}
+
+/// Takes signed impact parameters (each beyond the critical value of its sense: checked by the caller, since
+/// exact::equatorial_deflection throws for a captured ray), the spin and the mass; returns a Kerr ray set: the
+/// equatorial impact rays with their Iyer-Hansen deflections and no camera rays.
+inline RaySet make_kerr_ray_set(const std::vector<double>& impacts, double spin, double mass = 1.0) {
+  RaySet set;
+  set.metric = SchwarzschildMetric{mass};
+  set.kerr = KerrMetric::checked(mass, spin);
+  set.camera.width = set.camera.height = 0;
+  for (const double b : impacts) set.impacts.push_back({b, exact::equatorial_deflection(b, spin, mass)});
   return set;
 }
 
@@ -170,8 +201,9 @@ struct LastNode {
   }
 };
 
-template <ExplicitTableau T, StepController C>
-RayOutcome impact_ray(const GeodesicTracer<SchwarzschildMetric, T, C>& tracer, const ImpactRay& ray, ExitPoint exit) {
+/// Takes a tracer over SchwarzschildMetric or KerrMetric, an impact ray and the exit point; returns its outcome.
+template <class Metric, ExplicitTableau T, StepController C>
+RayOutcome impact_ray(const GeodesicTracer<Metric, T, C>& tracer, const ImpactRay& ray, ExitPoint exit) {
   GeodesicState node = GeodesicState::Zero();
   const LastNode observer{&node};
   const DeflectionResult d = measure_deflection(tracer, ray.b, observer);
@@ -183,12 +215,10 @@ RayOutcome impact_ray(const GeodesicTracer<SchwarzschildMetric, T, C>& tracer, c
     o.mismatch = true;
     o.error = kWrongAnswer;
   } else if (exact_escapes) {
-    double deflection = d.deflection;
-    if (exit == ExitPoint::node) {  // same bookkeeping as measure_deflection, from the node
-      const double mass = tracer.metric().mass;
-      deflection = node[3] + exact::phi_from_infinity(ray.b, 1.0 / d.start_radius, mass) +
-                   exact::phi_from_infinity(ray.b, 1.0 / node[1], mass) - std::numbers::pi;
-    }
+    // ExitPoint::node: the same bookkeeping as measure_deflection, from the last node.
+    const double deflection = exit == ExitPoint::node
+                                  ? deflection_through(tracer.metric(), ray.b, d.start_radius, node)
+                                  : d.deflection;
     o.error = std::abs(deflection - ray.exact_deflection);
   }
   return o;
@@ -221,16 +251,14 @@ RayOutcome camera_ray(const GeodesicTracer<SchwarzschildMetric, T, C>& tracer, c
 }
 }  // namespace detail
 
-/// Traces the whole ray set with tableau T and controller C at one sweep point.
-template <ExplicitTableau T, StepController C>
-RunStats run_configuration(const RaySet& set, const SweepPoint& point, const RunOptions& options) {
-  TraceSettings settings;
-  settings.max_steps = options.max_steps;
-  settings.integrator.tolerance = {point.rtol, point.atol};
-  settings.initial_step = point.fixed_step ? point.step : 0.0;
-  settings.escape_radius = set.sky_radius;
-  const GeodesicTracer<SchwarzschildMetric, T, C> tracer(set.metric, settings);
-  const double mass = set.metric.mass;
+namespace detail {
+/// Takes the ray set, a tracer over Metric (Schwarzschild: impact and camera rays; Kerr: impact rays only, the
+/// camera-ray code is not instantiated for it) and the run options; returns the errors and costs, the best wall
+/// time of options.repeat runs.
+template <class Metric, ExplicitTableau T, StepController C>
+RunStats run_rays(const RaySet& set, const GeodesicTracer<Metric, T, C>& tracer, const RunOptions& options) {
+  constexpr bool kCamera = std::is_same_v<Metric, SchwarzschildMetric>;
+  [[maybe_unused]] const double mass = set.metric.mass;
 
   const long n_impact = static_cast<long>(set.impacts.size());
   const long n_total = n_impact + static_cast<long>(set.pixels.size());
@@ -249,10 +277,10 @@ RunStats run_configuration(const RaySet& set, const SweepPoint& point, const Run
 #endif
     for (long i = 0; i < n_total; ++i) {
       const bool is_impact = i < n_impact;
-      const detail::RayOutcome o =
-          is_impact
-              ? detail::impact_ray(tracer, set.impacts[static_cast<std::size_t>(i)], options.exit)
-              : detail::camera_ray(tracer, set.pixels[static_cast<std::size_t>(i - n_impact)], mass, options.exit);
+      RayOutcome o;
+      if (is_impact) o = impact_ray(tracer, set.impacts[static_cast<std::size_t>(i)], options.exit);
+      else if constexpr (kCamera)
+        o = camera_ray(tracer, set.pixels[static_cast<std::size_t>(i - n_impact)], mass, options.exit);
       if (is_impact) s.impact_errors[static_cast<std::size_t>(i)] = o.error;
       else s.camera_errors[static_cast<std::size_t>(i - n_impact)] = o.error;
       evals += o.rhs_evals;
@@ -274,6 +302,21 @@ RunStats run_configuration(const RaySet& set, const SweepPoint& point, const Run
   }
   return best;
 }
+}  // namespace detail
+
+/// Traces the whole ray set (Schwarzschild, or Kerr when set.kerr is set) with tableau T and controller C at one
+/// sweep point.
+template <ExplicitTableau T, StepController C>
+RunStats run_configuration(const RaySet& set, const SweepPoint& point, const RunOptions& options) {
+  TraceSettings settings;
+  settings.max_steps = options.max_steps;
+  settings.integrator.tolerance = {point.rtol, point.atol};
+  settings.initial_step = point.fixed_step ? point.step : 0.0;
+  settings.escape_radius = set.sky_radius;
+  if (set.kerr) return detail::run_rays(set, GeodesicTracer<KerrMetric, T, C>(*set.kerr, settings), options);
+  return detail::run_rays(set, GeodesicTracer<SchwarzschildMetric, T, C>(set.metric, settings), options);
+}
+
 
 // ---- summaries and the CSV ---------------------------------------------------------------------------------
 
@@ -299,6 +342,8 @@ struct Record {
   int order = 0;
   SweepPoint point;
   ExitPoint exit = ExitPoint::surface;
+  std::string metric = "schwarzschild";  ///< schwarzschild | kerr (set by the caller, like spin)
+  double spin = 0.0;
   std::size_t rays = 0;
   ErrorSummary all, impact, camera;
   RunStats stats;
@@ -328,7 +373,7 @@ inline Record make_record(std::string_view tableau, std::string_view controller,
 inline constexpr std::string_view kCsvHeader =
     "tableau,controller,order,sweep,rtol,atol,step,exit,rays,max_error,median_error,max_error_impact,"
     "median_error_impact,max_error_camera,median_error_camera,rhs_evals,accepted,rejected,failures,"
-    "verdict_mismatches,seconds,cpu_seconds,ns_per_step";
+    "verdict_mismatches,seconds,cpu_seconds,ns_per_step,metric,spin";
 
 inline void write_csv(std::ostream& out, const std::vector<Record>& records) {
   out << kCsvHeader << '\n';
@@ -356,7 +401,7 @@ inline void write_csv(std::ostream& out, const std::vector<Record>& records) {
     num(s.seconds) << ',';
     num(s.cpu_seconds) << ',';
     num(steps > 0 ? s.seconds * 1e9 / static_cast<double>(steps) : std::numeric_limits<double>::quiet_NaN());
-    out << '\n';
+    out << ',' << r.metric << ',' << r.spin << '\n';
   }
 }
 

@@ -156,6 +156,17 @@ inline std::pair<double, double> spherical_photon_orbit(double r, double spin, d
   return {xi, eta};
 }
 
+/// Takes the spin, a sense s (+1: L_z = b > 0, moving towards +phi; -1: the other way) and the mass; returns the
+/// signed critical impact parameter b_c of equatorial photons moving in that sense (the xi of the circular photon
+/// orbit of that sense; +-3 sqrt(3) M for a = 0). Photons with b beyond it (s b > s b_c) escape, the others are
+/// captured; a = 0.9: b_c = +2.85 M (prograde), -6.83 M (retrograde).
+inline double equatorial_critical_impact(double spin, double s, double mass = 1.0) {
+  kerr_detail::check_hole(spin, mass, "equatorial_critical_impact");
+  if (spin == 0.0) return (s < 0.0 ? -1.0 : 1.0) * 3.0 * std::sqrt(3.0) * mass;
+  const Orbit orbit = s * spin > 0.0 ? Orbit::prograde : Orbit::retrograde;
+  return spherical_photon_orbit(photon_orbit_radius(spin, orbit, mass), spin, mass).first;
+}
+
 struct CelestialPoint {
   double alpha, beta;
   double r;  ///< the spherical photon orbit this point of the curve belongs to (3M for a = 0)

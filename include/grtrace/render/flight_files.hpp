@@ -23,13 +23,13 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -71,30 +71,16 @@ inline std::string flight_signature(const std::map<std::string, std::string>& op
   return hex;
 }
 
-/// True when the scanline EXR at `path` holds every chunk its header promises, read without decompressing a
-/// pixel: after the header come the offsets of its ceil(height / lines per chunk) chunks; each chunk starts with
-/// its first line's y and its byte count; every chunk must lie inside the file. Takes the header as
-/// read_exr_header read it. A tiled or multi-part file is not one grtrace writes: false.
-inline bool exr_chunks_complete(const std::filesystem::path& path, const Imf::Header& header) {
-  if (header.hasTileDescription()) return false;
+/// The header of the scanline EXR at `path` when the file holds every chunk that header promises, else nothing;
+/// read without decompressing a pixel, in one pass: the magic number and version, the header, then the offsets
+/// of its ceil(height / lines per chunk) chunks; each chunk starts with its first line's y and its byte count, and
+/// every chunk must lie inside the file. A tiled or multi-part file is not one grtrace writes: nothing.
+/// Throws what OpenEXR throws for a header it cannot parse.
+inline std::optional<Imf::Header> whole_scanline_exr_header(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) return false;
+  if (!file) return std::nullopt;
   const auto size = static_cast<std::uint64_t>(file.tellg());
-  // Find the end of the header: the same parse again, on a stream we can ask for its position.
   file.seekg(0);
-  char start[8];
-  file.read(start, 8);
-  Imf::StdIFStream stream(file, path.c_str());
-  Imf::Header again;
-  int version = 0;
-  std::memcpy(&version, start + 4, 4);
-  again.readFrom(stream, version);
-  const Imath::Box2i window = header.dataWindow();
-  const long height = static_cast<long>(window.max.y) - window.min.y + 1;
-  const long per_chunk = detail::exr_lines_per_chunk(header.compression());
-  const long chunks = (height + per_chunk - 1) / per_chunk;
-  const auto table_end = static_cast<std::uint64_t>(file.tellg()) + 8u * static_cast<std::uint64_t>(chunks);
-  if (!file || table_end > size) return false;
   auto read_le = [&](int bytes) {
     unsigned char b[8] = {};
     file.read(reinterpret_cast<char*>(b), bytes);
@@ -102,30 +88,43 @@ inline bool exr_chunks_complete(const std::filesystem::path& path, const Imf::He
     for (int i = bytes - 1; i >= 0; --i) v = v << 8 | b[i];
     return v;
   };
+  if (read_le(4) != static_cast<std::uint64_t>(Imf::MAGIC)) return std::nullopt;
+  int version = static_cast<int>(read_le(4));  // readFrom may adjust it
+  if (!file) return std::nullopt;
+  Imf::StdIFStream stream(file, path.c_str());
+  Imf::Header header;
+  header.readFrom(stream, version);
+  if (header.hasTileDescription()) return std::nullopt;
+  const Imath::Box2i window = header.dataWindow();
+  const long height = static_cast<long>(window.max.y) - window.min.y + 1;
+  const long per_chunk = detail::exr_lines_per_chunk(header.compression());
+  const long chunks = (height + per_chunk - 1) / per_chunk;
+  const auto table_end = static_cast<std::uint64_t>(file.tellg()) + 8u * static_cast<std::uint64_t>(chunks);
+  if (!file || table_end > size) return std::nullopt;
   std::vector<std::uint64_t> offsets(static_cast<std::size_t>(chunks));
   for (auto& o : offsets) o = read_le(8);
-  if (!file) return false;
+  if (!file) return std::nullopt;
   for (const std::uint64_t o : offsets) {
-    if (o < table_end || o + 8 > size) return false;
+    if (o < table_end || o + 8 > size) return std::nullopt;
     file.seekg(static_cast<std::streamoff>(o) + 4);  // skip the chunk's first y
     const std::uint64_t bytes = read_le(4);
-    if (!file || o + 8 + bytes > size) return false;
+    if (!file || o + 8 + bytes > size) return std::nullopt;
   }
-  return true;
+  return header;
 }
 
-/// True when the frame was written whole by a flight with this signature: the PNG exists, and the EXR's header
-/// reads with a "flight_signature" attribute equal to it and every chunk of pixels inside the file (a truncated
-/// or damaged file, or another flight's frame, is rendered again). Reads the header and the offset table only:
-/// a resumed 300-frame flight checks its frames in well under a second instead of decompressing each one.
+/// True when the frame was written whole by a flight with this signature: the PNG exists, and the EXR holds every
+/// chunk of pixels its header promises with a "flight_signature" attribute equal to it (a truncated or damaged
+/// file, or another flight's frame, is rendered again). Reads the header and the offset table only: a resumed
+/// 300-frame flight checks its frames in well under a second instead of decompressing each one.
 inline bool flight_frame_done(const std::filesystem::path& exr, const std::filesystem::path& png,
                               const std::string& signature) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(exr, ec) || !std::filesystem::is_regular_file(png, ec)) return false;
   try {
-    const Imf::Header header = detail::read_exr_header(exr);
-    const auto* recorded = header.findTypedAttribute<Imf::StringAttribute>("flight_signature");
-    return recorded && recorded->value() == signature && exr_chunks_complete(exr, header);
+    const std::optional<Imf::Header> header = whole_scanline_exr_header(exr);
+    const auto* recorded = header ? header->findTypedAttribute<Imf::StringAttribute>("flight_signature") : nullptr;
+    return recorded && recorded->value() == signature;
   } catch (const std::exception&) {
     return false;  // unreadable: rendered again
   }
@@ -133,11 +132,13 @@ inline bool flight_frame_done(const std::filesystem::path& exr, const std::files
 
 /// ffmpeg's image-sequence pattern for the flight's PNG previews ('%' in the path itself doubled).
 inline std::string flight_png_pattern(const std::filesystem::path& out_png, int frames) {
-  std::string stem;
-  for (const char c : out_png.stem().string()) stem += c == '%' ? std::string("%%") : std::string(1, c);
-  std::string dir;
-  for (const char c : out_png.parent_path().string()) dir += c == '%' ? std::string("%%") : std::string(1, c);
-  const std::string name = stem + "-%0" + std::to_string(flight_frame_digits(frames)) + "d.png";
+  auto escaped = [](const std::string& text) {
+    std::string out;
+    for (const char c : text) out += c == '%' ? std::string("%%") : std::string(1, c);
+    return out;
+  };
+  const std::string dir = escaped(out_png.parent_path().string());
+  const std::string name = escaped(out_png.stem().string()) + "-%0" + std::to_string(flight_frame_digits(frames)) + "d.png";
   return dir.empty() ? name : dir + "/" + name;
 }
 

@@ -37,7 +37,6 @@ using tools::JsonObject;
 using tools::UsageError;
 using render_tool::Request;
 using render_tool::SkyDirections;
-using render_tool::TableStats;
 using render_tool::FlightRequest;
 
 CommandLine make_command_line() {
@@ -542,7 +541,7 @@ void describe_frame(Image& image, const Request& q, const CommandLine& cli, int 
 }
 
 /// The frame (or, for a flight, every frame through q.flight.sink) from the translation unit of q's metric.
-std::optional<Frame> render_request(const Request& q, SkyDirections* where, TableStats& table) {
+std::optional<Frame> render_request(const Request& q, SkyDirections* where, TracerReport& table) {
   const std::string& metric = q.metric.name;
   if (metric == "schwarzschild" || metric == "minkowski") return render_tool::render_schwarzschild(q, where, table);
   if (metric == "kerr") return render_tool::render_kerr(q, where);
@@ -565,8 +564,8 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   const std::string signature = flight_signature(content);
   const int frames = static_cast<int>(q.flight.cameras.size());
   q.flight.skip = [&](int i) { return flight_frame_done(flight_exr_path(q, i), png_path(flight_exr_path(q, i)), signature); };
-  TableStats table;
-  std::string tracer = "none";
+  TracerReport table;  // the frames' table statistics summed, and the tracer that ran
+  table.name = "none";
   q.flight.sink = [&](int i, Frame& frame, const TracerReport& t) {
     Image& image = frame.image;
     describe_frame(image, q, cli, argc, argv);
@@ -575,9 +574,9 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
     image.metadata["flight_frames"] = std::to_string(frames);
     image.metadata["flight_tau"] = JsonObject::number(q.flight.tau[static_cast<std::size_t>(i)]);
     image.metadata["flight_signature"] = signature;
-    tracer = t.name;
-    table.rays += t.table_rays;
-    table.steps += t.table_steps;
+    table.name = t.name;
+    table.table_rays += t.table_rays;
+    table.table_steps += t.table_steps;
     table.fallback_rays += t.fallback_rays;
     OutputSet outputs;
     const std::string path = flight_exr_path(q, i);
@@ -600,13 +599,13 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   json.add("proper_time_step", q.flight.dtau).add("seconds", stats.seconds);
   json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds);
   json.add("status_counts", status_counts_json(stats.status_counts));
-  json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
+  json.add("tracer", table.name).add("tableau", q.tableau).add("control", q.control);
   json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
   json.add("first_frame", flight_exr_path(q, 0)).add("last_frame", flight_exr_path(q, frames - 1));
   if (!mp4.empty()) json.add("mp4", mp4);
-  if (tracer == "planar" || tracer == "symmetric-sky") {
-    json.add("table_rays", table.rays).add("table_steps", table.steps).add("fallback_rays", table.fallback_rays);
-    json.add("mean_steps", stats.rays > 0 ? static_cast<double>(table.steps) / static_cast<double>(stats.rays) : 0.0);
+  if (table.name == "planar" || table.name == "symmetric-sky") {
+    json.add("table_rays", table.table_rays).add("table_steps", table.table_steps).add("fallback_rays", table.fallback_rays);
+    json.add("mean_steps", stats.rays > 0 ? static_cast<double>(table.table_steps) / static_cast<double>(stats.rays) : 0.0);
   }
   std::cout << json.str() << std::endl;
   return 0;
@@ -625,7 +624,7 @@ int main(int argc, char** argv) {
     SkyDirections directions;  // --error-map only
     SkyDirections* const where = q.error_map ? &directions : nullptr;
     const auto t0 = std::chrono::steady_clock::now();
-    TableStats table;
+    TracerReport table;
     std::optional<Frame> frame = render_request(q, where, table);
     // The table (planar and symmetric tracers) is part of the frame's cost: time the whole thing.
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -664,7 +663,7 @@ int main(int argc, char** argv) {
     json.add("width", st.width).add("height", st.height).add("seconds", seconds);
     json.add("rays_per_second", st.rays_per_second);
     const bool tabulated = tracer == "symmetric-sky" || tracer == "planar";
-    const double mean_steps = tabulated ? static_cast<double>(table.steps) / static_cast<double>(st.rays) : st.mean_steps;
+    const double mean_steps = tabulated ? static_cast<double>(table.table_steps) / static_cast<double>(st.rays) : st.mean_steps;
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
@@ -675,7 +674,7 @@ int main(int argc, char** argv) {
       json.add("error_pixels", errors.judged).add("error_mismatches", errors.mismatches);
       json.add("error_map", error_map_path(q.out));
     }
-    if (tabulated) json.add("table_rays", table.rays).add("table_steps", table.steps);
+    if (tabulated) json.add("table_rays", table.table_rays).add("table_steps", table.table_steps);
     if (tracer == "planar") json.add("fallback_rays", table.fallback_rays);
     std::cout << json.str() << std::endl;
     phase("json");

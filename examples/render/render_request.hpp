@@ -29,10 +29,6 @@
 
 namespace grtrace::render_tool {
 
-struct TableStats {
-  long rays = 0, steps = 0;
-  long fallback_rays = 0;  ///< planar tracer: pixels traced by the general tracer instead
-};
 
 /// --flight: one frame per camera along a path (render/flight.hpp); empty cameras: a single frame (Request::camera).
 struct FlightRequest {
@@ -61,13 +57,6 @@ struct Request {
 /// Sky direction of every pixel in double precision (the EXR channels are float), kept for --error-map.
 using SkyDirections = std::vector<SkyDirection>;
 
-/// The table statistics of a tracer that builds one (planar, symmetric-sky); zero for the others.
-inline TableStats table_stats_of(const TracerReport& r) { return {r.table_rays, r.table_steps, r.fallback_rays}; }
-template <class Tracer>
-TableStats table_stats_of(const Tracer& tracer) {
-  return table_stats_of(tracer_report(tracer));
-}
-
 /// The frame for any metric through the tracer asked for: --tracer general, or auto / planar: the fastest whose
 /// assumptions hold (trace/auto_tracer.hpp; --tracer planar was refused up front where it does not apply). Every
 /// (tableau, controller) pair and both preset scene types are instantiated for Metric. A scene whose objects do
@@ -75,7 +64,7 @@ TableStats table_stats_of(const Tracer& tracer) {
 /// With q.flight.cameras: every frame of the flight through q.flight's skip and sink, and nothing returned.
 template <MetricPolicy Metric>
 std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyDirections* directions,
-                                    TableStats* table = nullptr) {
+                                    TracerReport* table = nullptr) {
   RenderOptions options;
   options.threads = q.threads;
   std::optional<Frame> frame;
@@ -98,7 +87,7 @@ std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyD
         }
         auto draw = [&](const auto& tracer) {
           frame.emplace(render_frame(*q.camera, tracer, options, directions));
-          if (table) *table = table_stats_of(tracer);
+          if (table) *table = tracer_report(tracer);
         };
         if (q.tracer == "general") draw(make_general_tracer<T, C>(metric, q.settings, q.correction, scene));
         else with_auto_tracer<T, C>(metric, q.settings, *q.camera, q.correction, scene, q.table_nodes, draw);
@@ -113,7 +102,7 @@ std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyD
 
 /// render_general for the named metric when it is one of Metrics (this translation unit's share of the metrics).
 template <class... Metrics>
-std::optional<Frame> render_one_of(const Request& q, SkyDirections* directions, TableStats* table = nullptr) {
+std::optional<Frame> render_one_of(const Request& q, SkyDirections* directions, TracerReport* table = nullptr) {
   return with_named_metric(q.metric, [&](const auto& metric) -> std::optional<Frame> {
     using M = std::remove_cvref_t<decltype(metric)>;
     if constexpr ((std::is_same_v<M, Metrics> || ...)) return render_general(q, metric, directions, table);
@@ -122,9 +111,9 @@ std::optional<Frame> render_one_of(const Request& q, SkyDirections* directions, 
 }
 
 // Each returns the frame, or nothing for a flight (q.flight.cameras: the frames went to q.flight.sink).
-std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table);
+std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TracerReport& table);
 std::optional<Frame> render_kerr(const Request& q, SkyDirections* directions);
-std::optional<Frame> render_rn_sds(const Request& q, SkyDirections* directions, TableStats& table);
+std::optional<Frame> render_rn_sds(const Request& q, SkyDirections* directions, TracerReport& table);
 std::optional<Frame> render_wormhole_ef(const Request& q, SkyDirections* directions);
 
 }  // namespace grtrace::render_tool

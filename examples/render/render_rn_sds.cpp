@@ -3,7 +3,7 @@
 
 namespace grtrace::render_tool {
 
-std::optional<Frame> render_rn_sds(const Request& q, SkyDirections* directions, TableStats& table) {
+std::optional<Frame> render_rn_sds(const Request& q, SkyDirections* directions, TracerReport& table) {
   return render_one_of<AutoReissnerNordstrom, AutoSchwarzschildDeSitter>(q, directions, &table);
 }
 

@@ -9,7 +9,7 @@ namespace grtrace::render_tool {
 /// Flat space by straight lines; Schwarzschild by auto's choice (one table of rays for the frame: the planar tracer,
 /// trace/auto_tracer.hpp), every pixel integrated (--tracer general), or the older sky-only table (--tracer
 /// symmetric).
-std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TableStats& table) {
+std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TracerReport& table) {
   RenderOptions options;
   options.threads = q.threads;
   const Camera& cam = *q.camera;
@@ -30,7 +30,7 @@ std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* direc
     const BackgroundScene scene = background_scene(q.scene);  // the symmetric tracer draws no objects
     const SymmetricSceneTracer<T, C, BackgroundScene> tracer(metric, q.settings, cam, q.correction, scene,
                                                              q.table_nodes);
-    table = {tracer.table().table_rays(), tracer.table().table_steps()};
+    table = tracer_report(tracer);
     frame.emplace(render_frame(cam, tracer, options, directions));
   });
   return frame;

@@ -145,6 +145,44 @@ TEST(PlanarTable, StoredPathsKeepTheFirstIntegral) {
   EXPECT_LT(worst, 1e-8);  // the grid interpolation of steps up to max_step
 }
 
+// Every table ray's stored path reaches the farthest end (sky sphere or guard) among the rays that share a pixel
+// stencil with it (three on each side), so no pixel reads past a neighbour's path; the rays continued only by one
+// step past their own end that fell short were traced again (build()), and a captured ray may stop deep inside.
+TEST(PlanarTable, EveryPathReachesItsNeighboursEnds) {
+  const SchwarzschildMetric metric{1.0};
+  using Table = PlanarPathTable<SchwarzschildMetric, Tsitouras54, IController>;
+  TraceSettings settings;
+  settings.integrator.tolerance = {2e-9, 2e-11};
+  settings.escape_radius = 400.0;
+  for (const double camera_r : {8.0, 50.0, 1000.0 / 3.0}) {
+    const Table table(metric, camera_r, settings, 0.0, pi, 256);
+    long checked = 0;
+    for (int side : {+1, -1}) {
+      const auto& nodes = table.nodes(side);
+      const int n = static_cast<int>(nodes.size());
+      for (int i = 0; i < n; ++i) {
+        const auto& node = nodes[static_cast<std::size_t>(i)];
+        if (node.stopped_inside) continue;
+        if (std::sin(node.delta) < 1e-6) continue;  // radial: the continuation past u = 0 blows up at once
+        if (node.status != RayStatus::escaped && node.status != RayStatus::captured) continue;  // its pixels fall back
+        double farthest = 0.0;
+        for (int j = std::max(0, i - 3); j <= std::min(n - 1, i + 3); ++j) {
+          const auto& o = nodes[static_cast<std::size_t>(j)];
+          farthest = std::max(farthest, side > 0 ? o.sweep_sky : o.sweep_guard);
+        }
+        const double reach = static_cast<double>(node.path.size() - 1) * Table::grid_step;
+        EXPECT_GE(reach, farthest) << "camera r " << camera_r << " side " << side << " node " << i << " status " << static_cast<int>(node.status);
+        // ... and not much farther: one step (<= max_step) past its own end or that farthest end.
+        // (Nodes within ~1e-10 rad of delta_c may end on the other side's fate: their own end is that fate's.)
+        const double own_end = node.status == RayStatus::escaped ? node.sweep_infinity : node.sweep_guard;
+        EXPECT_LE(reach, std::max(own_end, farthest) + 2.0 * Table::max_step) << "node " << i;
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 256) << "captured rays that stop inside are skipped, not all of them";
+  }
+}
+
 // The angle range from the frame's border (and the pixels that see straight out or in) equals a scan of every pixel.
 TEST(PlanarAngleRange, EqualsTheScanOfEveryPixel) {
   const SchwarzschildMetric metric{1.0};

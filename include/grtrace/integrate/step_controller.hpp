@@ -42,11 +42,25 @@ struct FixedStep {
 };
 
 namespace controller_detail {
+/// x^k for a small positive integer k, by multiplication.
+constexpr double integer_power(double x, int k) {
+  double p = 1.0;
+  for (int i = 0; i < k; ++i) p *= x;
+  return p;
+}
+
+/// True when safety * err^(-1/k) is certainly above lim.max_factor, i.e. the law's pow would be clamped anyway:
+/// err < (safety / max_factor)^k, with a relative margin of 1e-9 that pow's rounding (< 1 ulp) cannot cross, so
+/// skipping pow never changes a decision. Steps held down by h_max (small err) are common; pow is not cheap.
+inline bool grows_by_max_factor(const StepFactorLimits& lim, double err, int k) {
+  return err < integer_power(lim.safety / lim.max_factor, k) * (1.0 - 1e-9);
+}
+
 /// The elementary (I) law. A non-finite error (NaN stage) shrinks by the largest allowed factor.
 inline StepDecision elementary(const StepFactorLimits& lim, double err, double h, int k) {
   if (!std::isfinite(err)) return {false, h * lim.min_factor};
   if (err <= 1.0) {
-    const double factor = err == 0.0 ? lim.max_factor : lim.safety * std::pow(err, -1.0 / k);
+    const double factor = grows_by_max_factor(lim, err, k) ? lim.max_factor : lim.safety * std::pow(err, -1.0 / k);
     return {true, h * lim.clamp(factor)};
   }
   return {false, h * lim.clamp(std::min(lim.safety * std::pow(err, -1.0 / k), lim.safety))};

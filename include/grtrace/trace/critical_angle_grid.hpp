@@ -63,6 +63,11 @@ struct CriticalAngleGrid {
     st.count = std::min(4, nodes);
     st.first = std::clamp(static_cast<int>(std::floor(x)) - 1, 0, nodes - st.count);
     st.nearest = std::clamp(static_cast<int>(std::lround(x)), 0, nodes - 1);
+    if (st.count == 4) {  // the cubic's weights in closed form (denominators -6, 2, -2, 6): one per pixel
+      const double t = x - st.first, t1 = t - 1.0, t2 = t - 2.0, t3 = t - 3.0;
+      st.weight = {-t1 * t2 * t3 / 6.0, t * t2 * t3 / 2.0, -t * t1 * t3 / 2.0, t * t1 * t2 / 6.0};
+      return st;
+    }
     for (int j = 0; j < st.count; ++j) {
       double w = 1.0;
       for (int l = 0; l < st.count; ++l)

@@ -6,6 +6,7 @@
 // already in the pixel's momentum).
 #pragma once
 
+#include "grtrace/core/sin_cos.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
@@ -24,15 +25,21 @@ struct PlanarGeometry {
   double angular_momentum;  ///< L = r^2 dpsi/dlambda (>= 0: psi grows along the ray)
 
   /// The embedding's unit vector at swept angle psi, and the unit vector along increasing psi there.
-  Vec3 direction_at(double psi) const { return std::cos(psi) * radial + std::sin(psi) * tangential; }
-  Vec3 sweep_direction_at(double psi) const { return -std::sin(psi) * radial + std::cos(psi) * tangential; }
+  Vec3 direction_at(double psi) const {
+    const SinCos sc = sin_cos(psi);  // inline fdlibm: one per pixel of a table-traced frame
+    return sc.cos * radial + sc.sin * tangential;
+  }
+  Vec3 sweep_direction_at(double psi) const {
+    const SinCos sc = sin_cos(psi);
+    return -sc.sin * radial + sc.cos * tangential;
+  }
 };
 
 /// Reads the planar geometry of a ray from its state (spherical chart, either time direction).
+/// `e` is the spherical basis at the ray's start, spherical_basis(y[2], y[3]) (a frame's pixels share one).
 template <StaticSphericalMetric M>
-PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y) {
+PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y, const SphericalBasis& e) {
   const double r = y[1];
-  const SphericalBasis e = spherical_basis(y[2], y[3]);
   const double a = metric.lapse_squared(r);
   const Vec3 tangential = embedded_tangential_velocity(y, e);  // orthonormal-frame tangential part of dx/dl
   double k_radial;                                              // orthonormal radial part
@@ -46,6 +53,11 @@ PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y) {
   g.impact = std::abs(r * t_norm / (a * y[4]));
   g.angular_momentum = r * t_norm;
   return g;
+}
+
+template <StaticSphericalMetric M>
+PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y) {
+  return planar_geometry(metric, y, spherical_basis(y[2], y[3]));
 }
 
 /// The direction at angle `sweep` from `radial` in the plane of the ray.

@@ -73,6 +73,7 @@ class PlanarPathTable {
     double sweep_infinity = nan;  ///< escaped: psi where u = 0 (the exact direction at infinity)
     double sweep_guard = nan;     ///< captured: psi where u = 1 / r_guard
     int steps = 0;                ///< accepted integration steps until the end (sky sphere or guard)
+    bool stopped_inside = false;  ///< captured: the continuation stopped deep inside the guard (u = 4 / r_guard)
     std::vector<std::array<double, 3>> path;  ///< (u, u', u'') at psi = j grid_step
     static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   };
@@ -121,6 +122,8 @@ class PlanarPathTable {
   double camera_radius() const { return camera_r_; }
   const Metric& metric() const { return metric_; }
   long table_steps() const { return total_steps_; }
+  /// Table rays traced a second time to reach farther for their neighbours' pixels (see build()).
+  long retraced_rays() const { return retraced_; }
   int table_rays() const { return static_cast<int>(escaped_.nodes.size() + captured_.nodes.size()); }
 
   /// The fate of the ray leaving the camera at angle delta, interpolated from the table rays around it.
@@ -162,8 +165,10 @@ class PlanarPathTable {
   /// The table ray nodes of one side (+1 escaped, -1 captured), for tests.
   const std::vector<Node>& nodes(int side) const { return side > 0 ? escaped_.nodes : captured_.nodes; }
 
-  /// One table ray at angle delta (also what tests compare against the general tracer).
-  Node trace_node(double delta) const {
+  /// One table ray at angle delta (also what tests compare against the general tracer). Its path is continued past
+  /// its own end (u = 0 for escaped rays, the horizon guard for captured ones) by one maximal step, and at least
+  /// to swept angle `reach` (build() asks for more where a neighbour's pixels need it).
+  Node trace_node(double delta, double reach = 0.0) const {
     Node node;
     node.delta = delta;
     // The ray equation degenerates for an exactly radial ray (b = 0, psi never grows): keep nodes off it.
@@ -173,9 +178,9 @@ class PlanarPathTable {
     const double b = r * std::sin(d) / std::sqrt(a);
     const PlanarRayEquation<Metric> eq{&metric_, 1.0 / (b * b)};
     const double u_sky = 1.0 / sky_r_, u_guard = 1.0 / guard_r_;
-    // Where the continuation past the end stops: beyond infinity by a margin in psi (escaped), or well inside the
-    // guard (captured; u blows up at the central singularity).
-    constexpr double margin = 0.25;
+    // Where the continuation past the end stops: beyond infinity by a margin in psi (escaped), beyond the guard
+    // (captured), or well inside the guard (u blows up at the central singularity).
+    constexpr double margin = max_step;
     const double u_stop_inside = 4.0 * u_guard;
 
     IntegratorSettings is = settings_.integrator;
@@ -185,22 +190,32 @@ class PlanarPathTable {
     Vector<2> y0(1.0 / r, -std::cos(d) / (std::sin(d) * r * std::sqrt(bscale)));
     integ.start(eq, y0, settings_.initial_step);
 
-    std::vector<std::pair<double, std::array<double, 3>>> accepted;  // (psi, (u, u', u''))
+    // (psi, (u, u', u'')) of every accepted step; one buffer per thread, reused from node to node.
+    thread_local std::vector<std::pair<double, std::array<double, 3>>> accepted;
+    accepted.clear();
     auto record = [&](double psi, const Vector<2>& y) {
       accepted.push_back({psi, {y[0], y[1], eq.curvature(y[0])}});
     };
     record(0.0, y0);
-    // psi where u crosses `level` inside the last accepted interval (bisection on its quintic Hermite).
+    // psi where u crosses `level` inside the last accepted interval, on its quintic Hermite: Newton (the derivative
+    // w is at hand) kept inside the bracket [lo, hi] that bisection would keep (a Newton step leaving it is replaced
+    // by the midpoint); a few iterations where bisection to 1e-17 took ~57 evaluations.
     auto crossing = [&](double level) {
       const auto& [p0, s0] = accepted[accepted.size() - 2];
       const auto& [p1, s1] = accepted.back();
       const double h = p1 - p0, sign = s1[0] > s0[0] ? 1.0 : -1.0;
-      double lo = 0.0, hi = 1.0;
-      for (int it = 0; it < 200 && hi - lo > 1e-17; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (sign * (quintic_hermite(s0, s1, h, mid).u - level) < 0.0 ? lo : hi) = mid;
+      double lo = 0.0, hi = 1.0, t = 0.5;
+      for (int it = 0; it < 100 && hi - lo > 1e-17; ++it) {
+        const PathPoint q = quintic_hermite(s0, s1, h, t);
+        const double f = sign * (q.u - level);
+        (f < 0.0 ? lo : hi) = t;
+        if (f == 0.0) break;
+        const double newton = t - (q.u - level) / (h * q.w);
+        const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+        if (std::abs(next - t) < 1e-16) break;
+        t = next;
       }
-      return p0 + 0.5 * (lo + hi) * h;
+      return p0 + t * h;
     };
 
     double psi_end_continuation = std::numeric_limits<double>::infinity();
@@ -227,16 +242,19 @@ class PlanarPathTable {
           node.status = RayStatus::captured;
           node.sweep_guard = crossing(u_guard);
           node.steps = integ.accepted();
-          psi_end_continuation = 2.0 * node.sweep_guard + margin;
+          psi_end_continuation = std::max(node.sweep_guard, reach) + margin;
           ended = true;
         }
       }
       if (ended && node.status == RayStatus::escaped && std::isnan(node.sweep_infinity) && u <= 0.0) {
         node.sweep_infinity = crossing(0.0);
-        psi_end_continuation = 2.0 * node.sweep_infinity + margin;
+        psi_end_continuation = std::max(node.sweep_infinity, reach) + margin;
       }
       if (psi >= psi_end_continuation) break;
-      if (ended && node.status == RayStatus::captured && u >= u_stop_inside) break;
+      if (ended && node.status == RayStatus::captured && u >= u_stop_inside) {
+        node.stopped_inside = true;
+        break;
+      }
     }
     resample(accepted, eq, node.path);
     return node;
@@ -253,6 +271,7 @@ class PlanarPathTable {
                        const PlanarRayEquation<Metric>& eq, std::vector<std::array<double, 3>>& path) {
     if (accepted.size() < 2) return;
     const double last = accepted.back().first;
+    path.reserve(static_cast<std::size_t>(last / grid_step) + 2);
     std::size_t k = 0;
     for (int j = 0;; ++j) {
       const double psi = j * grid_step;
@@ -280,6 +299,35 @@ class PlanarPathTable {
       side.nodes[static_cast<std::size_t>(i)] = trace_node(delta_c_ - sign * side.grid.gap_of_node(i));
       steps += side.nodes[static_cast<std::size_t>(i)].steps;
     }
+    // A pixel reads its stencil's paths up to its own end, interpolated from the stencil's ends (path_at): so each
+    // node must reach the farthest end among the nodes that share a stencil with it (three on each side). The few
+    // nodes that stop short are traced again with that reach.
+    std::vector<double> need(static_cast<std::size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i) {
+      double farthest = 0.0;
+      for (int j = std::max(0, i - 3); j <= std::min(n - 1, i + 3); ++j) {
+        const Node& o = side.nodes[static_cast<std::size_t>(j)];
+        const double end = sign > 0 ? o.sweep_sky : o.sweep_guard;
+        if (std::isfinite(end)) farthest = std::max(farthest, end);
+      }
+      need[static_cast<std::size_t>(i)] = farthest;
+    }
+    long retraced = 0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 8) reduction(+ : retraced)
+#endif
+    for (int i = 0; i < n; ++i) {
+      Node& node = side.nodes[static_cast<std::size_t>(i)];
+      const double covered = static_cast<double>(node.path.size()) * grid_step - 2.0 * grid_step;
+      if (node.status != RayStatus::escaped && node.status != RayStatus::captured) continue;
+      if (covered >= need[static_cast<std::size_t>(i)]) continue;
+      if (node.status == RayStatus::captured && node.stopped_inside) continue;  // nothing more to read there
+      const int node_steps = node.steps;
+      node = trace_node(node.delta, need[static_cast<std::size_t>(i)]);
+      node.steps = node_steps;
+      ++retraced;
+    }
+    retraced_ += retraced;
     total_steps_ += steps;
     return side;
   }
@@ -291,6 +339,7 @@ class PlanarPathTable {
   double delta_c_ = 0.0;
   Side escaped_, captured_;
   long total_steps_ = 0;
+  long retraced_ = 0;
 };
 
 }  // namespace grtrace

@@ -119,10 +119,16 @@ class PlanarSceneTracer {
         fallback_(metric, settings, controller, correction, std::move(scene)) {
     const auto [lo, hi] = planar_angle_range(metric, camera);
     table_.emplace(metric, camera.position()[1], settings, lo, hi, nodes_per_side, controller);
+    camera_theta_ = camera.position()[2];
+    camera_phi_ = camera.position()[3];
+    camera_basis_ = spherical_basis(camera_theta_, camera_phi_);
   }
 
   RayOutcome trace(const GeodesicState& y0) const {
-    const PlanarGeometry g = planar_geometry(metric_, y0);
+    // Every pixel of the frame starts where the camera is: its basis is computed once (two sincos per pixel saved).
+    const bool at_camera = y0[2] == camera_theta_ && y0[3] == camera_phi_;
+    const PlanarGeometry g =
+        planar_geometry(metric_, y0, at_camera ? camera_basis_ : spherical_basis(y0[2], y0[3]));
     const auto look = table_->at(g.delta);
     if (look.status != RayStatus::escaped && look.status != RayStatus::captured) return fall_back(y0);
     const double energy = metric_.lapse_squared(y0[1]) * y0[4];  // conserved E = g_tt k^t (< 0: past-directed)
@@ -136,10 +142,13 @@ class PlanarSceneTracer {
       double psi = alpha + 0.5 * pi;
       psi -= pi * std::floor(psi / pi);  // first zero in [0, pi)
       if (psi <= 0.0) psi += pi;         // the start itself is not a crossing
-      for (; psi < look.sweep_end; psi += pi) {
+      // cos and sin of the crossings: psi advances by pi, so both only change sign.
+      const SinCos first = sin_cos(psi);
+      double cos_psi = first.cos, sin_psi = first.sin;
+      for (; psi < look.sweep_end; psi += pi, cos_psi = -cos_psi, sin_psi = -sin_psi) {
         const auto p = table_->path_at(look, psi);
         if (!p) return fall_back(y0);
-        const GeodesicState y = state_at(g, energy, psi, *p);
+        const GeodesicState y = state_at(g, energy, cos_psi, sin_psi, *p);
         std::optional<RayOutcome> hit;
         visit_hit(y, [&](int position, const auto& object) {
           RayOutcome out;
@@ -193,15 +202,15 @@ class PlanarSceneTracer {
     return fallback_.trace(y0);
   }
 
-  // The ray's state where it crosses the equatorial plane at swept angle psi, from u = 1 / r and w = du/dpsi:
-  // theta = pi / 2 exactly, phi from the plane's direction there; momentum from the conserved E (k^t = E / A) and
-  // L = r^2 dpsi/dlambda (dr/dlambda = -L w). On the equator e_theta = -z and e_phi = z x e_r, so no trigonometry
-  // beyond one atan2 is needed.
-  GeodesicState state_at(const PlanarGeometry& g, double energy, double psi, const PathPoint& p) const {
+  // The ray's state where it crosses the equatorial plane at swept angle psi (c = cos psi, s = sin psi), from
+  // u = 1 / r and w = du/dpsi: theta = pi / 2 exactly, phi from the plane's direction there; momentum from the
+  // conserved E (k^t = E / A) and L = r^2 dpsi/dlambda (dr/dlambda = -L w). On the equator e_theta = -z and
+  // e_phi = z x e_r, so no trigonometry beyond one atan2 is needed.
+  GeodesicState state_at(const PlanarGeometry& g, double energy, double c, double s, const PathPoint& p) const {
     const double r = 1.0 / p.u, L = g.angular_momentum, psidot = L * p.u * p.u;
-    const double c = std::cos(psi), s = std::sin(psi);
     const Vec3 n = c * g.radial + s * g.tangential, m = -s * g.radial + c * g.tangential;
-    const double nxy = std::hypot(n.x(), n.y()), cp = n.x() / nxy, sp = n.y() / nxy;
+    // n is a unit vector in the equatorial plane (|n_z| ~ 1e-16): no overflow for hypot to guard against.
+    const double nxy = std::sqrt(n.x() * n.x() + n.y() * n.y()), cp = n.x() / nxy, sp = n.y() / nxy;
     GeodesicState y;
     y << 0.0, r, 0.5 * std::numbers::pi, std::atan2(n.y(), n.x()), energy / metric_.lapse_squared(r), -L * p.w,
         -psidot * m.z(), psidot * (cp * m.y() - sp * m.x());
@@ -221,6 +230,8 @@ class PlanarSceneTracer {
   }
 
   Metric metric_;
+  double camera_theta_ = 0.0, camera_phi_ = 0.0;
+  SphericalBasis camera_basis_{};
   AngleCorrection correction_;
   GeneralSceneTracer<Metric, T, C, SceneT> fallback_;
   std::optional<PlanarPathTable<Metric, T, C>> table_;

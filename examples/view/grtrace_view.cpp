@@ -103,7 +103,7 @@ CommandLine make_command_line() {
                            "step: the older spelling of --plot")
       // scene (as grtrace-render)
       .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced; "
-                               "the default, except with --chart ks: checker, the disk needs a spherical chart)")
+                               "with --chart ks the default is checker: the disk needs a spherical chart)")
       .option("mass", "1", "black-hole mass M (G = c = 1)")
       .option("metric", "schwarzschild", "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, "
                                          "the ergosphere and the ISCO of the disk's sense)")

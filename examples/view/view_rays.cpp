@@ -19,8 +19,9 @@ void with_scene_tracer(const Request& q, F&& f) {
       using M = std::remove_cvref_t<decltype(metric)>;
       const GeodesicTracer<M, T, C> tracer(metric, q.rays.settings);
       // The thin disk is theta = pi/2 of a spherical chart; a disk scene in Kerr-Schild is refused up front.
-      if constexpr (M::chart == Chart::spherical)
+      if constexpr (M::chart == Chart::spherical) {
         if (q.scene == "disk") return f(tracer, make_scene_spec(q).disk);
+      }
       f(tracer);
     });
   });

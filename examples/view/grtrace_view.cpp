@@ -801,12 +801,12 @@ int run_view(const Request& q) {
     std::snprintf(flight_caption, sizeof flight_caption, "flight %s: frame %d of %d, tau = %.6g M; ",
                   q.flight->kind.c_str(), q.flight->frame, q.flight->frames, q.flight->tau);
   char scene_caption[400];
-  const std::string hole =
-      q.kerr ? "a = " + tools::JsonObject::number(q.spin) + (q.chart == "ks" ? " (Kerr-Schild)" : " (Boyer-Lindquist)")
-             : std::string();
+  char hole[80] = "";
+  if (q.kerr)
+    std::snprintf(hole, sizeof hole, ", a = %g (%s)", q.spin, q.chart == "ks" ? "Kerr-Schild" : "Boyer-Lindquist");
   std::snprintf(scene_caption, sizeof scene_caption,
-                "%sM = %g%s%s; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", flight_caption,
-                q.mass, hole.empty() ? "" : ", ", hole.c_str(), camera_bl[1], camera_bl[2] / kDeg, q.fov, rays.size(),
+                "%sM = %g%s; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", flight_caption,
+                q.mass, hole, camera_bl[1], camera_bl[2] / kDeg, q.fov, rays.size(),
                 std::string(viz::to_string(scene.color_by(viz::Layer::rays))).c_str());
 
   viz::WindowOptions opt;

@@ -7,6 +7,7 @@
 #include "command_line.hpp"
 #include "flight_options.hpp"
 #include "json_writer.hpp"
+#include "kerr_options.hpp"
 #include "render_request.hpp"
 
 #include "grtrace/exact/kerr_exact.hpp"
@@ -52,8 +53,7 @@ CommandLine make_command_line() {
               "sds (Schwarzschild-de Sitter) | wormhole (Ellis) | schwarzschild-ef (Eddington-Finkelstein)")
       .option("mass", "1", "black-hole mass M (G = c = 1)")
       .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)")
-      .option("chart", "bl", "kerr: bl (Boyer-Lindquist) | ks (Kerr-Schild, horizon-penetrating); the camera is "
-                             "placed in Boyer-Lindquist coordinates for both")
+      .option("chart", "bl", tools::kKerrChartHelp)
       .option("charge", "0.5", "rn: charge Q, |Q| < M")
       .option("lambda", "1e-5", "sds: cosmological constant, 0 < Lambda < 1/(9 M^2); the sky sphere must lie "
                                 "inside the cosmological horizon")
@@ -61,10 +61,9 @@ CommandLine make_command_line() {
                              "the other side, whose sky is drawn differently: green-violet checker, orange stars)")
       .option("camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)")
       .option("camera-theta", "90", "camera polar angle, degrees, strictly between 0 and 180")
-      .option("camera-phi", "0", "camera azimuth, degrees")
-      .option("observer", "static", "static | zamo: the observer whose frame carries the camera (same for a "
-                                    "non-rotating hole); --metric kerr defaults to zamo (valid in the ergosphere)")
-      .option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)")
+      .option("camera-phi", "0", "camera azimuth, degrees");
+  tools::declare_observer_option(cli);
+  cli.option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)")
       .option("look", "-1,0,0", "look direction r,theta,phi in the observer's frame (default: at the hole)")
       .option("up", "0,-1,0", "up direction r,theta,phi in the observer's frame (default: the north pole)")
       .option("fov", "90", "horizontal field of view, degrees, in (0, 180)")
@@ -85,8 +84,7 @@ CommandLine make_command_line() {
       .option("table-rays", "2048", "planar and symmetric tracers: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
       .option("checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)")
-      .option("disk-inner", "6", "disk inner radius (disk scene); kerr: default and lower bound the ISCO of the "
-                                 "disk's sense (BPT 1972), e.g. 2.32 for a = 0.9 prograde")
+      .option("disk-inner", "6", tools::disk_inner_help())
       .option("disk-outer", "20", "disk outer radius (disk scene)")
       .option("threads", "0", "OpenMP threads (0 = all cores)")
       .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
@@ -97,9 +95,8 @@ CommandLine make_command_line() {
             "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
             "elliptic-integral direction from the camera (Schwarzschild/flat only); write <out>-error.png "
             "(heat map, log scale 1e-12 .. 1e-2 rad) and report max_error/median_error in the JSON")
-      .flag("disk-retrograde", "disk scene: the gas turns against the hole's rotation (default: with it; "
-                               "towards +phi for a non-rotating hole)")
       .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
+  tools::declare_disk_retrograde_flag(cli, "");
   tools::declare_flight_options(cli,
                                 "grtrace-render renders a sequence along it instead of one frame (aberration and "
                                 "Doppler from the camera's u): <out stem>-NNNN.exr and .png; a re-run skips the "
@@ -140,36 +137,6 @@ std::vector<std::string> output_paths(const Request& q, bool status_map, bool mp
 Vec3 triple(const CommandLine& cli, const std::string& name) {
   const auto v = cli.numbers(name, 3);
   return Vec3(v[0], v[1], v[2]);
-}
-
-/// The observer carrying the camera: --observer as given, else the ZAMO for Kerr (it exists everywhere outside the
-/// horizon, the static observer not inside the ergosphere) and the static observer for the other metrics.
-std::string observer_name(const CommandLine& cli, const MetricSpec& ms) {
-  if (cli.given("observer")) return cli.text("observer");
-  return ms.name == "kerr" ? "zamo" : "static";
-}
-
-/// The disk's sense of rotation (--disk-retrograde) and, for Kerr, its inner edge: the ISCO of that sense when
-/// --disk-inner is not given, and a refusal (UsageError naming the ISCO) when it is given inside the ISCO, where no
-/// stable circular orbit exists. Takes the checked metric spec; sets disk.sense (+1: towards +phi) and disk.r_in.
-/// Prograde follows the sign of the spin (towards +phi for a = 0).
-void set_disk_sense_and_isco(const CommandLine& cli, const MetricSpec& ms, ThinDisk& disk) {
-  const bool retrograde = cli.flag_set("disk-retrograde");
-  const int hole = ms.name == "kerr" && ms.spin < 0.0 ? -1 : +1;
-  disk.sense = retrograde ? -hole : hole;
-  if (ms.name != "kerr") return;  // Schwarzschild and the others keep --disk-inner as given (default 6)
-  const exact::Orbit orbit = retrograde ? exact::Orbit::retrograde : exact::Orbit::prograde;
-  const double isco = exact::isco_radius(ms.spin, orbit, ms.mass);
-  if (!cli.given("disk-inner")) {
-    disk.r_in = isco;
-  } else if (!(disk.r_in >= isco * (1.0 - 1e-12))) {  // the printed ISCO itself is accepted
-    std::ostringstream msg;
-    msg.precision(10);
-    msg << "--disk-inner " << cli.text("disk-inner") << " is inside the ISCO r_isco = " << isco << " M of this "
-        << (retrograde ? "retrograde" : "prograde") << " disk (a = " << ms.spin
-        << "): no stable circular orbit exists there; raise --disk-inner to at least the ISCO or leave it out";
-    throw UsageError(msg.str());
-  }
 }
 
 /// The camera path of --flight (checked, before any work): the start (a preset, or --camera-r/-theta/-phi with
@@ -305,9 +272,7 @@ Request read_request(const CommandLine& cli) {
   CameraSpec spec;
   spec.position = Vec4(0.0, r, theta * std::numbers::pi / 180.0, phi * std::numbers::pi / 180.0);
   spec.spherical_position = true;  // Boyer-Lindquist (t, r, theta, phi) and (r, theta, phi) axes in every chart
-  const auto observer = observer_kind_from_string(observer_name(cli, ms));
-  if (!observer) throw UsageError("unknown --observer '" + cli.text("observer") + "'; choose static or zamo");
-  spec.observer = *observer;
+  spec.observer = tools::read_observer(cli, ms.name);
   spec.velocity = triple(cli, "velocity");
   spec.look = triple(cli, "look");
   spec.up = triple(cli, "up");
@@ -355,13 +320,13 @@ Request read_request(const CommandLine& cli) {
   }
   q.scene.disk.r_in = cli.number("disk-inner");
   q.scene.disk.r_out = cli.number("disk-outer");
-  if (disk) set_disk_sense_and_isco(cli, ms, q.scene.disk);
+  if (disk) tools::set_disk_sense_and_isco(cli, ms, q.scene.disk);
   if (disk) {
     try {
       with_named_metric(ms, [&](const auto& m) {
         using M = std::remove_cvref_t<decltype(m)>;
         if constexpr (M::chart == Chart::spherical) check_disk_orbits(m, q.scene.disk);
-        else throw std::invalid_argument("--scene disk needs a spherical chart (the thin disk is theta = pi/2); use --chart bl");
+        else throw std::invalid_argument(tools::kDiskNeedsSphericalChart);
       });
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer)");
@@ -525,7 +490,7 @@ void describe_frame(Image& image, const Request& q, const CommandLine& cli, int 
   if (q.metric.name == "rn") image.metadata["charge"] = num(q.metric.charge);
   if (q.metric.name == "sds") image.metadata["lambda"] = num(q.metric.lambda);
   if (q.metric.name == "wormhole") image.metadata["throat"] = num(q.metric.throat);
-  image.metadata["observer"] = q.flight.cameras.empty() ? observer_name(cli, q.metric) : "moving (flight)";
+  image.metadata["observer"] = q.flight.cameras.empty() ? tools::observer_name(cli, q.metric.name) : "moving (flight)";
   if (q.scene.name == "disk") {
     image.metadata["disk_sense"] = cli.flag_set("disk-retrograde") ? "retrograde" : "prograde";
     image.metadata["disk_inner"] = num(q.scene.disk.r_in);

@@ -5,7 +5,17 @@
 //     optionally the seed report's precessing timelike orbit as a tube.
 //   * Frame (right): the picture the camera sees, from an EXR written by grtrace-render (--frame FILE.exr) or
 //     rendered here; the bundle's pixels are marked, and each bundle ray keeps its pixel's colour.
-//   * --chart orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts).
+//   * --plot orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts). --chart orbit|norm|step
+//     is its older spelling, kept: --chart's other values, bl|ks, are grtrace-render's Kerr coordinate charts, and
+//     the two sets of values are disjoint, so one option carries both meanings without ambiguity.
+//   * --metric kerr --spin A with grtrace-render's Kerr options, shared through examples/common/kerr_options.hpp:
+//     --chart bl|ks, --observer zamo|static, --disk-retrograde (the ISCO default and refusal of --disk-inner).
+//     Boyer-Lindquist rays and surfaces are drawn with (r, theta, phi) as spherical polar coordinates (the BL
+//     embedding, KerrMetric::to_cartesian). Kerr-Schild rays are drawn in their own Cartesian x, y, z, which is the
+//     point of that chart: they cross the horizon, where no BL position exists to map them back to. So with
+//     --chart ks the surfaces move instead: each r = const surface (horizon, ergosphere, ISCO ring, sky) is drawn in
+//     KS Cartesian coordinates, an oblate spheroid x + i y = (r + i e a) sin th e^{i ph}, z = r cos th
+//     (viz::to_kerr_schild), so rays and surfaces share one picture in either chart.
 //   * --flight KIND (grtrace-render's camera flights, options shared through examples/common/flight_options.hpp):
 //     the whole path as a tube with its frames as beads (the orbit layer), and the camera, the frame and the
 //     bundle at frame --flight-frame, its camera make_moving_camera's; --export adds flight.vtp.
@@ -23,6 +33,7 @@
 #include "command_line.hpp"
 #include "flight_options.hpp"
 #include "json_writer.hpp"
+#include "kerr_options.hpp"
 #include "view_request.hpp"
 
 #include "grtrace/exact/kerr_exact.hpp"
@@ -63,6 +74,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -86,26 +98,32 @@ CommandLine make_command_line() {
       .option("export", "", "write the 3D scene (rays, surfaces, frame) as VTK XML files for ParaView into this "
                             "directory (created if missing; open DIR/scene.vtm) and exit; needs no display")
       .option("size", "", "window / screenshot size WxH (default 1600x800; charts 900x800)")
-      .option("chart", "", "draw a chart of the orbit instead of the 3D view: orbit | norm | step")
+      .option("plot", "", "draw a chart of the orbit instead of the 3D view: orbit | norm | step")
+      .option("chart", "", tools::kKerrChartHelp + " (default bl; with --frame: the frame's). Also orbit | norm | "
+                           "step: the older spelling of --plot")
       // scene (as grtrace-render)
-      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)")
+      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced; "
+                               "with --chart ks the default is checker: the disk needs a spherical chart)")
       .option("mass", "1", "black-hole mass M (G = c = 1)")
-      .option("metric", "schwarzschild", "schwarzschild | kerr (Boyer-Lindquist; the camera is carried by the ZAMO; "
-                                         "draws the outer horizon, the ergosphere and the prograde ISCO)")
+      .option("metric", "schwarzschild", "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, "
+                                         "the ergosphere and the ISCO of the disk's sense)")
       .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)")
-      .option("camera-r", "35", "camera radius r (Schwarzschild coordinates, units of M)")
+      .option("camera-r", "35", "camera radius r (Schwarzschild or Boyer-Lindquist r, units of M; both charts)")
       .option("camera-theta", "84", "camera polar angle theta in degrees (90 = equatorial plane)")
-      .option("camera-phi", "0", "camera azimuth phi in degrees")
-      .option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, static frame)")
-      .option("look", "-1,0,0", "look direction r,theta,phi in the static frame (-1,0,0: at the hole)")
-      .option("up", "0,-1,0", "up direction r,theta,phi in the static frame (0,-1,0: the north pole)")
+      .option("camera-phi", "0", "camera azimuth phi in degrees");
+  tools::declare_observer_option(cli);
+  cli.option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)")
+      .option("look", "-1,0,0", "look direction r,theta,phi in the observer's frame (-1,0,0: at the hole)")
+      .option("up", "0,-1,0", "up direction r,theta,phi in the observer's frame (0,-1,0: the north pole)")
       .option("fov", "55", "horizontal field of view in degrees, in (0, 180)")
       .option("width", "320", "frame width in pixels (with --frame: the EXR's)")
       .option("height", "240", "frame height in pixels (with --frame: the EXR's)")
       .option("sky-radius", "400", "radius of the sky sphere where rays escape")
-      .option("disk-inner", "6", "inner radius of the disk (scene disk)")
-      .option("disk-outer", "20", "outer radius of the disk (scene disk)")
-      .option("angle-correction", "exact", "sky direction of escaped rays: none | flat | exact")
+      .option("disk-inner", "6", tools::disk_inner_help())
+      .option("disk-outer", "20", "outer radius of the disk (scene disk)");
+  tools::declare_disk_retrograde_flag(cli, "; also picks the ISCO ring drawn. With --frame: the frame's sense "
+                                           "unless given");
+  cli.option("angle-correction", "exact", "sky direction of escaped rays: none | flat | exact")
       .option("tableau", "dopri5", "Runge-Kutta tableau: " + tools::join(tableau_names(), "|"))
       .option("control", "pi", "step control: fixed | doubling | i | pi")
       .option("step", "0", "initial step (0 = automatic), or the step of --control fixed")
@@ -146,7 +164,7 @@ CommandLine make_command_line() {
   tools::declare_flight_options(
       cli, "Draws the whole path as a tube in the orbit layer (frames as white beads; not with --orbit) and puts "
            "the camera, the frame and the bundle at frame --flight-frame; --export also writes flight.vtp",
-      "; also the --orbit tube's and --chart's start velocity");
+      "; also the --orbit tube's and --plot's start velocity");
   cli.option("flight-frame", "0", "flight: the frame (0 .. --frames - 1) whose camera the viewer uses");
   return cli;
 }
@@ -238,13 +256,15 @@ Vec3 triple(const Params& p, const std::string& name) {
   return {v[0], v[1], v[2]};
 }
 
-/// The camera of grtrace-render's options: event (r, theta, phi in degrees), static-frame velocity, look, up.
-/// width/height < 0: from --width/--height.
-/// Kerr (kerr = true, spin a): the camera is placed in Boyer-Lindquist coordinates and carried by the ZAMO.
-Camera camera_from_options(const Params& p, double mass, double sky_radius, int width, int height, bool kerr = false,
-                           double spin = 0.0) {
+/// The camera of grtrace-render's options: event (r, theta, phi in degrees), velocity in the observer's frame,
+/// look, up, the observer (--observer: kerr_options.hpp). Takes the request read so far (metric, chart, sky radius)
+/// and the frame size (width/height < 0: from --width/--height). As grtrace-render, the event and the observer are
+/// given in Boyer-Lindquist (t, r, theta, phi) for both Kerr charts (spherical_position) and mapped into Kerr-Schild
+/// coordinates by the library; a static observer inside the ergosphere is the library's refusal (UsageError here).
+Camera camera_from_options(const CommandLine& cli, const Params& p, const Request& q, int width, int height) {
+  const double mass = q.mass, spin = q.spin, sky_radius = q.sky_radius;
   const double r = p.number("camera-r"), theta = p.number("camera-theta"), phi = p.number("camera-phi");
-  const double r_h = kerr ? KerrMetric{mass, spin}.outer_horizon() : 2.0 * mass;
+  const double r_h = q.kerr ? KerrMetric{mass, spin}.outer_horizon() : 2.0 * mass;
   const double guard = r_h * (1.0 + TraceSettings{}.horizon_epsilon);
   if (!(r > guard))
     throw UsageError("--camera-r " + p.text("camera-r") + " is at or inside the horizon (guard r = " +
@@ -262,21 +282,21 @@ Camera camera_from_options(const Params& p, double mass, double sky_radius, int 
   if (!(fov > 0.0 && fov < 180.0)) throw UsageError("--fov must lie in (0, 180) degrees, got " + p.text("fov"));
   CameraSpec spec;
   spec.position = Vec4(0.0, r, theta * kDeg, phi * kDeg);
+  spec.spherical_position = true;  // Boyer-Lindquist (t, r, theta, phi) and (r, theta, phi) axes in both charts
+  spec.observer = tools::read_observer(cli, q.kerr ? "kerr" : "schwarzschild");
   spec.velocity = triple(p, "velocity");
   spec.look = triple(p, "look");
   spec.up = triple(p, "up");
   spec.width = width;
   spec.height = height;
   spec.fov_degrees = fov;
+  std::optional<Camera> camera;
   try {
-    if (kerr) {
-      spec.observer = ObserverKind::zamo;  // exists everywhere outside the horizon, unlike the static observer
-      return make_camera(KerrMetric{mass, spin}, spec);
-    }
-    return make_camera(SchwarzschildMetric{mass}, spec);
+    view::with_metric(q, [&](const auto& metric) { camera.emplace(make_camera(metric, spec)); });
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  return *camera;
 }
 
 Vec4 header_vec4(const std::map<std::string, std::string>& meta, const std::string& key) {
@@ -297,8 +317,9 @@ Vec4 header_vec4(const std::map<std::string, std::string>& meta, const std::stri
   return v;
 }
 
-/// The camera grtrace-render recorded: camera_position (t, r, theta, phi), tetrad_e0..3, fov_degrees.
-Camera camera_from_header(const std::map<std::string, std::string>& meta, int width, int height) {
+/// The camera grtrace-render recorded: camera_position (t, r, theta, phi; Kerr-Schild frames: t, x, y, z),
+/// tetrad_e0..3, fov_degrees. Takes the header, the frame's size and the request read so far (metric, chart).
+Camera camera_from_header(const std::map<std::string, std::string>& meta, int width, int height, const Request& q) {
   Tetrad t;
   for (int a = 0; a < 4; ++a) {
     t.e[static_cast<std::size_t>(a)] = header_vec4(meta, "tetrad_e" + std::to_string(a));
@@ -318,10 +339,18 @@ Camera camera_from_header(const std::map<std::string, std::string>& meta, int wi
     if (m->second.empty() || *end != '\0' || !std::isfinite(mass) || mass < 0.0)
       throw UsageError("--frame: header 'mass' must be a number >= 0, got '" + m->second + "'");
   }
-  if (!(x[1] > 2.0 * mass) || !(x[2] > 0.0 && x[2] < std::numbers::pi))
+  // Outside the (outer) horizon: r_+ for Kerr, whose cameras may sit inside r = 2M (in the ergosphere).
+  const double r_h = q.kerr ? KerrMetric{mass, q.spin}.outer_horizon() : 2.0 * mass;
+  if (q.kerr && q.chart == "ks") {  // Cartesian: no polar axis, the BL-like radius of the quadric
+    const double r = kerr_schild_for_camera_rays(mass, q.spin).radius(x);
+    if (!(r > r_h))
+      throw UsageError("--frame: header 'camera_position' puts the camera at Kerr-Schild r = " + std::to_string(r) +
+                       ": it must be outside the horizon r_+ = " + std::to_string(r_h));
+  } else if (!(x[1] > r_h) || !(x[2] > 0.0 && x[2] < std::numbers::pi)) {
     throw UsageError("--frame: header 'camera_position' puts the camera at r = " + std::to_string(x[1]) +
-                     ", theta = " + std::to_string(x[2]) + " rad: it must be outside the horizon r = 2M = " +
-                     std::to_string(2.0 * mass) + " and off the polar axis");
+                     ", theta = " + std::to_string(x[2]) + " rad: it must be outside the horizon r = " +
+                     std::to_string(r_h) + " and off the polar axis");
+  }
   try {
     return Camera(x, t, width, height, fov_degrees);
   } catch (const std::invalid_argument& e) {
@@ -355,7 +384,7 @@ std::vector<std::array<int, 2>> parse_picks(const std::string& text, int width, 
 /// against it and returns it with the camera of that frame (make_moving_camera with --look/--up and the
 /// single-frame camera's size and field of view). Throws UsageError naming the option for what cannot fly.
 view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const FlightPathSpec& spec, Request& q) {
-  for (const char* name : {"frame", "velocity"})
+  for (const char* name : {"frame", "velocity", "observer"})
     if (cli.given(name))
       throw UsageError(std::string("--") + name + " sets a single frame's camera; a flight's camera moves with its "
                        "path (its 4-velocity): leave it out");
@@ -373,6 +402,8 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
   f.frame = static_cast<int>(frame);
   const CameraView look{triple(p, "look"), triple(p, "up"), q.camera->width(), q.camera->height(),
                         q.camera->fov_degrees()};
+  if (q.kerr && q.chart == "ks")  // the path is integrated in (t, r, theta, phi): refused as grtrace-render does
+    (void)tools::checked_flight_path(kerr_schild_for_camera_rays(q.mass, q.spin), spec);
   auto fly = [&](const auto& metric) {
     const Worldline path = tools::checked_flight_path(metric, spec);
     check_frame(static_cast<long>(path.samples.size()));
@@ -387,6 +418,26 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
   return f;
 }
 
+/// --plot orbit|norm|step, or its older spelling --chart orbit|norm|step. Takes the command line; returns the plot
+/// ("": the 3D view). Throws UsageError for an unknown value, naming both options where --chart's two meanings
+/// (Kerr coordinates bl|ks, or a plot) could be mixed up, and for a plot given both ways or beside --chart bl|ks.
+std::string read_plot(const CommandLine& cli) {
+  auto is_plot = [](const std::string& v) { return v == "orbit" || v == "norm" || v == "step"; };
+  const std::string chart = cli.text("chart"), plot = cli.text("plot");
+  if (cli.given("chart") && chart != "bl" && chart != "ks" && !is_plot(chart))
+    throw UsageError("--chart must be bl or ks (Kerr coordinates, as grtrace-render's), or orbit, norm or step (the "
+                     "older spelling of --plot), got '" + chart + "'");
+  if (cli.given("plot") && !is_plot(plot))
+    throw UsageError("--plot must be orbit, norm or step, got '" + plot + "'" +
+                     (plot == "bl" || plot == "ks" ? " (Kerr coordinates are --chart " + plot + ")" : ""));
+  if (cli.given("plot") && cli.given("chart"))
+    throw UsageError(is_plot(chart) ? "--chart " + chart + " is the older spelling of --plot " + chart +
+                                          "; give one of them, not both (--plot " + plot + ")"
+                                    : "--plot " + plot + " draws a Schwarzschild orbit chart, --chart " + chart +
+                                          " picks the Kerr coordinates of the 3D view: give one of them");
+  return cli.given("plot") ? plot : is_plot(chart) ? chart : std::string();
+}
+
 Request read_request(const CommandLine& cli) {
   Request q;
   q.screenshot = cli.text("screenshot");
@@ -394,18 +445,17 @@ Request read_request(const CommandLine& cli) {
     tools::check_output_option("screenshot", q.screenshot);
     if (!cli.text("frame").empty()) tools::check_not_input("screenshot", q.screenshot, "frame", cli.text("frame"));
   }
-  q.chart = cli.text("chart");
+  q.plot = read_plot(cli);
+  const std::string plot_option = cli.given("plot") ? "--plot" : "--chart";
   if (cli.given("export")) {
     q.export_dir = cli.text("export");
     if (q.export_dir.empty()) throw UsageError("--export needs a directory name");
-    if (!q.chart.empty()) throw UsageError("--export writes the 3D scene; not with --chart");
+    if (!q.plot.empty()) throw UsageError("--export writes the 3D scene; not with " + plot_option + " " + q.plot);
   }
-  if (!q.chart.empty() && q.chart != "orbit" && q.chart != "norm" && q.chart != "step")
-    throw UsageError("--chart must be orbit, norm or step, got '" + q.chart + "'");
   q.size = cli.given("size") ? parse_size("size", cli.text("size"))
-                             : (q.chart.empty() ? std::array<int, 2>{1600, 800} : std::array<int, 2>{900, 800});
-  if (!q.chart.empty() && (q.size[0] < 200 || q.size[1] < 200)) throw UsageError("--size: charts need at least 200x200");
-  if (q.chart.empty() && (q.size[0] < 64 || q.size[1] < 64)) throw UsageError("--size: at least 64x64");
+                             : (q.plot.empty() ? std::array<int, 2>{1600, 800} : std::array<int, 2>{900, 800});
+  if (!q.plot.empty() && (q.size[0] < 200 || q.size[1] < 200)) throw UsageError("--size: charts need at least 200x200");
+  if (q.plot.empty() && (q.size[0] < 64 || q.size[1] < 64)) throw UsageError("--size: at least 64x64");
 
   q.frame_file = cli.text("frame");
   if (!q.frame_file.empty()) {
@@ -426,10 +476,20 @@ Request read_request(const CommandLine& cli) {
   }
   const Params p(cli, q.frame ? &q.frame->metadata : nullptr);
   if (q.frame && q.frame->metadata.count("metric") && q.frame->metadata.at("metric") != "schwarzschild" &&
-      !(q.frame->metadata.at("metric") == "kerr" && q.frame->metadata.count("chart") &&
-        q.frame->metadata.at("chart") == "bl"))
+      q.frame->metadata.at("metric") != "kerr")
     throw UsageError("--frame: the frame was rendered with --metric " + q.frame->metadata.at("metric") +
-                     "; the viewer draws Schwarzschild and Kerr (--chart bl) scenes only");
+                     "; the viewer draws Schwarzschild and Kerr (--chart bl or ks) scenes only");
+
+  // The coordinate chart: --chart bl|ks, else the frame's, else bl (--chart orbit|norm|step is read_plot's).
+  const bool chart_is_plot = cli.given("chart") && !q.plot.empty() && !cli.given("plot");
+  q.chart = chart_is_plot ? "bl" : p.text("chart");
+  if (q.chart.empty()) q.chart = "bl";
+  if (q.chart != "bl" && q.chart != "ks")
+    throw UsageError("--chart: the frame's header names the chart '" + q.chart + "' (not bl or ks)");
+  if (q.frame && cli.given("chart") && !chart_is_plot && q.frame->metadata.count("chart") &&
+      q.frame->metadata.at("chart") != q.chart)
+    throw UsageError("--chart " + q.chart + " conflicts with --frame: the frame was rendered with --chart " +
+                     q.frame->metadata.at("chart") + " (its camera is recorded in that chart's coordinates)");
 
   q.scene = p.text("scene");
   if (!is_standard_scene(q.scene))
@@ -439,6 +499,9 @@ Request read_request(const CommandLine& cli) {
   if (metric != "schwarzschild" && metric != "kerr")
     throw UsageError("--metric must be schwarzschild or kerr, got '" + metric + "'");
   q.kerr = metric == "kerr";
+  MetricSpec ms;  // for the options shared with grtrace-render (kerr_options.hpp)
+  ms.name = metric;
+  ms.mass = q.mass;
   if (q.kerr) {
     q.spin = p.number("spin");
     try {
@@ -446,38 +509,48 @@ Request read_request(const CommandLine& cli) {
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--spin: ") + e.what());
     }
-    // The frame's disk turned as grtrace-render was told (--disk-retrograde); prograde follows the spin's sign.
-    const bool retro = q.frame && q.frame->metadata.count("disk_sense") &&
-                       q.frame->metadata.at("disk_sense") == "retrograde";
-    const int hole = q.spin < 0.0 ? -1 : 1;
-    q.disk_sense = retro ? -hole : hole;
-    if (!q.chart.empty()) throw UsageError("--chart draws Schwarzschild orbits; not with --metric kerr");
+    ms.spin = q.spin;
+    ms.chart = q.chart;
+    if (!q.plot.empty()) throw UsageError(plot_option + " draws Schwarzschild orbits; not with --metric kerr");
+  }
+  if (q.kerr && q.chart == "ks") {  // as grtrace-render: the thin disk needs a spherical chart
+    if (q.scene == "disk" && cli.given("scene")) throw UsageError(tools::kDiskNeedsSphericalChart);
+    if (q.scene == "disk") q.scene = "checker";  // the viewer's default scene, disk, cannot be drawn in KS
   }
   q.sky_radius = positive(p, "sky-radius");
   if (q.frame && q.frame->metadata.count("camera_position")) {
-    for (const char* o : {"camera-r", "camera-theta", "camera-phi", "velocity", "look", "up", "fov", "width", "height"})
+    for (const char* o : {"camera-r", "camera-theta", "camera-phi", "velocity", "look", "up", "fov", "width", "height",
+                          "observer"})
       if (cli.given(o))
         throw UsageError(std::string("--") + o + " conflicts with --frame: the bundle is traced through the frame's "
                          "own camera (read from its header)");
-    q.camera = camera_from_header(q.frame->metadata, q.frame->width(), q.frame->height());
+    q.camera = camera_from_header(q.frame->metadata, q.frame->width(), q.frame->height(), q);
     q.fov = p.number("fov");
   } else {
-    q.camera = camera_from_options(p, q.mass, q.sky_radius, q.frame ? q.frame->width() : -1,
-                                   q.frame ? q.frame->height() : -1, q.kerr, q.spin);
+    q.camera = camera_from_options(cli, p, q, q.frame ? q.frame->width() : -1, q.frame ? q.frame->height() : -1);
     q.fov = p.number("fov");
   }
   if (const auto spec = tools::read_flight_spec(cli, q.mass, q.sky_radius, {"flight-frame"})) {
-    if (!q.chart.empty()) throw UsageError("--flight draws a camera path in the 3D view; not with --chart");
+    if (!q.plot.empty()) throw UsageError("--flight draws a camera path in the 3D view; not with " + plot_option);
     q.flight = read_flight_view(cli, p, *spec, q);
   }
   q.width = q.camera->width();
   q.height = q.camera->height();
   q.disk = {p.number("disk-inner"), p.number("disk-outer")};
-  if (q.kerr && !cli.given("disk-inner")) {  // Kerr: the frame's inner edge, else the ISCO of the disk's sense
-    const bool pro = q.disk_sense == (q.spin < 0.0 ? -1 : 1);
-    q.disk[0] = q.frame && q.frame->metadata.count("disk_inner")
-                    ? std::stod(q.frame->metadata.at("disk_inner"))
-                    : exact::isco_radius(q.spin, pro ? exact::Orbit::prograde : exact::Orbit::retrograde, q.mass);
+  {
+    // The disk's sense: --disk-retrograde, else the frame's (grtrace-render records it); prograde follows the
+    // spin's sign. Its inner edge, for a disk scene: --disk-inner, else the frame's, else (Kerr) the ISCO of that
+    // sense; inside the ISCO refused as grtrace-render refuses it. The sense also picks the ISCO ring drawn.
+    const bool retrograde = cli.flag_set("disk-retrograde") ||
+                            (q.frame && q.frame->metadata.count("disk_sense") &&
+                             q.frame->metadata.at("disk_sense") == "retrograde");
+    std::optional<std::string> inner;
+    if (q.scene == "disk" && (cli.given("disk-inner") || p.from_frame("disk-inner"))) inner = p.text("disk-inner");
+    ThinDisk disk;
+    disk.r_in = q.disk[0];
+    tools::set_disk_sense_and_isco(ms, retrograde, inner, disk);
+    q.disk_sense = disk.sense;
+    if (q.scene == "disk") q.disk[0] = disk.r_in;
   }
   if (q.scene == "disk") {
     try {
@@ -537,7 +610,7 @@ Request read_request(const CommandLine& cli) {
     throw UsageError("--color-by redshift needs camera rays (a beam has no observer); use --bundle grid, row or column");
 
   if (cli.given("pick")) {
-    if (!q.chart.empty()) throw UsageError("--pick picks frame pixels; not with --chart");
+    if (!q.plot.empty()) throw UsageError("--pick picks frame pixels; not with " + plot_option);
     q.picks = parse_picks(cli.text("pick"), q.width, q.height);
   }
 
@@ -594,9 +667,9 @@ std::string orbit_note(const Request& q, const viz::TracedPath& path) {
 int run_chart(const Request& q) {
   const viz::TracedPath path = view::trace_orbit(q);
   const std::string note = orbit_note(q, path);
-  const viz::ChartSpec spec = q.chart == "orbit"  ? viz::orbit_chart(path, q.mass, note)
-                              : q.chart == "norm" ? viz::norm_chart(path, note)
-                                                  : viz::step_chart(path, note);
+  const viz::ChartSpec spec = q.plot == "orbit"  ? viz::orbit_chart(path, q.mass, note)
+                              : q.plot == "norm" ? viz::norm_chart(path, note)
+                                                 : viz::step_chart(path, note);
   if (!q.screenshot.empty()) {
     viz::save_chart_png(spec, q.size[0], q.size[1], q.screenshot);
     std::cout << "wrote " << q.screenshot << " (" << q.size[0] << "x" << q.size[1] << ", " << note << ")\n";
@@ -636,16 +709,20 @@ int run_view(const Request& q) {
   layout.checker_phi = 2 * paint.squares;
   layout.checker_a = encode(paint.dark);  // parity 0 (see checker_parity)
   layout.checker_b = encode(paint.light);
-  const SchwarzschildMetric metric{q.mass};
   if (q.kerr) {
     layout.spin = q.spin;
     const bool pro = q.disk_sense == (q.spin < 0.0 ? -1 : 1);
     layout.isco_radius = exact::isco_radius(q.spin, pro ? exact::Orbit::prograde : exact::Orbit::retrograde, q.mass);
-    layout.camera = viz::make_camera_glyph(KerrMetric{q.mass, q.spin}, camera.position(), camera.tetrad().e, q.fov,
-                                           q.width, q.height);
-  } else {
-    layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
+    // Kerr-Schild rays are drawn in their chart's Cartesian x, y, z: the surfaces follow them there (see the top).
+    if (q.chart == "ks") layout.kerr_schild = kerr_schild_for_camera_rays(q.mass, q.spin).slicing;
   }
+  // The camera's Boyer-Lindquist r and theta for the caption (a Kerr-Schild camera event is Cartesian).
+  Vec4 camera_bl = camera.position();
+  view::with_metric(q, [&](const auto& metric) {
+    layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(metric)>, KerrSchildMetric>)
+      camera_bl = ks_to_bl_position(metric, camera.position());
+  });
 
   const auto pixels = bundle_pixels(q);
   const std::vector<viz::TracedPath> rays = view::trace_bundle(q, pixels, frame_rgb);
@@ -724,9 +801,12 @@ int run_view(const Request& q) {
     std::snprintf(flight_caption, sizeof flight_caption, "flight %s: frame %d of %d, tau = %.6g M; ",
                   q.flight->kind.c_str(), q.flight->frame, q.flight->frames, q.flight->tau);
   char scene_caption[400];
+  char hole[80] = "";
+  if (q.kerr)
+    std::snprintf(hole, sizeof hole, ", a = %g (%s)", q.spin, q.chart == "ks" ? "Kerr-Schild" : "Boyer-Lindquist");
   std::snprintf(scene_caption, sizeof scene_caption,
-                "%sM = %g; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", flight_caption,
-                q.mass, camera.position()[1], camera.position()[2] / kDeg, q.fov, rays.size(),
+                "%sM = %g%s; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", flight_caption,
+                q.mass, hole, camera_bl[1], camera_bl[2] / kDeg, q.fov, rays.size(),
                 std::string(viz::to_string(scene.color_by(viz::Layer::rays))).c_str());
 
   viz::WindowOptions opt;
@@ -769,7 +849,7 @@ int main(int argc, char** argv) {
         throw UsageError(std::string("--export: ") + e.what());
       }
     }
-    return q.chart.empty() ? run_view(q) : run_chart(q);
+    return q.plot.empty() ? run_view(q) : run_chart(q);
   } catch (const UsageError& e) {
     std::cerr << cli.program() << ": error: " << e.what() << "\n";
     return 2;

@@ -1,11 +1,12 @@
 // grtrace-view: picked pixels (see view_request.hpp).
 #include "view_request.hpp"
 
-#include "grtrace/metric/kerr.hpp"
-#include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/pick.hpp"
+
+#include <stdexcept>
+#include <type_traits>
 
 namespace grtrace::view {
 
@@ -16,13 +17,15 @@ viz::RayPick pick_ray(const Request& q, std::array<int, 2> pixel, const viz::Rgb
   viz::RayPick pick;
   dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
     with_standard_scene(make_scene_spec(q), [&]<class Scene>(Scene scene) {
-      auto run = [&](const auto& metric) {
-        const auto tracer = make_general_tracer<T, C>(metric, q.rays.settings, q.correction, scene);
-        pick = viz::pick_ray(tracer, [&](int x, int y) { return camera.pixel_state(x, y); }, pixel,
-                             q.samples_per_step, camera.tetrad().e[0], frame.empty() ? nullptr : &frame);
-      };
-      if (q.kerr) run(KerrMetric{q.mass, q.spin});
-      else run(SchwarzschildMetric{q.mass});
+      with_metric(q, [&](const auto& metric) {
+        if constexpr (scene_fits_metric<std::remove_cvref_t<decltype(metric)>, Scene>) {
+          const auto tracer = make_general_tracer<T, C>(metric, q.rays.settings, q.correction, scene);
+          pick = viz::pick_ray(tracer, [&](int x, int y) { return camera.pixel_state(x, y); }, pixel,
+                               q.samples_per_step, camera.tetrad().e[0], frame.empty() ? nullptr : &frame);
+        } else {
+          throw std::logic_error("grtrace-view: a disk scene in a chart that cannot hold it was not refused");
+        }
+      });
     });
   });
   return pick;

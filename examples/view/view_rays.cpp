@@ -1,12 +1,11 @@
 // grtrace-view: the bundle's rays (see view_request.hpp).
 #include "view_request.hpp"
 
-#include "grtrace/metric/kerr.hpp"
-#include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 #include "grtrace/viz/bundles.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace grtrace::view {
 
@@ -16,12 +15,15 @@ namespace {
 template <class F>
 void with_scene_tracer(const Request& q, F&& f) {
   dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
-    auto run = [&](const auto& tracer) {
-      if (q.scene == "disk") f(tracer, make_scene_spec(q).disk);
-      else f(tracer);
-    };
-    if (q.kerr) run(GeodesicTracer<KerrMetric, T, C>(KerrMetric{q.mass, q.spin}, q.rays.settings));
-    else run(GeodesicTracer<SchwarzschildMetric, T, C>(SchwarzschildMetric{q.mass}, q.rays.settings));
+    with_metric(q, [&](const auto& metric) {
+      using M = std::remove_cvref_t<decltype(metric)>;
+      const GeodesicTracer<M, T, C> tracer(metric, q.rays.settings);
+      // The thin disk is theta = pi/2 of a spherical chart; a disk scene in Kerr-Schild is refused up front.
+      if constexpr (M::chart == Chart::spherical) {
+        if (q.scene == "disk") return f(tracer, make_scene_spec(q).disk);
+      }
+      f(tracer);
+    });
   });
 }
 

@@ -7,6 +7,9 @@
 //   view_pick.cpp   pick_ray      one picked pixel's ray (--pick, clicks on the frame)
 #pragma once
 
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/metric/kerr_schild.hpp"
+#include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/render/image.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
@@ -46,11 +49,12 @@ struct Request {
   std::string screenshot;
   std::string export_dir;  ///< --export: write the scene as VTK XML files here (viz/vtk_export.hpp)
   std::array<int, 2> size{};
-  std::string chart;
+  std::string plot;  ///< --plot (or its older spelling --chart): orbit, norm or step; empty: the 3D view
   std::string scene = "disk";  ///< a preset of scene/standard_scenes.hpp
   double mass = 1.0;
-  bool kerr = false;   ///< --metric kerr: Kerr in Boyer-Lindquist coordinates with spin `spin`
+  bool kerr = false;   ///< --metric kerr: Kerr with spin `spin` in the coordinates of `chart`
   double spin = 0.0;
+  std::string chart = "bl";  ///< kerr: "bl" (Boyer-Lindquist) or "ks" (Cartesian Kerr-Schild), as grtrace-render's
   int disk_sense = +1;  ///< +1: the disk turns towards +phi (scene/thin_disk.hpp)
   std::optional<Camera> camera;
   double fov = 55.0;
@@ -88,6 +92,16 @@ inline StandardSceneSpec make_scene_spec(const Request& q) {
   s.disk.r_out = q.disk[1];
   s.disk.sense = q.disk_sense;
   return s;
+}
+
+/// Takes the request and a generic callable; calls f(metric) with the metric the rays are traced in: Schwarzschild,
+/// Kerr in Boyer-Lindquist coordinates, or Kerr in Cartesian Kerr-Schild coordinates of the outgoing slicing (the
+/// one camera rays cross the horizon in, as grtrace-render's --chart ks). Only these three are instantiated.
+template <class F>
+void with_metric(const Request& q, F&& f) {
+  if (!q.kerr) f(SchwarzschildMetric{q.mass});
+  else if (q.chart == "ks") f(kerr_schild_for_camera_rays(q.mass, q.spin));
+  else f(KerrMetric{q.mass, q.spin});
 }
 
 /// Where the parallel beam starts: far enough out for its rays to be nearly straight.

@@ -3,6 +3,7 @@
 // ergosphere layer, the horizon at r_+ and no photon sphere. Data only (no pixels): runs with or without a display.
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
+#include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/viz/scene_view.hpp"
 #include "grtrace/viz/surfaces.hpp"
 
@@ -53,6 +54,40 @@ TEST(VizKerr, ErgospherePointsLieOnTheStaticLimit) {
   }
   EXPECT_THROW(make_ergosphere(1.0, 1.0), std::invalid_argument);
   EXPECT_THROW(make_ergosphere(1.0, std::nan("")), std::invalid_argument);
+}
+
+// to_kerr_schild puts a BL surface of constant r where the Kerr-Schild chart has that r (an oblate spheroid), and
+// a point at BL (r, theta, phi) where bl_to_ks_position puts it, up to the phi shift that only moves a surface of
+// revolution along itself (phi_KS is kept as the azimuth).
+TEST(VizKerr, KerrSchildSurfacesLieOnTheirRadius) {
+  const double a = 0.9;
+  for (const KerrSchildSlicing slicing : {KerrSchildSlicing::ingoing, KerrSchildSlicing::outgoing}) {
+    const KerrSchildMetric ks = KerrSchildMetric::checked(1.0, a, slicing);
+    for (const double r : {ks.outer_horizon(), 2.32, 6.0}) {
+      auto sphere = to_kerr_schild(make_sphere(r, 24), a, slicing);
+      vtkPoints* pts = sphere->GetPoints();
+      ASSERT_GT(pts->GetNumberOfPoints(), 50);
+      double equator = 0.0;
+      for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
+        double p[3];
+        pts->GetPoint(i, p);
+        EXPECT_NEAR(ks.radius(Vec4(0.0, p[0], p[1], p[2])), r, 1e-9 * r);
+        equator = std::max(equator, std::hypot(p[0], p[1]));
+      }
+      EXPECT_NEAR(equator, std::sqrt(r * r + a * a), 1e-2 * r);  // the spheroid's equator (a 24-gon's corners)
+    }
+    // One point: BL (r, theta, phi) against the library's map with the phi shift removed.
+    const double r = 5.0, th = 1.1, ph = 0.7;
+    auto ring = to_kerr_schild(make_ring(1.0, 8), a, slicing);  // a polydata to move one point with
+    ring->GetPoints()->SetPoint(0, r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th));
+    to_kerr_schild(ring, a, slicing);
+    double p[3];
+    ring->GetPoints()->GetPoint(0, p);
+    const Vec4 want = bl_to_ks_position(ks, Vec4(0.0, r, th, ph - kerr_schild_detail::phi_shift(ks, r)));
+    EXPECT_NEAR(p[0], want[1], 1e-12);
+    EXPECT_NEAR(p[1], want[2], 1e-12);
+    EXPECT_NEAR(p[2], want[3], 1e-12);
+  }
 }
 
 TEST(VizKerr, SceneViewOfASpinningHole) {

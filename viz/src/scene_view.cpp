@@ -210,34 +210,38 @@ SceneView::SceneView(const SceneLayout& layout) : impl_(std::make_unique<Impl>()
   // Boyer-Lindquist outer horizon r_+ = M + sqrt(M^2 - a^2) (2M without spin).
   const double r_horizon = M + std::sqrt(M * M - layout.spin * layout.spin);
   m.renderer->SetBackground(kBackground[0] / 255.0, kBackground[1] / 255.0, kBackground[2] / 255.0);
+  // The surfaces in the rays' chart: the BL embedding, or Cartesian Kerr-Schild (vtk_export.cpp does the same).
+  auto chart = [&](vtkSmartPointer<vtkPolyData> p) {
+    return layout.kerr_schild ? to_kerr_schild(p, layout.spin, *layout.kerr_schild) : p;
+  };
 
   if (layout.horizon_checkerboard) {
-    m.add(Layer::horizon, make_direct_color_actor(make_checkered_sphere(r_horizon, layout.checker_theta,
-                                                                        layout.checker_phi, layout.checker_a,
-                                                                        layout.checker_b)));
+    m.add(Layer::horizon, make_direct_color_actor(chart(make_checkered_sphere(r_horizon, layout.checker_theta,
+                                                                              layout.checker_phi, layout.checker_a,
+                                                                              layout.checker_b))));
   } else {
-    auto horizon = make_actor(make_sphere(r_horizon), {0.0, 0.0, 0.0});
+    auto horizon = make_actor(chart(make_sphere(r_horizon)), {0.0, 0.0, 0.0});
     horizon->GetProperty()->SetSpecular(0.0);
     m.add(Layer::horizon, horizon);
   }
   if (kerr) {  // no single photon sphere in Kerr; the static limit instead
-    auto ergo = make_actor(make_ergosphere(M, layout.spin), {0.85, 0.3, 0.85}, 0.18);
+    auto ergo = make_actor(chart(make_ergosphere(M, layout.spin)), {0.85, 0.3, 0.85}, 0.18);
     ergo->GetProperty()->SetSpecular(0.0);
     m.add(Layer::ergosphere, ergo);
   } else {
-    auto photon = make_actor(make_sphere(3.0 * M), {0.35, 0.8, 0.95}, 0.12);
+    auto photon = make_actor(chart(make_sphere(3.0 * M)), {0.35, 0.8, 0.95}, 0.12);
     photon->GetProperty()->SetSpecular(0.0);
     m.add(Layer::photon_sphere, photon);
   }
   const double isco = layout.isco_radius > 0.0 ? layout.isco_radius : 6.0 * M;
-  m.add(Layer::isco, make_actor(tube(make_ring(isco), 0.06 * M, 10), {1.0, 0.55, 0.1}));
+  m.add(Layer::isco, make_actor(tube(chart(make_ring(isco)), 0.06 * M, 10), {1.0, 0.55, 0.1}));
   if (layout.disk) {
-    auto disk = make_actor(make_annulus((*layout.disk)[0], (*layout.disk)[1]), {0.95, 0.7, 0.3}, 0.35);
+    auto disk = make_actor(chart(make_annulus((*layout.disk)[0], (*layout.disk)[1])), {0.95, 0.7, 0.3}, 0.35);
     disk->GetProperty()->SetSpecular(0.0);
     m.add(Layer::disk, disk);
   }
   if (layout.sky_radius > 0.0) {
-    auto sky = make_actor(make_lat_long_sphere(layout.sky_radius), {0.45, 0.47, 0.55}, 0.6);
+    auto sky = make_actor(chart(make_lat_long_sphere(layout.sky_radius)), {0.45, 0.47, 0.55}, 0.6);
     sky->GetProperty()->LightingOff();
     m.add(Layer::sky, sky);
   }

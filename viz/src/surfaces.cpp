@@ -208,4 +208,21 @@ vtkSmartPointer<vtkPolyData> make_camera_axes(const CameraGlyph& camera, double 
   return poly;
 }
 
+vtkSmartPointer<vtkPolyData> to_kerr_schild(vtkSmartPointer<vtkPolyData> poly, double spin, KerrSchildSlicing slicing) {
+  if (!poly || !poly->GetPoints()) return poly;
+  const double ea = (slicing == KerrSchildSlicing::ingoing ? 1.0 : -1.0) * spin;
+  vtkPoints* pts = poly->GetPoints();
+  for (vtkIdType i = 0; i < pts->GetNumberOfPoints(); ++i) {
+    double p[3];
+    pts->GetPoint(i, p);
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    if (!(r > 0.0)) continue;
+    // x + i y = r sin th e^{i ph} in the BL embedding; times (r + i e a) / r gives the KS x + i y.
+    const double x = p[0] - ea / r * p[1], y = p[1] + ea / r * p[0];
+    pts->SetPoint(i, x, y, p[2]);
+  }
+  pts->Modified();
+  return poly;
+}
+
 }  // namespace grtrace::viz

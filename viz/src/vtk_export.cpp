@@ -209,17 +209,21 @@ std::vector<SceneSurface> scene_surfaces(const SceneLayout& layout) {
   if (!std::isfinite(layout.spin) || !(std::abs(layout.spin) < M))
     throw std::invalid_argument("scene_surfaces: the spin must satisfy |a| < M");
   const double r_horizon = M + std::sqrt(M * M - layout.spin * layout.spin);
+  // The surfaces in the rays' chart, as scene_view.cpp draws them.
+  auto chart = [&](vtkSmartPointer<vtkPolyData> p) {
+    return layout.kerr_schild ? to_kerr_schild(p, layout.spin, *layout.kerr_schild) : p;
+  };
   std::vector<SceneSurface> out;
   out.push_back({Layer::horizon, "horizon",
-                 layout.horizon_checkerboard
-                     ? make_checkered_sphere(r_horizon, layout.checker_theta, layout.checker_phi, layout.checker_a,
-                                             layout.checker_b)
-                     : make_sphere(r_horizon)});
-  if (layout.spin != 0.0) out.push_back({Layer::ergosphere, "ergosphere", make_ergosphere(M, layout.spin)});
-  else out.push_back({Layer::photon_sphere, "photon_sphere", make_sphere(3.0 * M)});
-  out.push_back({Layer::isco, "isco", make_ring(layout.isco_radius > 0.0 ? layout.isco_radius : 6.0 * M)});
-  if (layout.disk) out.push_back({Layer::disk, "disk", make_annulus((*layout.disk)[0], (*layout.disk)[1])});
-  if (layout.sky_radius > 0.0) out.push_back({Layer::sky, "sky", make_lat_long_sphere(layout.sky_radius)});
+                 chart(layout.horizon_checkerboard
+                           ? make_checkered_sphere(r_horizon, layout.checker_theta, layout.checker_phi,
+                                                   layout.checker_a, layout.checker_b)
+                           : make_sphere(r_horizon))});
+  if (layout.spin != 0.0) out.push_back({Layer::ergosphere, "ergosphere", chart(make_ergosphere(M, layout.spin))});
+  else out.push_back({Layer::photon_sphere, "photon_sphere", chart(make_sphere(3.0 * M))});
+  out.push_back({Layer::isco, "isco", chart(make_ring(layout.isco_radius > 0.0 ? layout.isco_radius : 6.0 * M))});
+  if (layout.disk) out.push_back({Layer::disk, "disk", chart(make_annulus((*layout.disk)[0], (*layout.disk)[1]))});
+  if (layout.sky_radius > 0.0) out.push_back({Layer::sky, "sky", chart(make_lat_long_sphere(layout.sky_radius))});
   if (layout.camera) {
     const CameraGlyph& cam = *layout.camera;
     const double len = layout.camera_glyph_length > 0.0 ? layout.camera_glyph_length

@@ -323,6 +323,12 @@ inline GeodesicState ks_to_bl(const KerrSchildMetric& m, const GeodesicState& y_
   return make_state(ks_to_bl_position(m, x), k_bl);
 }
 
+/// The Kerr-Schild chart the tools trace camera rays in (checked as KerrSchildMetric::checked): the outgoing
+/// slicing, because camera rays are traced backwards (k^t < 0) and cross the past horizon (slicing_crossed_by).
+inline KerrSchildMetric kerr_schild_for_camera_rays(double mass, double spin) {
+  return KerrSchildMetric::checked(mass, spin, KerrSchildSlicing::outgoing);
+}
+
 inline Vec4 KerrSchildMetric::event_from_spherical(const Vec4& x_bl) const { return bl_to_ks_position(*this, x_bl); }
 inline Mat4 KerrSchildMetric::jacobian_from_spherical(const Vec4& x_bl) const { return bl_to_ks_jacobian(*this, x_bl); }
 

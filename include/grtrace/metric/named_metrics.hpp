@@ -81,11 +81,7 @@ decltype(auto) with_named_metric(const MetricSpec& s, F&& f) {
   check_metric_spec(s);
   if (s.name == "minkowski") return f(MinkowskiSpherical{});
   if (s.name == "kerr") {
-    if (s.chart == "ks") {
-      KerrSchildMetric m = KerrSchildMetric::checked(s.mass, s.spin);
-      m.slicing = KerrSchildSlicing::outgoing;  // camera rays are past-directed: they cross the past horizon
-      return f(m);
-    }
+    if (s.chart == "ks") return f(kerr_schild_for_camera_rays(s.mass, s.spin));  // past-directed camera rays
     return f(KerrMetric::checked(s.mass, s.spin));
   }
   if (s.name == "rn") {

@@ -7,7 +7,10 @@
 // Gives:   renderer() to place in a render window; set_visible/toggle per layer; set_view for the 3D camera.
 // Radii are those of Schwarzschild with mass M: horizon 2M, photon sphere 3M, ISCO 6M; with a spin a != 0 (Kerr),
 // the outer horizon r_+, the ergosphere (static limit r_E(theta), translucent magenta) and the ISCO of the layout
-// (isco_radius; there is no single photon sphere, so that layer is absent). Boyer-Lindquist embedding.
+// (isco_radius; there is no single photon sphere, so that layer is absent). Boyer-Lindquist embedding (r, theta,
+// phi drawn as spherical polar coordinates, as KerrMetric::to_cartesian draws BL rays), or with kerr_schild the
+// Cartesian Kerr-Schild coordinates of KerrSchildMetric::to_cartesian (surfaces.hpp to_kerr_schild: each r = const
+// surface an oblate spheroid), so that rays traced in either chart and the surfaces share one picture.
 // Background mid grey (black horizon rays and white disk rays both show). Colours: horizon black (or the
 // checkerboard), photon sphere translucent cyan, ISCO ring orange tube, disk
 // translucent amber, sky sphere grey wireframe, camera frustum white, tetrad axes forward red / up green /
@@ -15,6 +18,7 @@
 // log scale, status as named categories; "pixel" colours each ray with its frame pixel's colour.
 #pragma once
 
+#include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/viz/camera_glyph.hpp"
 #include "grtrace/viz/geodesic_data.hpp"
 #include "grtrace/viz/traced_path.hpp"
@@ -46,6 +50,8 @@ struct SceneLayout {
   double mass = 1.0;
   double spin = 0.0;           ///< Kerr a, |a| < M; 0: Schwarzschild (no ergosphere layer)
   double isco_radius = 0.0;    ///< radius of the ISCO ring; <= 0: 6M (Schwarzschild)
+  /// Kerr-Schild slicing whose Cartesian coordinates the surfaces are drawn in (the rays' chart); none: BL embedding.
+  std::optional<KerrSchildSlicing> kerr_schild;
   bool horizon_checkerboard = false;
   int checker_theta = 8, checker_phi = 16;  ///< squares in theta in [0, pi] and phi in [0, 2 pi]
   Rgb8 checker_a{200, 30, 30}, checker_b{20, 20, 20};

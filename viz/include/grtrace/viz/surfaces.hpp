@@ -15,9 +15,14 @@
 //   make_camera_frustum     the four corner rays from the camera position (length `length`) and the far rectangle
 //   make_camera_axes        line segments along forward, up, right (and the velocity, if any), with cell colours
 //                           "axis_color": forward red, up green, right blue, velocity yellow
+//   to_kerr_schild          moves a surface above (points in the Boyer-Lindquist embedding, r = |p|) into the
+//                           Cartesian Kerr-Schild coordinates where KerrSchildMetric draws its rays:
+//                           x + i y = (r + i e a) sin th e^{i ph}, z = r cos th (e = +1 ingoing, -1 outgoing), so a
+//                           sphere r = const becomes the oblate spheroid of KS radius r (semi-axes sqrt(r^2 + a^2), r)
 #pragma once
 
 #include "grtrace/viz/camera_glyph.hpp"
+#include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/viz/traced_path.hpp"
 
 #include <vtkPolyData.h>
@@ -36,5 +41,9 @@ vtkSmartPointer<vtkPolyData> make_lat_long_sphere(double radius, int parallels =
                                                   int segments = 128);
 vtkSmartPointer<vtkPolyData> make_camera_frustum(const CameraGlyph& camera, double length);
 vtkSmartPointer<vtkPolyData> make_camera_axes(const CameraGlyph& camera, double length);
+/// Takes polydata in the Boyer-Lindquist embedding and the Kerr-Schild chart (spin, slicing); moves its points
+/// in place (a point at the centre stays) and returns it. Azimuth is kept as the chart's own phi: a BL surface of
+/// revolution (horizon, ergosphere, ISCO ring, sky) lands exactly on the KS surface of the same r and theta.
+vtkSmartPointer<vtkPolyData> to_kerr_schild(vtkSmartPointer<vtkPolyData> poly, double spin, KerrSchildSlicing slicing);
 
 }  // namespace grtrace::viz

@@ -4,6 +4,7 @@
 // general tracer on the same frame (every pixel integrated) for the ratio. Run, e.g.:
 //   build/ci/tests/benchmarks/planar_benchmark --benchmark_filter='disk/(planar|general)/256'
 //   build/ci/tests/benchmarks/planar_benchmark --benchmark_filter='disk/planar/1024'
+//   OMP_NUM_THREADS=1 build/ci/tests/benchmarks/planar_benchmark --benchmark_filter='pixel/'
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/frame.hpp"
@@ -82,7 +83,54 @@ void disk_general(benchmark::State& state, int n) {
   state.counters["steps_per_ray"] = static_cast<double>(steps) / (static_cast<double>(n) * n);
 }
 
+// Where a pixel's time goes (one thread: run with OMP_NUM_THREADS=1 for the same numbers as the docs): the camera ray,
+// then cumulatively the planar geometry, the table look-up, the sky direction, the whole trace (disk crossings
+// included) and its shading; ns per pixel of a 512x512 frame at r = 100, inclination 80 degrees, fov 60 (the seed
+// flight's kind of frame). Each stage's cost is its difference to the one before.
+void pixel_parts(benchmark::State& state, int stage) {
+  const SchwarzschildMetric metric{1.0};
+  CameraSpec cs;
+  cs.position = Vec4(0.0, 100.0, 80.0 * std::numbers::pi / 180.0, 0.0);
+  cs.width = cs.height = 512;
+  cs.fov_degrees = 60.0;
+  const Camera cam = make_camera(metric, cs);
+  TraceSettings settings = disk_settings();
+  settings.escape_radius = 1000.0;
+  const PlanarSceneTracer<SchwarzschildMetric, Tsitouras54, IController, DiskScene> tracer(
+      metric, settings, cam, AngleCorrection::exact, disk(), 2048);
+  const auto& table = tracer.table();
+  const DiskScene scene = disk();
+  const SphericalBasis basis = spherical_basis(cs.position[2], cs.position[3]);  // as the tracer: once per frame
+  double sink = 0.0;
+  for (auto _ : state) {
+    for (int row = 0; row < cam.height(); ++row)
+      for (int col = 0; col < cam.width(); ++col) {
+        const GeodesicState y = cam.pixel_state(col, row);
+        if (stage == 0) {
+          sink += y[5];
+        } else if (stage <= 3) {
+          const PlanarGeometry g = planar_geometry(metric, y, basis);
+          if (stage == 1) sink += g.delta;
+          else if (stage == 2) sink += table.at(g.delta).sweep_end;
+          else sink += rotate_in_plane(g, table.at(g.delta).sweep_end).phi;
+        } else if (stage == 4) {
+          sink += tracer.trace(y).where.phi;
+        } else {
+          sink += static_cast<double>(scene.shade(tracer.trace(y)).rgb[0]);
+        }
+      }
+    benchmark::DoNotOptimize(sink);
+  }
+  state.counters["ns_per_pixel"] = benchmark::Counter(static_cast<double>(state.iterations()) * 512.0 * 512.0,
+                                                      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 const bool registered = [] {
+  const char* parts[] = {"camera_ray", "planar_geometry", "table_lookup", "sky_direction", "trace", "trace_shade"};
+  for (int stage = 0; stage < 6; ++stage)
+    benchmark::RegisterBenchmark((std::string("pixel/") + std::to_string(stage) + "_" + parts[stage]).c_str(),
+                                 [=](benchmark::State& s) { pixel_parts(s, stage); })
+        ->Unit(benchmark::kMillisecond);
   for (const int n : {256, 1024}) {
     benchmark::RegisterBenchmark(("disk/planar/" + std::to_string(n)).c_str(),
                                  [=](benchmark::State& s) { disk_planar(s, n, 2048); })

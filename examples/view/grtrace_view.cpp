@@ -513,6 +513,9 @@ Request read_request(const CommandLine& cli) {
     ms.chart = q.chart;
     if (!q.plot.empty()) throw UsageError(plot_option + " draws Schwarzschild orbits; not with --metric kerr");
   }
+  if (!q.kerr && q.chart == "ks")  // as grtrace-render (check_metric_spec): Schwarzschild has one chart here
+    throw UsageError("--chart ks goes with --metric kerr; --metric schwarzschild has one chart (leave --chart out, "
+                     "or use --metric kerr --spin 0 --chart ks)");
   if (q.kerr && q.chart == "ks") {  // as grtrace-render: the thin disk needs a spherical chart
     if (q.scene == "disk" && cli.given("scene")) throw UsageError(tools::kDiskNeedsSphericalChart);
     if (q.scene == "disk") q.scene = "checker";  // the viewer's default scene, disk, cannot be drawn in KS

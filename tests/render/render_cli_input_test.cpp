@@ -142,6 +142,8 @@ TEST_F(RenderCliInput, RefusesEveryBadInputBeforeTracingAndLeavesNoFile) {
       {"--up", "0,0,nan"},
       {"--scene", "teapot"},
       {"--metric", "kerr", "--spin", "1"},  // |a| >= M (kerr with a = 0 is a valid Schwarzschild hole)
+      {"--chart", "ks"},                    // Kerr's chart: Schwarzschild would silently ignore it
+      {"--metric", "rn", "--charge", "0.5", "--chart", "ks"},
       {"--tableau", "rk5000"},
       {"--control", "magic"},
       {"--tableau", "rk4", "--control", "pi"},  // no embedded pair

@@ -154,6 +154,24 @@ TEST(ViewKerr, MixingPlotAndChartNamesBoth) {
   }
 }
 
+// --chart ks is Kerr's chart: with --metric schwarzschild both tools refuse it (it used to be silently ignored).
+TEST(ViewKerr, KerrSchildChartWithoutKerrIsRefusedByBothTools) {
+  const auto dir = dir_of("ks-without-kerr");
+  std::filesystem::remove_all(dir);
+  const ToolRun r = run_headless("--metric schwarzschild --chart ks --scene checker --export " + dir.string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("goes with --metric kerr"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir));
+#ifdef GRTRACE_RENDER_EXE
+  const auto exr = dir_of("ks-without-kerr.exr");
+  const ToolRun render = grtrace::tool_tests::run_command(std::string(GRTRACE_RENDER_EXE) +
+                                                          " --chart ks --width 8 --height 8 --out " + exr.string());
+  EXPECT_EQ(render.status, 2) << render.output;
+  EXPECT_NE(render.output.find("goes with --metric kerr"), std::string::npos) << render.output;
+  EXPECT_FALSE(std::filesystem::exists(exr));
+#endif
+}
+
 // A static observer cannot exist inside the ergosphere (r_E = 2M on the equator): refused before anything is
 // written, in both charts, with the message grtrace-render gives for the same camera.
 TEST(ViewKerr, StaticObserverInsideTheErgosphereIsRefusedAsByRender) {

@@ -41,7 +41,7 @@ struct MetricSpec {
   std::string name = "schwarzschild";  ///< one of kMetricNames
   double mass = 1.0;                   ///< M (all but minkowski and wormhole)
   double spin = 0.0;                   ///< kerr: a, |a| < M (negative: rotation towards -phi)
-  std::string chart = "bl";            ///< kerr: "bl" (Boyer-Lindquist) or "ks" (Kerr-Schild)
+  std::string chart = "bl";            ///< kerr: "bl" (Boyer-Lindquist) or "ks" (Kerr-Schild); others: "bl" only
   double charge = 0.5;                 ///< rn: Q, |Q| < M
   double lambda = 1e-5;                ///< sds: cosmological constant, 0 < Lambda < 1 / (9 M^2) (r_c ~ 547 M)
   double throat = 1.0;                 ///< wormhole: throat radius b0
@@ -65,6 +65,13 @@ inline void check_metric_spec(const MetricSpec& s) {
     if (!finite(s.spin) || !(std::abs(s.spin) < s.mass))
       throw std::invalid_argument("--spin must satisfy |a| < M (|a| >= M has no horizon); got " + std::to_string(s.spin));
     if (s.chart != "bl" && s.chart != "ks") throw std::invalid_argument("--chart must be bl or ks, got '" + s.chart + "'");
+  } else if (s.chart != "bl") {  // the other metrics have one chart each: a chart asked for would be ignored
+    throw std::invalid_argument("--chart " + s.chart + " goes with --metric kerr; --metric " + s.name +
+                                " has one chart (leave --chart out" +
+                                (s.name == "schwarzschild"
+                                     ? "; across the horizon: --metric schwarzschild-ef, or --metric kerr --spin 0 "
+                                       "--chart ks)"
+                                     : ")"));
   }
   if (s.name == "rn" && (!finite(s.charge) || !(std::abs(s.charge) < s.mass)))
     throw std::invalid_argument("--charge must satisfy |Q| < M (|Q| >= M has no horizon); got " + std::to_string(s.charge));

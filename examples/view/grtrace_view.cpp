@@ -510,12 +510,14 @@ Request read_request(const CommandLine& cli) {
       throw UsageError(std::string("--spin: ") + e.what());
     }
     ms.spin = q.spin;
-    ms.chart = q.chart;
     if (!q.plot.empty()) throw UsageError(plot_option + " draws Schwarzschild orbits; not with --metric kerr");
   }
-  if (!q.kerr && q.chart == "ks")  // as grtrace-render (check_metric_spec): Schwarzschild has one chart here
-    throw UsageError("--chart ks goes with --metric kerr; --metric schwarzschild has one chart (leave --chart out, "
-                     "or use --metric kerr --spin 0 --chart ks)");
+  ms.chart = q.chart;
+  try {  // the library's refusals, worded as grtrace-render's (e.g. --chart ks without --metric kerr)
+    check_metric_spec(ms);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   if (q.kerr && q.chart == "ks") {  // as grtrace-render: the thin disk needs a spherical chart
     if (q.scene == "disk" && cli.given("scene")) throw UsageError(tools::kDiskNeedsSphericalChart);
     if (q.scene == "disk") q.scene = "checker";  // the viewer's default scene, disk, cannot be drawn in KS

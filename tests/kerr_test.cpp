@@ -585,9 +585,10 @@ TEST(KerrRays, KerrSchildRaysCrossTheHorizonTheSlicingIsRegularOn) {
   }
 }
 
-TEST(KerrRays, KerrSchildRayAgainstItsSlicingDoesNotCrossTheHorizon) {
-  // The pitfall the header warns about, pinned: a past-directed ray in the ingoing chart approaches the past
-  // horizon, where that chart is singular like BL; it never reaches the capture radius.
+TEST(KerrRays, KerrSchildRayAgainstItsSlicingIsCapturedOutsideAsInBoyerLindquist) {
+  // A past-directed ray in the ingoing chart approaches the past horizon, where that chart is singular like BL
+  // (k^t grows without bound): it can never reach the capture radius r_c inside r_+. The chart's capture_radius
+  // trait gives such a ray the guard (1 + eps) r_+ outside instead, the Boyer-Lindquist decision.
   const KerrSchildMetric ks{1.0, 0.9, KerrSchildSlicing::ingoing};
   const KerrMetric bl = ks.boyer_lindquist();
   TraceSettings s = tight_settings(1e-10, 100.0);
@@ -597,12 +598,17 @@ TEST(KerrRays, KerrSchildRayAgainstItsSlicingDoesNotCrossTheHorizon) {
   const GeodesicState y = bl_to_ks(ks, make_state(Vec4(0.0, 6.0, 1.0, 0.0), -(e[0] + e[1])));  // past, inwards
   EXPECT_EQ(slicing_crossed_by(y[4]), KerrSchildSlicing::outgoing);
   EXPECT_EQ(slicing_crossed_by(-y[4]), KerrSchildSlicing::ingoing);
+  EXPECT_EQ(ks.capture_radius(y), ks.outer_horizon());
+  EXPECT_FALSE(ks.leaves_interior(y));  // outside r_+ and moving in
+  GeodesicState future = y;
+  future.tail<4>() = -y.tail<4>();
+  EXPECT_EQ(ks.capture_radius(future), ks.horizon_radius());  // the ray the slicing carries across r_+
   const TraceResult res = tracer.trace(y);
-  EXPECT_NE(res.status, RayStatus::captured);
+  EXPECT_EQ(res.status, RayStatus::captured);
   const double r_end = ks.radius(res.final_state.head<4>());
-  EXPECT_GT(r_end, ks.outer_horizon());
-  EXPECT_LT(r_end, 1.001 * ks.outer_horizon());
-  EXPECT_GT(std::abs(res.final_state[4]), 1e4);  // k^t growing without bound
+  EXPECT_NEAR(r_end, (1.0 + s.horizon_epsilon) * ks.outer_horizon(), 1e-9);
+  // It still agrees with the same ray traced in Boyer-Lindquist: E and L_z kept.
+  EXPECT_NEAR(ks.energy(res.final_state), ks.energy(y), 1e-8 * std::abs(ks.energy(y)));
   std::printf("past-directed ray in the ingoing chart: %s at r - r_+ = %.1e after %d steps, k^t %.2e\n",
               std::string(to_string(res.status)).c_str(), r_end - ks.outer_horizon(), res.accepted, res.final_state[4]);
 }

@@ -37,7 +37,8 @@ inline void declare_flight_options(CommandLine& cli, const std::string& what_the
                                what_the_tool_does)
       .option("frames", "300", "flight: number of frames")
       .option("frame-dtau", "0", "flight: proper time between frames; 0: one revolution in phi over the frames "
-                                 "(seed, circular, orbit) or the fall to 1.1 r_h (infall)")
+                                 "(seed, circular, orbit) or the fall to 1.1 r_h (infall; with --chart ks r_h is "
+                                 "the capture radius inside the horizon: the camera falls through it)")
       .option("orbit-dr", "0", "flight orbit: initial dr/dtau" + orbit_options_also)
       .option("orbit-dphi", "0.00075", "flight orbit: initial dphi/dtau" + orbit_options_also)
       .option("flight-csv", "", "flight csv: camera states, a header line then rows "
@@ -82,19 +83,13 @@ inline std::optional<FlightPathSpec> read_flight_spec(const CommandLine& cli, do
 }
 
 /// Takes a metric and read_flight_spec's spec; returns flight_path(metric, spec). Throws UsageError saying what
-/// to change: a chart that is not spherical (the path is integrated in (t, r, theta, phi)), or the library's
-/// refusal (observer/flight_path.hpp) prefixed with "--flight KIND: ".
+/// to change: the library's refusal (observer/flight_path.hpp) prefixed with "--flight KIND: ".
 template <MetricPolicy M>
 Worldline checked_flight_path(const M& metric, const FlightPathSpec& spec) {
-  if constexpr (M::chart != Chart::spherical) {
-    throw UsageError("--flight needs a spherical chart (the camera path is integrated in (t, r, theta, phi)); "
-                     "use Boyer-Lindquist coordinates (--chart bl)");
-  } else {
-    try {
-      return flight_path(metric, spec);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError("--flight " + spec.kind + ": " + e.what());
-    }
+  try {
+    return flight_path(metric, spec);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--flight " + spec.kind + ": " + e.what());
   }
 }
 

@@ -160,10 +160,12 @@ void read_flight(const CommandLine& cli, Request& q) {
   if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
   const CameraView view{triple(cli, "look"), triple(cli, "up"), q.camera->width(), q.camera->height(),
                         q.camera->fov_degrees()};
+  // Kerr-Schild flights are flown in the ingoing slicing, regular where the falling camera crosses the horizon.
+  if (q.metric.chart == "ks") q.metric.slicing = KerrSchildSlicing::ingoing;
   Worldline path;
   with_named_metric(q.metric, [&](const auto& m) {
     path = tools::checked_flight_path(m, *spec);
-    if constexpr (std::remove_cvref_t<decltype(m)>::chart == Chart::spherical) f.cameras = flight_cameras(m, path, view);
+    f.cameras = flight_cameras(m, path, view);
   });
   f.dtau = frame_step(path);
   for (const WorldlineSample& s : path.samples) f.tau.push_back(s.tau);
@@ -486,6 +488,8 @@ void describe_frame(Image& image, const Request& q, const CommandLine& cli, int 
   if (q.metric.name == "kerr") {
     image.metadata["spin"] = num(q.metric.spin);
     image.metadata["chart"] = q.metric.chart;
+    if (q.metric.chart == "ks")
+      image.metadata["kerr_schild_slicing"] = q.metric.slicing == KerrSchildSlicing::ingoing ? "ingoing" : "outgoing";
   }
   if (q.metric.name == "rn") image.metadata["charge"] = num(q.metric.charge);
   if (q.metric.name == "sds") image.metadata["lambda"] = num(q.metric.lambda);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The camera flights of the README (grtrace-render --flight) as contact sheets in docs/images/: frames of the
-# seed report's orbit (r = 100 M down to ~39 M and back, one revolution) and of a fall from rest at r = 30 M,
-# tiled by ffmpeg. Usage: bash examples/render/make_flight_figures.sh [build-dir]
+# seed report's orbit (r = 100 M down to ~39 M and back, one revolution), of a fall from rest at r = 30 M, and of a
+# fall through the horizon (Kerr-Schild chart), tiled by ffmpeg. Usage: bash examples/render/make_flight_figures.sh [build-dir]
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 build="${1:-build/release}"
@@ -26,3 +26,7 @@ sheet flight-seed 4x2 --flight seed --frames 8 --scene disk --width 320 --height
 # Released from rest at r = 30 M: 8 frames of the fall to 1.1 r_h; the shadow grows to fill the sky.
 sheet flight-infall 4x2 --flight infall --camera-r 30 --camera-theta 80 --frames 8 --scene disk --width 320 \
   --height 240 --fov 90
+# Through the horizon (Kerr-Schild, a = 0): released from rest at r = 4 M, 8 frames of the fall to 1.1 r_c = 1.65 M,
+# the last ones inside r = 2 M; looking sideways along the fall (the hole below, the sky above) at the checker sky.
+sheet flight-horizon 4x2 --metric kerr --spin 0 --chart ks --flight infall --camera-r 4 --frames 8 --width 320 \
+  --height 240 --fov 120 --look 0,0,1 --up 1,0,0

@@ -402,8 +402,9 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
   f.frame = static_cast<int>(frame);
   const CameraView look{triple(p, "look"), triple(p, "up"), q.camera->width(), q.camera->height(),
                         q.camera->fov_degrees()};
-  if (q.kerr && q.chart == "ks")  // the path is integrated in (t, r, theta, phi): refused as grtrace-render does
-    (void)tools::checked_flight_path(kerr_schild_for_camera_rays(q.mass, q.spin), spec);
+  // Kerr-Schild flights are flown in the ingoing slicing (the falling camera crosses the future horizon), as
+  // grtrace-render's; the frame, the rays and the surfaces are then drawn in that chart too.
+  if (q.kerr && q.chart == "ks") q.ks_slicing = KerrSchildSlicing::ingoing;
   auto fly = [&](const auto& metric) {
     const Worldline path = tools::checked_flight_path(metric, spec);
     check_frame(static_cast<long>(path.samples.size()));
@@ -413,8 +414,7 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
     f.tau = at.tau;
     f.path = viz::worldline_path(metric, path);
   };
-  if (q.kerr) fly(KerrMetric{q.mass, q.spin});
-  else fly(SchwarzschildMetric{q.mass});
+  view::with_metric(q, fly);
   return f;
 }
 
@@ -719,7 +719,7 @@ int run_view(const Request& q) {
     const bool pro = q.disk_sense == (q.spin < 0.0 ? -1 : 1);
     layout.isco_radius = exact::isco_radius(q.spin, pro ? exact::Orbit::prograde : exact::Orbit::retrograde, q.mass);
     // Kerr-Schild rays are drawn in their chart's Cartesian x, y, z: the surfaces follow them there (see the top).
-    if (q.chart == "ks") layout.kerr_schild = kerr_schild_for_camera_rays(q.mass, q.spin).slicing;
+    if (q.chart == "ks") layout.kerr_schild = q.ks_slicing;
   }
   // The camera's Boyer-Lindquist r and theta for the caption (a Kerr-Schild camera event is Cartesian).
   Vec4 camera_bl = camera.position();

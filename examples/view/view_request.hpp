@@ -55,6 +55,9 @@ struct Request {
   bool kerr = false;   ///< --metric kerr: Kerr with spin `spin` in the coordinates of `chart`
   double spin = 0.0;
   std::string chart = "bl";  ///< kerr: "bl" (Boyer-Lindquist) or "ks" (Cartesian Kerr-Schild), as grtrace-render's
+  /// kerr ks: outgoing (single frames: camera rays cross the past horizon) or ingoing (--flight: the camera falls
+  /// through the future horizon), as grtrace-render's MetricSpec::slicing.
+  KerrSchildSlicing ks_slicing = KerrSchildSlicing::outgoing;
   int disk_sense = +1;  ///< +1: the disk turns towards +phi (scene/thin_disk.hpp)
   std::optional<Camera> camera;
   double fov = 55.0;
@@ -95,12 +98,15 @@ inline StandardSceneSpec make_scene_spec(const Request& q) {
 }
 
 /// Takes the request and a generic callable; calls f(metric) with the metric the rays are traced in: Schwarzschild,
-/// Kerr in Boyer-Lindquist coordinates, or Kerr in Cartesian Kerr-Schild coordinates of the outgoing slicing (the
-/// one camera rays cross the horizon in, as grtrace-render's --chart ks). Only these three are instantiated.
+/// Kerr in Boyer-Lindquist coordinates, or Kerr in Cartesian Kerr-Schild coordinates of q.ks_slicing (outgoing, the
+/// one camera rays cross the horizon in; ingoing for a flight, as grtrace-render's --chart ks). Only these three
+/// types are instantiated.
 template <class F>
 void with_metric(const Request& q, F&& f) {
   if (!q.kerr) f(SchwarzschildMetric{q.mass});
-  else if (q.chart == "ks") f(kerr_schild_for_camera_rays(q.mass, q.spin));
+  else if (q.chart == "ks")
+    f(q.ks_slicing == KerrSchildSlicing::ingoing ? kerr_schild_for_flights(q.mass, q.spin)
+                                                 : kerr_schild_for_camera_rays(q.mass, q.spin));
   else f(KerrMetric{q.mass, q.spin});
 }
 

@@ -131,6 +131,31 @@ TEST(FlightCli, CsvPathGivesOneFramePerRow) {
   EXPECT_FALSE(fs::exists(dir.path / "c-0002.exr"));
 }
 
+// With --chart ks a fall continues through the horizon (the ingoing Kerr-Schild slicing): the last frames are taken
+// inside r = 2M, and every ray of every frame ends on the sky or the horizon (none fails, none is NaN).
+TEST(FlightCli, KerrSchildInfallContinuesThroughTheHorizon) {
+  TempDir dir;
+  const std::string out = (dir.path / "fall.exr").string();
+  const ToolRun run = render(kSmall + "--metric kerr --spin 0 --chart ks --flight infall --camera-r 6 --frames 4 "
+                                      "--look -1,0,1 --up 1,0,0 --out " + out);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(json_number(run.output, "frames"), 4.0) << run.output;
+  for (const char* failure : {"max_steps", "step_underflow", "non_finite"})
+    EXPECT_EQ(json_number(run.output, failure), 0.0) << failure << "\n" << run.output;
+  EXPECT_GT(json_number(run.output, "escaped"), 0.0) << run.output;
+  EXPECT_GT(json_number(run.output, "captured"), 0.0) << run.output;
+  const grtrace::Image last = grtrace::read_exr(dir.path / "fall-0003.exr");
+  EXPECT_EQ(last.metadata.at("kerr_schild_slicing"), "ingoing");
+  EXPECT_EQ(last.metadata.at("chart"), "ks");
+  std::stringstream position(last.metadata.at("camera_position"));  // Kerr-Schild (t, x, y, z): on the +x axis
+  double t = 0, x = 0;
+  char comma = 0;
+  position >> t >> comma >> x;
+  EXPECT_NEAR(x, 1.65, 1e-6);  // the automatic fall ends at 1.1 r_c, r_c = 1.5 M: inside the horizon
+  for (const char* channel : {"R", "G", "B"})
+    for (const float v : last.channel(channel)) ASSERT_TRUE(std::isfinite(v)) << channel;
+}
+
 TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
   TempDir dir;
   const std::string out = " --out " + (dir.path / "f.exr").string();
@@ -145,7 +170,8 @@ TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
       {"--mp4", "--mp4 needs --flight"},
       {"--flight infall --camera-r 20 --frames 5 --frame-dtau 40", "the camera's path ends (captured"},
       {"--flight circular --camera-r 2.5", "no timelike circular orbit at r = 2.5"},
-      {"--flight seed --metric kerr --spin 0.5 --chart ks", "--flight needs a spherical chart"},
+      {"--flight circular --metric kerr --spin 0.5 --chart ks", "a circular flight is stated in the spherical chart"},
+      {"--flight seed --metric kerr --spin 0.5 --chart ks", "the automatic step of a seed flight counts a revolution"},
       {"--flight seed --status-map", "are for single frames"},
       {"--flight seed --tracer symmetric", "--tracer symmetric does not fly"},
   };

@@ -64,7 +64,7 @@ TEST(Worldline, RadialInfallFollowsTheCycloid) {
   auto eta_at_r = [&](double r) { return std::acos(2.0 * r / r0 - 1.0); };
   const double eta_end = eta_at_r(2.2 * M);
   const double tau_end = scale * (eta_end + std::sin(eta_end));
-  const auto fall = proper_time_until(metric, start, RadiusEvent{2.2 * M});
+  const auto fall = proper_time_until(metric, start, radius_event(metric, 2.2 * M));
   ASSERT_TRUE(fall);
   EXPECT_NEAR(*fall, tau_end, 1e-8 * tau_end);
   const int n = 30;

@@ -30,9 +30,11 @@
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -222,6 +224,41 @@ struct KerrMetric {
   // ---- the geometry ------------------------------------------------------------------------------------------
   double outer_horizon() const { return mass + std::sqrt(mass * mass - spin * spin); }
   double inner_horizon() const { return mass - std::sqrt(mass * mass - spin * spin); }
+  /// Omega_H = a / (r_+^2 + a^2) = a / (2 M r_+): the horizon's null generator is chi = d_t + Omega_H d_phi.
+  double horizon_angular_velocity() const { return spin / (2.0 * mass * outer_horizon()); }
+
+  /// The radial potential of a null geodesic with energy E, axial angular momentum L_z and Carter constant Q:
+  /// R(r) = (E (r^2 + a^2) - a L_z)^2 - Delta ((L_z - a E)^2 + Q), with (Sigma dr/dlambda)^2 = R (Carter 1968;
+  /// Chandrasekhar 1983, sec. 63). Valid inside the horizons too (Delta < 0 there).
+  double radial_potential(double e, double lz, double q, double r) const {
+    const double p = e * (r * r + spin * spin) - spin * lz, delta = r * r - 2.0 * mass * r + spin * spin;
+    return p * p - delta * ((lz - spin * e) * (lz - spin * e) + q);
+  }
+
+  /// True when the photon (E, L_z, Q) has a radial turning point above the outer horizon: R(r) <= 0 for some
+  /// r > r_+. A photon that comes out of the hole (R(r_+) = (E (r_+^2 + a^2) - a L_z)^2 > 0) then falls back in
+  /// (into the past horizon, traced backwards); one without reaches infinity.
+  /// Method:  R = E^2 r^4 + c2 r^2 + c1 r + c0 (no r^3 term), R -> +inf; its minima over (r_+, inf) are among the
+  /// real roots of R'(r)/(4 E^2) = r^3 + p r + q (p = c2 / (2 E^2), q = c1 / (4 E^2)), found in closed form
+  /// (trigonometric form for three real roots, Cardano's for one). E = 0: R -> -inf, a turning point.
+  bool radial_turning_point_outside(double e, double lz, double q) const {
+    if (e == 0.0) return true;
+    const double a = spin, k = (lz - a * e) * (lz - a * e) + q, w = e * a * a - a * lz;
+    const double c2 = 2.0 * e * w - k, c1 = 2.0 * mass * k;
+    const double p = c2 / (2.0 * e * e), qq = c1 / (4.0 * e * e), rp = outer_horizon();
+    auto below = [&](double r) { return r > rp && radial_potential(e, lz, q, r) <= 0.0; };
+    const double disc = qq * qq / 4.0 + p * p * p / 27.0;
+    if (disc > 0.0) {  // one real root
+      const double sq = std::sqrt(disc);
+      return below(std::cbrt(-qq / 2.0 + sq) + std::cbrt(-qq / 2.0 - sq));
+    }
+    const double m = 2.0 * std::sqrt(-p / 3.0);  // p < 0 here
+    const double phase = std::acos(std::clamp(3.0 * qq / (p * m), -1.0, 1.0)) / 3.0;
+    for (int j = 0; j < 3; ++j)
+      if (below(m * std::cos(phase - 2.0 * std::numbers::pi * j / 3.0))) return true;
+    return false;
+  }
+
   /// Static limit r_E(theta) = M + sqrt(M^2 - a^2 cos^2 theta): g_tt = 0 there; no static observers inside.
   double ergosphere_radius(double theta) const {
     const double c = std::cos(theta);

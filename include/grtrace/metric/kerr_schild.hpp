@@ -21,12 +21,15 @@
 // Which slicing to use. A ray crosses r_+ in this chart only towards the horizon the slicing is regular on:
 // future-directed rays (k^t > 0) fall through the future horizon of the ingoing chart; past-directed rays
 // (k^t < 0, rays traced backwards from a camera) fall through the past horizon of the outgoing chart. The other
-// combination behaves like Boyer-Lindquist (the ray creeps towards r_+ while k^t grows without bound; with the
-// capture radius inside r_+ it then ends as step_underflow or max_steps, never captured), so pick the slicing by the
-// time direction of k: slicing_crossed_by(k^t). The default is ingoing, the form of shared/reference/kerr.md.
+// combination behaves like Boyer-Lindquist (the ray creeps towards r_+ while k^t grows without bound), and is
+// captured as there, at the guard (1 + eps) r_+ outside (capture_radius): pick the slicing by the time direction of
+// k (slicing_crossed_by(k^t)) to see rays cross. The default is ingoing, the form of shared/reference/kerr.md.
+// The ingoing chart also carries a camera that falls into the hole (kerr_schild_for_flights); its rays, traced
+// into the past from inside r_+, come out through the future horizon or are captured at once (leaves_interior).
 //
 // Capture. radius(x) is the BL-like r of the quadric above (constant on oblate spheroids; it is the BL r of the
-// event), and horizon_radius() returns the capture radius r_c = r_+ - (r_+ - r_-)/4, inside the outer horizon:
+// event), and horizon_radius() returns the capture radius r_c = r_+ - (r_+ - r_-)/4 of the rays the slicing carries
+// across r_+ (capture_radius(y0) gives each ray its own: r_c for those, r_+ for the others), inside the outer horizon:
 // the tracer's guard (1 + eps) r_c stays below r_+ for eps < (r_+ - r_c)/r_c (1/3 for a = 0, 2% for a = 0.999 M),
 // so a ray is only called captured once it is inside r_+, from where no ray returns: the decision is exact, not a
 // tolerance. r_c stays above r_- so rays never reach the region near the ring. outer_horizon() gives r_+ itself.
@@ -221,6 +224,40 @@ struct KerrSchildMetric {
 
   double outer_horizon() const { return mass + std::sqrt(mass * mass - spin * spin); }
   double inner_horizon() const { return mass - std::sqrt(mass * mass - spin * spin); }
+  /// Omega_H = a / (r_+^2 + a^2): the horizon's generator is chi = d_t + Omega_H d_phi (KerrMetric's).
+  double horizon_angular_velocity() const { return boyer_lindquist().horizon_angular_velocity(); }
+
+  /// Optional trait (metric/metric_traits.hpp): the capture radius for the ray starting at y0. A ray whose time
+  /// direction crosses the horizon this slicing is regular on (slicing_crossed_by(k^t) == slicing) is captured
+  /// at r_c inside r_+ (exact, see the header comment); any other ray cannot cross r_+ in this chart (it creeps
+  /// towards it as in Boyer-Lindquist) and is captured at the guard (1 + eps) r_+ outside, where a ray moving
+  /// inwards inside the photon orbits has no turning point left: the Boyer-Lindquist decision.
+  double capture_radius(const GeodesicState& y0) const {
+    return slicing_crossed_by(y0[4]) == slicing ? horizon_radius() : outer_horizon();
+  }
+
+  /// Optional trait: for a ray starting inside its guard, whether it comes out of the hole and may reach the sky.
+  /// Only rays of the other time direction can (a camera inside the black hole of the ingoing chart, its rays
+  /// traced into the past; or the white hole of the outgoing chart, its rays traced into the future).
+  /// Method:  between r_- and r_+ r is a time coordinate: every such ray runs to r_+ monotonically and leaves
+  /// through one of the two horizons bounding the region (Hawking & Ellis 1973, sec. 5.6). At ours, chi =
+  /// d_t + Omega_H d_phi is a null generator, future-directed, so a future-directed momentum p crossing it has
+  /// g(chi, p) = E - Omega_H L_z > 0; a ray with the opposite sign leaves through the other universe's horizon
+  /// (it never reaches ours: captured, the picture's black). With s = sign(k^t) the ray's time direction, p = s k:
+  /// it comes out when s (E(k) - Omega_H L_z(k)) > 0. One that comes out but has a radial turning point above r_+
+  /// (KerrMetric::radial_turning_point_outside, from E, L_z and Carter's Q) falls back into the horizon the chart
+  /// is singular on: captured at once too, where it would end anyway. That is also the only way to decide the rays
+  /// with E - Omega_H L_z -> 0+ (all of them turn back): they leave near the bifurcation sphere, where this chart's
+  /// k^t grows without bound before they are out. Between r_+ and the guard: when it moves outwards.
+  bool leaves_interior(const GeodesicState& y0) const {
+    if (slicing_crossed_by(y0[4]) == slicing) return false;  // it falls in: captured
+    const KerrSchildTerms q = terms(y0.head<4>());
+    if (q.r >= outer_horizon()) return q.dr.dot(y0.tail<3>()) > 0.0;
+    if (!(q.r > inner_horizon())) return false;
+    const double s = y0[4] > 0.0 ? 1.0 : -1.0, e = energy(y0), lz = angular_momentum(y0);
+    if (!(s * (e - horizon_angular_velocity() * lz) > 0.0)) return false;
+    return !boyer_lindquist().radial_turning_point_outside(e, lz, carter_constant(y0));
+  }
 
   // ---- constants of geodesic motion (same values as KerrMetric's at the corresponding BL state) -------------
   /// E = p_t = g_{t nu} k^nu (d_t is the same Killing field in both charts).
@@ -327,6 +364,14 @@ inline GeodesicState ks_to_bl(const KerrSchildMetric& m, const GeodesicState& y_
 /// slicing, because camera rays are traced backwards (k^t < 0) and cross the past horizon (slicing_crossed_by).
 inline KerrSchildMetric kerr_schild_for_camera_rays(double mass, double spin) {
   return KerrSchildMetric::checked(mass, spin, KerrSchildSlicing::outgoing);
+}
+
+/// The Kerr-Schild chart a camera flight is flown in: the ingoing slicing, regular on the future horizon a falling
+/// camera crosses (a flight's infall continues into the black hole). Its camera rays are past-directed: from
+/// outside they are captured at r_+ as in Boyer-Lindquist, from inside they come out of the hole or are captured at
+/// once (capture_radius, leaves_interior).
+inline KerrSchildMetric kerr_schild_for_flights(double mass, double spin) {
+  return KerrSchildMetric::checked(mass, spin, KerrSchildSlicing::ingoing);
 }
 
 inline Vec4 KerrSchildMetric::event_from_spherical(const Vec4& x_bl) const { return bl_to_ks_position(*this, x_bl); }

@@ -14,6 +14,14 @@
 //       phi) in this chart, and the Jacobian d(chart)/d(spherical) there. Cameras and tools state positions and
 //       directions in (r, theta, phi) for every chart (KerrSchildMetric). Generic answer: a spherical chart takes
 //       x as it is; a Cartesian chart maps (r, theta, phi) to (x, y, z) by the flat embedding.
+//   double capture_radius(const GeodesicState& y0) const;  bool leaves_interior(const GeodesicState& y0) const;
+//       For horizon-penetrating charts, where whether a ray can cross the horizon depends on its time direction
+//       (KerrSchildMetric). capture_radius: the radius r_cap of the tracer's horizon guard r = (1 + eps) r_cap for
+//       the ray that starts at y0 (inside the event horizon for a ray the chart carries across it, at it for a
+//       ray that only creeps towards it). leaves_interior: for a ray that starts on or inside that guard, true
+//       when it comes out (a camera inside a black hole looking back at the ray's past: the ray leaves through
+//       the future horizon); the guard then takes effect only once the ray is outside it. Generic answers:
+//       horizon_radius(), and false (a ray that starts inside the guard is captured at once).
 //   static constexpr bool flat = true;
 //       The metric is flat everywhere: light moves on straight lines, so trace/straight_line.hpp follows rays
 //       without integrating (MinkowskiMetric, MinkowskiSpherical). Default: false.
@@ -58,6 +66,26 @@ concept HasSphericalMap = requires(const M m, const Vec4 x) {
   { m.event_from_spherical(x) } -> std::convertible_to<Vec4>;
   { m.jacobian_from_spherical(x) } -> std::convertible_to<Mat4>;
 };
+
+template <class M>
+concept HasDirectedCapture = requires(const M m, const GeodesicState y) {
+  { m.capture_radius(y) } -> std::convertible_to<double>;
+  { m.leaves_interior(y) } -> std::convertible_to<bool>;
+};
+
+/// The radius of the horizon guard for the ray (or body) starting at y0 (see the top of this file); 0: no horizon.
+template <MetricPolicy M>
+double capture_radius_of(const M& metric, const GeodesicState& y0) {
+  if constexpr (HasDirectedCapture<M>) return metric.capture_radius(y0);
+  else return metric.horizon_radius();
+}
+
+/// For a ray starting on or inside its horizon guard: true when it comes out of the hole (see the top of this file).
+template <MetricPolicy M>
+bool leaves_interior_of(const M& metric, const GeodesicState& y0) {
+  if constexpr (HasDirectedCapture<M>) return metric.leaves_interior(y0);
+  else return false;
+}
 
 /// The event with spherical coordinates x = (t, r, theta, phi) in the metric's chart (see the top of this file).
 template <MetricPolicy M>

@@ -9,7 +9,8 @@
 //   minkowski         MinkowskiSpherical (flat: straight lines)               -
 //   kerr              KerrMetric, Boyer-Lindquist (chart "bl")                mass, spin |a| < M
 //                     KerrSchildMetric, Cartesian Kerr-Schild (chart "ks"),   (cameras are placed in BL coordinates;
-//                     outgoing slicing: camera rays cross the horizon)        the outgoing chart takes past-directed rays)
+//                     outgoing slicing: camera rays cross the horizon)        the outgoing chart takes past-directed rays;
+//                     (ingoing with MetricSpec::slicing: flights fall in)     a flight's camera crosses in the ingoing one)
 //   rn                Reissner-Nordstrom, automatic Christoffels             mass, charge |Q| < M
 //   sds               Schwarzschild-de Sitter, automatic Christoffels        mass, lambda in (0, 1/(9 M^2))
 //   wormhole          Ellis wormhole (t, l, theta, phi), no horizon          throat b0 > 0
@@ -42,6 +43,9 @@ struct MetricSpec {
   double mass = 1.0;                   ///< M (all but minkowski and wormhole)
   double spin = 0.0;                   ///< kerr: a, |a| < M (negative: rotation towards -phi)
   std::string chart = "bl";            ///< kerr: "bl" (Boyer-Lindquist) or "ks" (Kerr-Schild); others: "bl" only
+  /// kerr, chart ks: outgoing (single frames: camera rays, traced into the past, cross the past horizon and are
+  /// captured inside it) or ingoing (flights: the falling camera crosses the future horizon, kerr_schild_for_flights).
+  KerrSchildSlicing slicing = KerrSchildSlicing::outgoing;
   double charge = 0.5;                 ///< rn: Q, |Q| < M
   double lambda = 1e-5;                ///< sds: cosmological constant, 0 < Lambda < 1 / (9 M^2) (r_c ~ 547 M)
   double throat = 1.0;                 ///< wormhole: throat radius b0
@@ -88,7 +92,9 @@ decltype(auto) with_named_metric(const MetricSpec& s, F&& f) {
   check_metric_spec(s);
   if (s.name == "minkowski") return f(MinkowskiSpherical{});
   if (s.name == "kerr") {
-    if (s.chart == "ks") return f(kerr_schild_for_camera_rays(s.mass, s.spin));  // past-directed camera rays
+    if (s.chart == "ks")
+      return f(s.slicing == KerrSchildSlicing::ingoing ? kerr_schild_for_flights(s.mass, s.spin)
+                                                       : kerr_schild_for_camera_rays(s.mass, s.spin));
     return f(KerrMetric::checked(s.mass, s.spin));
   }
   if (s.name == "rn") {

@@ -20,6 +20,7 @@
 #include "grtrace/observer/observers.hpp"
 #include "grtrace/observer/tetrad.hpp"
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -59,9 +60,9 @@ Camera make_camera(const M& metric, const CameraSpec& spec) {
 namespace grtrace {
 
 /// The look rule of a camera carried by a given 4-velocity (a flight along a worldline, observer/worldline.hpp):
-/// look and up are components along the chart's axes (r, theta, phi in a spherical chart) as the moving observer
-/// sees them (each axis with its part along u removed, then orthonormalised: ObserverFrame(g, u)), so "look at the
-/// hole" (-1, 0, 0) stays at the hole all along the path while aberration and Doppler come from u itself.
+/// look and up are components along the radial, polar and azimuthal axes (flight_look_axes) as the moving observer
+/// sees them (each axis with its part along u removed, then orthonormalised: ObserverFrame(g, u, axes)), so "look at
+/// the hole" (-1, 0, 0) stays at the hole all along the path while aberration and Doppler come from u itself.
 struct CameraView {
   Vec3 look{-1.0, 0.0, 0.0};
   Vec3 up{0.0, -1.0, 0.0};
@@ -69,12 +70,32 @@ struct CameraView {
   double fov_degrees = 90.0;
 };
 
+/// The axes a flight camera's look and up are read along, at the event x: in a spherical chart its coordinate
+/// vectors d_r, d_theta, d_phi; in a Cartesian chart the embedding's unit radial, polar and azimuthal vectors at
+/// the event's direction (spatial: no t part). The latter are regular through a horizon (a Kerr-Schild camera falls
+/// through it), where the Boyer-Lindquist basis mapped into the chart is not (its d_r has a t part 2Mr/Delta). For
+/// a radial fall the two give the same frame outside the horizon (the radial axis lies in the plane of d_t, d_r and
+/// u either way; tests/render/flight_test.cpp).
+template <MetricPolicy M>
+std::array<Vec4, 3> flight_look_axes(const M& metric, const Vec4& x) {
+  if constexpr (M::chart == Chart::spherical) {
+    return {Vec4::Unit(1), Vec4::Unit(2), Vec4::Unit(3)};
+  } else {
+    double theta = 0.0, phi = 0.0;
+    direction_angles(metric.to_cartesian(x), theta, phi);
+    const SphericalBasis e = spherical_basis(theta, phi);
+    auto spatial = [](const Vec3& v) { return Vec4(0.0, v[0], v[1], v[2]); };
+    return {spatial(e.r), spatial(e.theta), spatial(e.phi)};
+  }
+}
+
 /// The camera at event x moving with the future-directed unit timelike u, pointed by `view`.
 /// Look and up are read along the moving observer's own axes. Where they have no component along the motion this
 /// is make_camera's static observer boosted to u (make_camera reads look/up in the static frame; the two readings
 /// differ only in a component along the motion, by the Lorentz factor): tests/render/flight_test.cpp checks both.
 /// Throws std::invalid_argument (what to change) for a u that is not timelike and future-directed, a position on
-/// or inside the horizon, a zero or degenerate look/up.
+/// or inside the metric's capture radius (horizon_radius(): the horizon itself in Schwarzschild-type charts, inside
+/// it in Kerr-Schild, where a camera can look out from inside the black hole), a zero or degenerate look/up.
 template <MetricPolicy M>
 Camera make_moving_camera(const M& metric, const Vec4& x, const Vec4& u, const CameraView& view) {
   if (!x.allFinite() || !u.allFinite()) throw std::invalid_argument("camera: position and 4-velocity must be finite");
@@ -82,7 +103,7 @@ Camera make_moving_camera(const M& metric, const Vec4& x, const Vec4& u, const C
     throw std::invalid_argument("camera: the position r = " + std::to_string(metric.radius(x)) +
                                 " is on or inside the horizon (r = " + std::to_string(rh) + "); move the camera out");
   const Mat4 g = metric.metric(x);
-  const ObserverFrame frame(g, u);
+  const ObserverFrame frame(g, u, flight_look_axes(metric, x));
   const Tetrad tetrad = make_tetrad(g, frame.e[0], frame.spatial(view.look), frame.spatial(view.up));
   return Camera(x, tetrad, view.width, view.height, view.fov_degrees);
 }

@@ -9,7 +9,14 @@
 //   orbit     (r, theta, phi) with dr/dtau and dphi/dtau                          one revolution / frames
 //   infall    released from rest at (r, theta, phi)                              the fall to 1.1 r_h / (frames - 1)
 //   csv       the rows of a CSV file (observer/worldline_csv.hpp), as given      -
-// Takes:   a metric with a spherical chart and the spec. Returns: the samples, every one of them (complete).
+// r_h is the metric's capture radius for the camera (metric/metric_traits.hpp capture_radius_of): the horizon in
+// Schwarzschild-type charts, which cannot carry a camera across it; inside it in a chart that can (Kerr-Schild's
+// ingoing slicing: kerr_schild_for_flights), so that there an infall continues through the horizon, its last frames
+// inside the black hole.
+// Takes:   a metric and the spec. Starts are stated in spherical (Boyer-Lindquist) coordinates in every chart
+//          (observer/timelike_start.hpp maps them); circular and csv need a spherical chart, and so does the
+//          automatic step of seed and orbit (a revolution counted in phi).
+// Returns: the samples, every one of them (complete).
 // Throws:  std::invalid_argument saying what to change, before any rendering: an unknown kind, frames outside
 //          1 .. 100000, dtau < 0, a start that cannot exist (observer/timelike_start.hpp), an automatic step that
 //          has no revolution or fall to measure, a path that ends (horizon) before its last frame or leaves the
@@ -18,6 +25,7 @@
 
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/observer/timelike_start.hpp"
 #include "grtrace/observer/worldline.hpp"
 #include "grtrace/observer/worldline_csv.hpp"
@@ -52,7 +60,6 @@ inline bool is_flight_path_kind(std::string_view kind) {
 }
 
 template <MetricPolicy M>
-  requires(M::chart == Chart::spherical)
 Worldline flight_path(const M& metric, const FlightPathSpec& spec) {
   auto number = [](double v) {
     char buf[32];
@@ -62,27 +69,44 @@ Worldline flight_path(const M& metric, const FlightPathSpec& spec) {
   if (!is_flight_path_kind(spec.kind))
     throw std::invalid_argument("unknown flight '" + spec.kind + "'; choose seed, circular, orbit, infall or csv");
   Worldline path;
+  constexpr bool spherical = M::chart == Chart::spherical;
+  if (!spherical && (spec.kind == "csv" || spec.kind == "circular"))
+    throw std::invalid_argument("a " + spec.kind + " flight is stated in the spherical chart (t, r, theta, phi); use "
+                                "it with Boyer-Lindquist coordinates (the Kerr-Schild chart flies seed, orbit and "
+                                "infall)");
   if (spec.kind == "csv") {
-    path = read_worldline_csv(spec.csv);
-    check_worldline(metric, path);
+    if constexpr (spherical) {
+      path = read_worldline_csv(spec.csv);
+      check_worldline(metric, path);
+    }
   } else {
     if (spec.frames < 1 || spec.frames > 100000) throw std::invalid_argument("--frames must be in 1 .. 100000");
     if (!(spec.dtau >= 0.0) || !std::isfinite(spec.dtau))
       throw std::invalid_argument("--frame-dtau must be >= 0 (0: automatic)");
+    auto circular = [&] {
+      if constexpr (spherical) return circular_orbit_start(metric, spec.r);
+      else return TimelikeStart{};  // refused above
+    };
     const TimelikeStart start = spec.kind == "seed"       ? seed_orbit_start(metric, spec.mass)
-                                : spec.kind == "circular" ? circular_orbit_start(metric, spec.r)
+                                : spec.kind == "circular" ? circular()
                                 : spec.kind == "infall"   ? radial_infall_start(metric, spec.r, spec.theta, spec.phi)
                                                           : orbit_start(metric, spec.r, spec.theta, spec.phi,
                                                                         spec.dr_dtau, spec.dphi_dtau);
+    const double r0 = metric.radius(start.x);
     double dtau = spec.dtau;
     if (dtau == 0.0 && spec.kind == "infall") {
-      const double rh = metric.horizon_radius();
-      const auto fall = rh > 0.0 && start.x[1] > 1.1 * rh ? proper_time_until(metric, start, RadiusEvent{1.1 * rh})
-                                                           : std::nullopt;
+      const double rh = capture_radius_of(metric, start.state());
+      const auto fall =
+          rh > 0.0 && r0 > 1.1 * rh ? proper_time_until(metric, start, radius_event(metric, 1.1 * rh)) : std::nullopt;
       if (!fall)
-        throw std::invalid_argument("no fall to 1.1 r_h from r = " + number(start.x[1]) +
-                                    " (no horizon, or already inside 1.1 r_h); give --frame-dtau");
+        throw std::invalid_argument("no fall to 1.1 r_h from r = " + number(r0) +
+                                    " (no horizon, already inside 1.1 r_h, or a chart that cannot carry the camera "
+                                    "there); give --frame-dtau, or fall through the horizon in --metric kerr "
+                                    "--chart ks");
       dtau = *fall / static_cast<double>(std::max(spec.frames - 1, 1));
+    } else if (dtau == 0.0 && !spherical) {
+      throw std::invalid_argument("the automatic step of a " + spec.kind + " flight counts a revolution in phi of the "
+                                  "spherical chart; give --frame-dtau, or use Boyer-Lindquist coordinates");
     } else if (dtau == 0.0) {
       const auto turn = proper_time_until(metric, start, revolution_event(start));
       if (!turn)

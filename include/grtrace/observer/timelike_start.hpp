@@ -1,6 +1,9 @@
 // grtrace/observer/timelike_start.hpp
 // Where a massive body (a camera on a flight, a planet) starts: an event and a unit timelike 4-velocity
-// (g(u, u) = 1, future-directed) in a spherical chart (t, r, theta, phi) of any metric policy.
+// (g(u, u) = 1, future-directed) in any metric policy. Positions and velocities are stated in spherical coordinates
+// (t, r, theta, phi) (Boyer-Lindquist for Kerr) whatever the metric's chart, and mapped into it
+// (metric/metric_traits.hpp event_from_spherical, jacobian_of_spherical: a Kerr-Schild camera falls through the
+// horizon in its own chart). circular_orbit_start needs a spherical chart.
 //
 //   timelike_velocity      the 4-velocity with given dr/dtau, dtheta/dtau, dphi/dtau (solves for u^t, cross
 //                          terms g_{t i} included, so Kerr's frame dragging is accounted for)
@@ -16,6 +19,7 @@
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/circular_orbits.hpp"
 #include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/metric_traits.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -32,13 +36,12 @@ struct TimelikeStart {
   GeodesicState state() const { return make_state(x, u); }
 };
 
-/// The future-directed u with u^i = spatial^i and g(u, u) = 1 at x, or nothing where none exists.
-/// Takes:   the metric, the event, the spatial components (dx^i/dtau).
+/// The future-directed u with u^i = spatial^i and g(u, u) = 1 for the metric g at an event, or nothing where none
+/// exists.
+/// Takes:   g at the event, the spatial components (dx^i/dtau).
 /// Method:  g_tt (u^t)^2 + 2 (g_ti u^i) u^t + g_ij u^i u^j = 1, the root with u^t > 0; assumes g_tt > 0 (outside
 ///          ergospheres and horizons, where d_t is timelike and the larger root is the future one).
-template <MetricPolicy M>
-std::optional<Vec4> timelike_velocity(const M& metric, const Vec4& x, const Vec3& spatial) {
-  const Mat4 g = metric.metric(x);
+inline std::optional<Vec4> timelike_velocity(const Mat4& g, const Vec3& spatial) {
   if (!g.allFinite() || !spatial.allFinite() || !(g(0, 0) > 0.0)) return std::nullopt;
   Vec4 v(0.0, spatial[0], spatial[1], spatial[2]);
   const double b = g.row(0).dot(v);   // g_ti u^i
@@ -50,17 +53,32 @@ std::optional<Vec4> timelike_velocity(const M& metric, const Vec4& x, const Vec3
   return v;
 }
 
-/// A body at (r, theta, phi) (radians) moving with dr/dtau and dphi/dtau; throws where no timelike u exists.
+/// The same at the event x of a metric.
 template <MetricPolicy M>
-  requires(M::chart == Chart::spherical)
+std::optional<Vec4> timelike_velocity(const M& metric, const Vec4& x, const Vec3& spatial) {
+  return timelike_velocity(metric.metric(x), spatial);
+}
+
+/// A body at spherical (r, theta, phi) (radians) moving with dr/dtau and dphi/dtau; throws where no timelike u
+/// exists. In a chart that is not spherical the event and u are mapped into it: u is found in the spherical chart's
+/// metric J^T g J (J = d(chart)/d(spherical)) and pushed forward, u = J u_s.
+template <MetricPolicy M>
 TimelikeStart orbit_start(const M& metric, double r, double theta, double phi, double dr_dtau, double dphi_dtau) {
-  const Vec4 x(0.0, r, theta, phi);
-  if (!x.allFinite() || !std::isfinite(dr_dtau) || !std::isfinite(dphi_dtau))
+  const Vec4 xs(0.0, r, theta, phi);
+  if (!xs.allFinite() || !std::isfinite(dr_dtau) || !std::isfinite(dphi_dtau))
     throw std::invalid_argument("timelike start: position and velocities must be finite numbers");
+  const Vec4 x = event_from_spherical(metric, xs);
   if (const double rh = metric.horizon_radius(); rh > 0.0 && !(metric.radius(x) > rh))
     throw std::invalid_argument("timelike start: r = " + std::to_string(r) + " is on or inside the horizon (r = " +
                                 std::to_string(rh) + "); start further out");
-  const auto u = timelike_velocity(metric, x, Vec3(dr_dtau, 0.0, dphi_dtau));
+  std::optional<Vec4> u;
+  if constexpr (M::chart == Chart::spherical) {
+    u = timelike_velocity(metric, x, Vec3(dr_dtau, 0.0, dphi_dtau));
+  } else {
+    const Mat4 j = jacobian_of_spherical(metric, xs);
+    if (auto us = timelike_velocity(Mat4(j.transpose() * metric.metric(x) * j), Vec3(dr_dtau, 0.0, dphi_dtau)))
+      u = j * *us;
+  }
   if (!u)
     throw std::invalid_argument("timelike start: no timelike 4-velocity with dr/dtau = " + std::to_string(dr_dtau) +
                                 " and dphi/dtau = " + std::to_string(dphi_dtau) + " at r = " + std::to_string(r) +
@@ -70,7 +88,6 @@ TimelikeStart orbit_start(const M& metric, double r, double theta, double phi, d
 
 /// The seed report's orbit for a hole of the given mass: r = 100 M, equatorial, phi = 0, dphi/dtau = 0.00075 / M.
 template <MetricPolicy M>
-  requires(M::chart == Chart::spherical)
 TimelikeStart seed_orbit_start(const M& metric, double mass = 1.0) {
   return orbit_start(metric, 100.0 * mass, std::numbers::pi / 2.0, 0.0, 0.0, 0.00075 / mass);
 }
@@ -88,7 +105,6 @@ TimelikeStart circular_orbit_start(const M& metric, double r, int sense = +1, do
 
 /// Released from rest at (r, theta, phi): the static observer's 4-velocity; throws where g_tt <= 0.
 template <MetricPolicy M>
-  requires(M::chart == Chart::spherical)
 TimelikeStart radial_infall_start(const M& metric, double r, double theta = std::numbers::pi / 2.0, double phi = 0.0) {
   return orbit_start(metric, r, theta, phi, 0.0, 0.0);
 }

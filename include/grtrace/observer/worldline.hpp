@@ -4,7 +4,7 @@
 //
 //   sample_worldline<T, C>(metric, start, dtau, count)   states at tau = 0, dtau, ..., (count - 1) dtau
 //   proper_time_until<T, C>(metric, start, event)         tau where event(y) first reaches 0 (or nothing)
-//   revolution_event(start) / radius_event(r)            the events a flight's automatic length uses
+//   revolution_event(start) / radius_event(metric, r)    the events a flight's automatic length uses
 //
 // Method:  the geodesic equation in (x, u) with the affine parameter = proper time (g(u, u) = 1 at the start and
 //          conserved by the flow), integrated with the tableau T and controller C (defaults: Tsitouras 5(4), PI,
@@ -12,9 +12,9 @@
 //          from its start with the length that ends at tau_k (ControlledIntegrator::step_from_previous), so every
 //          sample is as accurate as the integration itself, and a sampled path does not depend on where the
 //          controller happened to put its steps beyond the integration error.
-// Ends early (Worldline::stopped = captured, fewer samples) when the body reaches the stop radius: by default just outside the
-// horizon guard of the metric (a Schwarzschild-type chart cannot carry a camera further); step failures end it
-// with their status. Polar-axis crossings are re-charted as for rays (wrap_polar_axis).
+// Ends early (Worldline::stopped = captured, fewer samples) when the body reaches the stop radius: by default the
+// metric's horizon guard (just outside the horizon in a Schwarzschild-type chart, which cannot carry a body further;
+// inside it in Kerr-Schild's ingoing chart, where a falling camera crosses it); step failures end it with their status. Polar-axis crossings are re-charted as for rays (wrap_polar_axis).
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
@@ -22,6 +22,7 @@
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/integrate/step_controller.hpp"
 #include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/observer/timelike_start.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
@@ -53,7 +54,9 @@ struct Worldline {
 
 struct WorldlineSettings {
   IntegratorSettings integrator{Tolerance{1e-12, 1e-12}};
-  /// The body stops (status captured) at this radius; <= 0: (1 + horizon_epsilon) r_h of the metric.
+  /// The body stops (status captured) at this radius; <= 0: (1 + horizon_epsilon) r_cap, the metric's capture
+  /// radius for the body (metric/metric_traits.hpp capture_radius_of: inside the event horizon in a chart that
+  /// carries a falling body across it, Kerr-Schild's ingoing slicing).
   double stop_radius = 0.0;
   double horizon_epsilon = 1e-3;
   long max_steps = 10'000'000;
@@ -61,8 +64,8 @@ struct WorldlineSettings {
 
 namespace detail {
 template <MetricPolicy M>
-double worldline_stop_radius(const M& metric, const WorldlineSettings& s) {
-  return s.stop_radius > 0.0 ? s.stop_radius : (1.0 + s.horizon_epsilon) * metric.horizon_radius();
+double worldline_stop_radius(const M& metric, const TimelikeStart& start, const WorldlineSettings& s) {
+  return s.stop_radius > 0.0 ? s.stop_radius : (1.0 + s.horizon_epsilon) * capture_radius_of(metric, start.state());
 }
 }  // namespace detail
 
@@ -82,7 +85,7 @@ Worldline sample_worldline(const M& metric, const TimelikeStart& start, double d
   w.samples.push_back({0.0, start.x, start.u});
   if (count == 1) return w;
   const GeodesicEquation<M> rhs{&metric};
-  const double r_stop = detail::worldline_stop_radius(metric, settings);
+  const double r_stop = detail::worldline_stop_radius(metric, start, settings);
   ControlledIntegrator<T, C, 8> integ(settings.integrator, C{});
   integ.start(rhs, start.state(), 0.0);
   int k = 1;
@@ -131,11 +134,17 @@ inline RevolutionEvent revolution_event(const TimelikeStart& start) {
   return {start.x[3] + sign * 2.0 * std::numbers::pi, sign};
 }
 
-/// An event that ends a path where it first comes within radius r of the centre (spherical charts: y[1] = r).
+/// An event that ends a path where it first comes within radius r of the centre (the metric's radius(x)).
+template <MetricPolicy M>
 struct RadiusEvent {
+  const M* metric;
   double r;
-  double operator()(const GeodesicState& y) const { return y[1] - r; }
+  double operator()(const GeodesicState& y) const { return metric->radius(y.template head<4>()) - r; }
 };
+template <MetricPolicy M>
+RadiusEvent<M> radius_event(const M& metric, double r) {
+  return {&metric, r};
+}
 
 /// The proper time from `start` until event(y) first reaches 0, or nothing when the body stops first (the stop
 /// radius of settings, an integration failure, max_steps).
@@ -146,9 +155,9 @@ std::optional<double> proper_time_until(const M& metric, const TimelikeStart& st
   s.integrator = settings.integrator;
   s.max_steps = static_cast<int>(std::min<long>(settings.max_steps, std::numeric_limits<int>::max()));
   s.escape_radius = std::numeric_limits<double>::max();
-  s.horizon_epsilon = settings.stop_radius > 0.0 && metric.horizon_radius() > 0.0
-                          ? settings.stop_radius / metric.horizon_radius() - 1.0
-                          : settings.horizon_epsilon;
+  const double r_capture = capture_radius_of(metric, start.state());  // the tracer's guard is (1 + eps) r_capture
+  s.horizon_epsilon =
+      settings.stop_radius > 0.0 && r_capture > 0.0 ? settings.stop_radius / r_capture - 1.0 : settings.horizon_epsilon;
   const GeodesicTracer<M, T, C> tracer(metric, s);
   const TraceResult r = tracer.trace(start.state(), event);
   if (r.status != RayStatus::hit) return std::nullopt;

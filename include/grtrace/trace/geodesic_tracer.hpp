@@ -7,8 +7,11 @@
 //          the final state (on the surface that ended the ray: bracketed on the dense output, then refined on
 //          the integrator's step map, see refine_located), the counts of accepted/rejected steps and
 //          right-hand-side evaluations (refinement steps included), and the drift of g(k, k).
-// Assumes: the ray starts outside the horizon guard and inside the escape sphere (else it ends at once).
-// Termination surfaces are events like any other: horizon guard r = (1 + eps) r_h, escape sphere r = R.
+// Assumes: the ray starts inside the escape sphere and outside the horizon guard (else it ends at once), except
+//          in a horizon-penetrating chart that says the ray comes out of the hole (metric/metric_traits.hpp
+//          leaves_interior: a camera inside the horizon): the guard then takes effect once the ray is outside it.
+// Termination surfaces are events like any other: horizon guard r = (1 + eps) r_cap (r_cap: the metric's
+// horizon_radius(), or its capture_radius(y0) where that depends on the ray's time direction), sky sphere r = R.
 // An observer, if given, sees every accepted step (and the last, cut at the surface) with the integrator's
 // dense output, so paths can be drawn as smooth curves (the last drawn point, dense(theta), differs from the
 // refined final state by the interpolant's error).
@@ -19,6 +22,7 @@
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/integrate/event_locator.hpp"
 #include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/metric_traits.hpp"
 
 #include <algorithm>
 #include <array>
@@ -143,10 +147,17 @@ class GeodesicTracer {
   TraceResult trace_observed(const GeodesicState& y0, Observer&& observer, const Events&... events) const {
     const GeodesicEquation<Metric> rhs{&metric_};
     // Metrics without a horizon (flat space, wormholes: horizon_radius() == 0) get no capture surface at all.
-    const bool has_horizon = metric_.horizon_radius() > 0.0;
-    const double r_guard = (1.0 + settings_.horizon_epsilon) * metric_.horizon_radius();
+    const double r_capture = capture_radius_of(metric_, y0);
+    const bool has_horizon = r_capture > 0.0;
+    const double r_guard = (1.0 + settings_.horizon_epsilon) * r_capture;
     const double r_escape = settings_.escape_radius;
-    auto horizon = [&](const GeodesicState& y) { return has_horizon ? metric_.radius(y.head<4>()) - r_guard : 1.0; };
+    // A ray that starts inside the guard and comes out (a camera inside the hole, in a chart that penetrates the
+    // horizon) is not captured there: its guard is armed once it is outside it (a ray that then falls back in is
+    // captured as any other).
+    bool guard_armed = !(has_horizon && !(metric_.radius(y0.head<4>()) > r_guard) && leaves_interior_of(metric_, y0));
+    auto horizon = [&](const GeodesicState& y) {
+      return has_horizon && guard_armed ? metric_.radius(y.head<4>()) - r_guard : 1.0;
+    };
     auto escape = [&](const GeodesicState& y) { return r_escape - metric_.radius(y.head<4>()); };
     const auto all = std::tie(horizon, escape, events...);
     constexpr std::size_t K = 2 + sizeof...(Events);
@@ -199,7 +210,8 @@ class GeodesicTracer {
       // Kerr-Schild); the values are those horizon(y) and escape(y) return.
       const double r_now = metric_.radius(integ.state().template head<4>());
       for_each_event(all, [&](std::size_t i, const auto& e) {
-        const double g1 = i == 0 ? (has_horizon ? r_now - r_guard : 1.0) : i == 1 ? r_escape - r_now : e(integ.state());
+        const double g1 =
+            i == 0 ? (has_horizon && guard_armed ? r_now - r_guard : 1.0) : i == 1 ? r_escape - r_now : e(integ.state());
         // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
         const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
         if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {
@@ -229,6 +241,10 @@ class GeodesicTracer {
         const double lambda_hit = integ.previous_lambda() + theta_first * integ.last_step();
         if (violated(y_hit)) return finish(RayStatus::non_finite, y_hit, lambda_hit, integ);
         return finish(status_of(first, result), y_hit, lambda_hit, integ);
+      }
+      if (!guard_armed && r_now > r_guard) {  // out of the hole: from here on a fall back inside is a capture
+        guard_armed = true;
+        g_prev[0] = r_now - r_guard;
       }
       if (++steps_since_check >= check_interval) {
         steps_since_check = 0;

@@ -27,6 +27,6 @@ sheet flight-seed 4x2 --flight seed --frames 8 --scene disk --width 320 --height
 sheet flight-infall 4x2 --flight infall --camera-r 30 --camera-theta 80 --frames 8 --scene disk --width 320 \
   --height 240 --fov 90
 # Through the horizon (Kerr-Schild, a = 0): released from rest at r = 4 M, 8 frames of the fall to 1.1 r_c = 1.65 M,
-# the last ones inside r = 2 M; looking sideways along the fall (the hole below, the sky above) at the checker sky.
+# the last one inside r = 2 M; looking sideways (along phi: the hole below, the sky above) at the checker sky.
 sheet flight-horizon 4x2 --metric kerr --spin 0 --chart ks --flight infall --camera-r 4 --frames 8 --width 320 \
   --height 240 --fov 120 --look 0,0,1 --up 1,0,0

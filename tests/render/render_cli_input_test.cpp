@@ -197,7 +197,7 @@ TEST_F(RenderCliInput, GoodRunPrintsTheContractJsonAndRecordsTheParameters) {
   EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;
   EXPECT_EQ(r.out.front(), '{');
   for (const char* key : {"\"width\":24", "\"height\":16", "\"seconds\":", "\"rays_per_second\":", "\"mean_steps\":",
-                          "\"status_counts\":{", "\"tracer\":", "\"tableau\":\"tsit5\"", "\"rtol\":1e-08",
+                          "\"status_counts\":{", "\"tracer\":", "\"tableau\":\"rkf78\"", "\"rtol\":1e-08",
                           "\"atol\":", "\"out\":", "\"escaped\":", "\"captured\":", "\"hit\":", "\"max_steps\":",
                           "\"step_underflow\":", "\"non_finite\":"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing in " << r.out;

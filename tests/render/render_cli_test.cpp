@@ -54,7 +54,7 @@ TEST(RenderCli, WritesTheContractedJsonExrAndPng) {
   for (const char* ch : {"R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"})
     EXPECT_TRUE(img.has_channel(ch)) << ch;
   for (float v : img.channel("R")) ASSERT_TRUE(std::isfinite(v));
-  EXPECT_EQ(img.metadata.at("tableau"), "tsit5");
+  EXPECT_EQ(img.metadata.at("tableau"), "rkf78");
   EXPECT_EQ(img.metadata.at("angle_correction"), "exact");
 }
 

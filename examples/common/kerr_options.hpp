@@ -28,11 +28,6 @@ inline const std::string kKerrChartHelp =
     "kerr: bl (Boyer-Lindquist) | ks (Kerr-Schild, horizon-penetrating); the camera is placed in Boyer-Lindquist "
     "coordinates for both";
 
-/// The refusal of a disk scene in a chart that is not spherical (Kerr-Schild is Cartesian; the thin disk is the
-/// plane theta = pi/2 of a spherical chart).
-inline const std::string kDiskNeedsSphericalChart =
-    "--scene disk needs a spherical chart (the thin disk is theta = pi/2); use --chart bl";
-
 /// Takes the tool's command line; declares --observer (default static: read it with observer_name).
 inline void declare_observer_option(CommandLine& cli) {
   cli.option("observer", "static", "static | zamo: the observer whose frame carries the camera (same for a "

@@ -327,11 +327,7 @@ Request read_request(const CommandLine& cli) {
   if (disk) tools::set_disk_sense_and_isco(cli, ms, q.scene.disk);
   if (disk) {
     try {
-      with_named_metric(ms, [&](const auto& m) {
-        using M = std::remove_cvref_t<decltype(m)>;
-        if constexpr (M::chart == Chart::spherical) check_disk_orbits(m, q.scene.disk);
-        else throw std::invalid_argument(tools::kDiskNeedsSphericalChart);
-      });
+      with_named_metric(ms, [&](const auto& m) { check_disk_orbits(m, q.scene.disk); });
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer)");
     }

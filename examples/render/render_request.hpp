@@ -93,7 +93,8 @@ std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyD
         else with_auto_tracer<T, C>(metric, q.settings, *q.camera, q.correction, scene, q.table_nodes, draw);
       } else {
         throw tools::UsageError("--scene " + q.scene.name + " cannot be drawn in the " + std::string(Metric::name) +
-                                " chart (the thin disk needs a spherical chart: use --chart bl)");
+                                " chart (its objects need a spherical chart, or a Cartesian one that names its "
+                                "spherical chart)");
       }
     });
   });

@@ -102,8 +102,7 @@ CommandLine make_command_line() {
       .option("chart", "", tools::kKerrChartHelp + " (default bl; with --frame: the frame's). Also orbit | norm | "
                            "step: the older spelling of --plot")
       // scene (as grtrace-render)
-      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced; "
-                               "with --chart ks the default is checker: the disk needs a spherical chart)")
+      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)")
       .option("mass", "1", "black-hole mass M (G = c = 1)")
       .option("metric", "schwarzschild", "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, "
                                          "the ergosphere and the ISCO of the disk's sense)")
@@ -517,10 +516,6 @@ Request read_request(const CommandLine& cli) {
     check_metric_spec(ms);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
-  }
-  if (q.kerr && q.chart == "ks") {  // as grtrace-render: the thin disk needs a spherical chart
-    if (q.scene == "disk" && cli.given("scene")) throw UsageError(tools::kDiskNeedsSphericalChart);
-    if (q.scene == "disk") q.scene = "checker";  // the viewer's default scene, disk, cannot be drawn in KS
   }
   q.sky_radius = positive(p, "sky-radius");
   if (q.frame && q.frame->metadata.count("camera_position")) {

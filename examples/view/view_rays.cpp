@@ -2,6 +2,7 @@
 #include "view_request.hpp"
 
 #include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
 
 #include <algorithm>
@@ -18,10 +19,8 @@ void with_scene_tracer(const Request& q, F&& f) {
     with_metric(q, [&](const auto& metric) {
       using M = std::remove_cvref_t<decltype(metric)>;
       const GeodesicTracer<M, T, C> tracer(metric, q.rays.settings);
-      // The thin disk is theta = pi/2 of a spherical chart; a disk scene in Kerr-Schild is refused up front.
-      if constexpr (M::chart == Chart::spherical) {
-        if (q.scene == "disk") return f(tracer, make_scene_spec(q).disk);
-      }
+      // The disk as the general scene tracer sees it in this metric (bind_to_metric: z = 0 in Kerr-Schild).
+      if (q.scene == "disk") return f(tracer, bind_to_metric(make_scene_spec(q).disk, metric));
       f(tracer);
     });
   });

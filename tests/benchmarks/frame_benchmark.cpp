@@ -347,6 +347,9 @@ void register_metric_frames(const std::string& method, double rtol, int n) {
     frame_metric<T, C>(s, SchwarzschildMetric{1.0}, disk_scene(spec), n, rtol);
   });
   add("kerr_bl_disk", [=](benchmark::State& s) { frame_metric<T, C>(s, KerrMetric{1.0, 0.9}, kerr_disk(), n, rtol); });
+  add("kerr_ks_disk", [=](benchmark::State& s) {
+    frame_metric<T, C>(s, kerr_schild_for_camera_rays(1.0, 0.9), kerr_disk(), n, rtol);
+  });
 }
 
 

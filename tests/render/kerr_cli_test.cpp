@@ -116,7 +116,7 @@ TEST_F(KerrCli, RefusesBadKerrInputBeforeTracingAndLeavesNoFile) {
       {{"--spin", "0.9", "--scene", "disk", "--disk-inner", "2"}, "ISCO"},  // prograde ISCO 2.32
       {{"--spin", "0.9", "--scene", "disk", "--disk-inner", "6", "--disk-retrograde"}, "ISCO"},  // retro 8.72
       {{"--spin", "-0.9", "--scene", "disk", "--disk-inner", "2.3"}, "ISCO"},  // prograde follows the spin's sign
-      {{"--spin", "0.9", "--scene", "disk", "--chart", "ks"}, "spherical chart"},
+      {{"--spin", "0.9", "--scene", "disk", "--chart", "ks", "--disk-inner", "2"}, "ISCO"},  // checked in BL
   };
   for (const auto& c : bad) {
     const ToolRun r = run(kerr(c.args, target));
@@ -145,6 +145,7 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
       {{"--spin", "0.9", "--disk-retrograde", "--observer", "static"}, 0.9, Orbit::retrograde, "retrograde", "static",
        "bl"},
       {{"--spin", "-0.5"}, -0.5, Orbit::prograde, "prograde", "zamo", "bl"},
+      {{"--spin", "0.9", "--chart", "ks"}, 0.9, Orbit::prograde, "prograde", "zamo", "ks"},  // the disk in KS too
   };
   for (const auto& c : cases) {
     const std::string path = out("disk.exr").string();

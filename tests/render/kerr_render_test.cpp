@@ -346,6 +346,61 @@ TEST(KerrShadow, FlatteningIsOnTheCoRotatingSideOfThePicture) {
 
 // ---- (d) the disk's redshift against BPT ----------------------------------------------------------------------
 
+// The same Keplerian disk drawn in Kerr-Schild (ThinDisk in a Cartesian chart: the plane z = 0 between the quadric's
+// radii, the Boyer-Lindquist orbits pushed forward) and in Boyer-Lindquist: the same pixels hit it, at the same
+// radius and with the same redshift, prograde and retrograde, a = 0.9; and the Kerr-Schild hits' redshifts against
+// the Keplerian closed form g = 1 / (u^t (1 - Omega L_z / E)) from the hit's own conserved quantities.
+TEST(KerrDisk, KerrSchildDrawsTheSameDiskAsBoyerLindquist) {
+  const double spin = 0.9, sky = 400.0;
+  const KerrMetric bl = KerrMetric::checked(1.0, spin);
+  const KerrSchildMetric ks = kerr_schild_for_camera_rays(1.0, spin);
+  for (const int sense : {+1, -1}) {
+    StandardSceneSpec preset;
+    preset.name = "disk";
+    preset.disk.sense = sense;
+    preset.disk.r_in = exact::isco_radius(spin, sense > 0 ? exact::Orbit::prograde : exact::Orbit::retrograde);
+    preset.disk.r_out = 20.0;
+    check_disk_orbits(ks, preset.disk);  // the Boyer-Lindquist checks, through the chart's spherical_chart()
+    const CameraSpec spec = bl_camera(40.0, 75.0, 40, 45.0, ObserverKind::zamo);
+    const Camera cb = make_camera(bl, spec), ck = make_camera(ks, spec);
+    const auto tb = make_general_tracer<Tableau, Control>(bl, settings(sky), AngleCorrection::flat, disk_scene(preset));
+    const auto tk = make_general_tracer<Tableau, Control>(ks, settings(sky), AngleCorrection::flat, disk_scene(preset));
+    long hits = 0, silhouettes = 0;
+    double worst_r = 0.0, worst_g = 0.0, worst_kepler = 0.0;
+    for (int row = 0; row < cb.height(); ++row)
+      for (int col = 0; col < cb.width(); ++col) {
+        const RayOutcome a = tb.trace(cb.pixel_state(col, row)), b = tk.trace(ck.pixel_state(col, row));
+        ASSERT_FALSE(is_failure(a.status) || is_failure(b.status)) << col << "," << row;
+        if (a.object != b.object) {
+          ++silhouettes;
+          continue;
+        }
+        if (a.object < kFirstSceneObject) continue;
+        ++hits;
+        EXPECT_NEAR(b.state[3], 0.0, 1e-9) << "a Kerr-Schild hit lies in z = 0";
+        worst_r = std::max(worst_r, std::abs(b.radius / a.radius - 1.0));
+        worst_g = std::max(worst_g, std::abs(b.redshift / a.redshift - 1.0));
+        // Keplerian closed form at the KS hit: Omega = sense / (r^(3/2) + sense a), u^t from g(u, u) = 1 in BL.
+        const GeodesicState y = ks_to_bl(ks, b.state);
+        const double r = y[1], omega = sense / (std::pow(r, 1.5) + sense * spin);
+        const Mat4 g = bl.metric(y.head<4>());
+        const double ut = 1.0 / std::sqrt(g(0, 0) + 2.0 * g(0, 3) * omega + g(3, 3) * omega * omega);
+        const double e = ks.energy(b.state), lz = ks.angular_momentum(b.state);
+        // The camera's pixel momentum has g(e_0, k) = -1, so the redshift is 1 / (u . p) with p = -k at the hit.
+        const double kepler = -1.0 / (ut * (e - omega * lz));
+        worst_kepler = std::max(worst_kepler, std::abs(b.redshift / kepler - 1.0));
+      }
+    std::printf("KS vs BL disk (a = 0.9, sense %+d, 40x40): %ld hits, %ld silhouette pixels; radius %.2e, redshift "
+                "%.2e, Keplerian closed form %.2e (relative)\n",
+                sense, hits, silhouettes, worst_r, worst_g, worst_kepler);
+    EXPECT_GT(hits, 100);
+    EXPECT_LE(silhouettes, 8);
+    EXPECT_LT(worst_r, 1e-6);
+    EXPECT_LT(worst_g, 1e-7);
+    EXPECT_LT(worst_kepler, 1e-9);
+  }
+}
+
 TEST(KerrDisk, RedshiftAtEveryHitMatchesKeplerianClosedForm) {
   const double spin = 0.9;
   const KerrMetric m = KerrMetric::checked(1.0, spin);

@@ -130,7 +130,7 @@ TEST(ViewKerr, BadKerrInputExitsWithTwo) {
       {"--metric kerr --spin 0.9 --orbit", "--orbit"},
       {"--metric kerr --spin 0.9 --disk-inner 1.4", "disk"},
       {"--metric kerr --spin 0.9 --observer moving", "--observer"},
-      {"--metric kerr --spin 0.9 --chart ks --scene disk", "spherical chart"},
+      {"--metric kerr --spin 0.9 --chart ks --scene disk --disk-inner 1.4", "disk"},
       {"--metric kerr --spin 0.9 --chart ks --flight circular --camera-r 12", "--flight"},
       {"--metric kerr --spin 0.9 --plot orbit", "--plot"},
       {"--metric kerr --spin 0.9 --chart orbit", "--chart"},

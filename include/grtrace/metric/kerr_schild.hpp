@@ -127,6 +127,10 @@ struct KerrSchildMetric {
   KerrSchildTerms terms(const Vec4& x) const { return KerrSchildTerms(mass, spin, orientation(), x[1], x[2], x[3]); }
   /// The Boyer-Lindquist metric of the same hole (for the conversions and the BL quantities).
   KerrMetric boyer_lindquist() const { return KerrMetric{mass, spin}; }
+  /// Optional trait (metric/metric_traits.hpp): the spherical chart of this spacetime (Boyer-Lindquist) and the BL
+  /// coordinates of an event outside r_+ (ks_to_bl_position, defined below).
+  KerrMetric spherical_chart() const { return boyer_lindquist(); }
+  Vec4 spherical_event(const Vec4& x) const;
 
   static Mat4 eta() { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
 
@@ -374,6 +378,7 @@ inline KerrSchildMetric kerr_schild_for_flights(double mass, double spin) {
   return KerrSchildMetric::checked(mass, spin, KerrSchildSlicing::ingoing);
 }
 
+inline Vec4 KerrSchildMetric::spherical_event(const Vec4& x) const { return ks_to_bl_position(*this, x); }
 inline Vec4 KerrSchildMetric::event_from_spherical(const Vec4& x_bl) const { return bl_to_ks_position(*this, x_bl); }
 inline Mat4 KerrSchildMetric::jacobian_from_spherical(const Vec4& x_bl) const { return bl_to_ks_jacobian(*this, x_bl); }
 

@@ -14,6 +14,11 @@
 //       phi) in this chart, and the Jacobian d(chart)/d(spherical) there. Cameras and tools state positions and
 //       directions in (r, theta, phi) for every chart (KerrSchildMetric). Generic answer: a spherical chart takes
 //       x as it is; a Cartesian chart maps (r, theta, phi) to (x, y, z) by the flat embedding.
+//   auto spherical_chart() const;  Vec4 spherical_event(const Vec4& x) const;
+//       For charts that are not spherical: the same spacetime as a metric policy in its spherical chart
+//       (Kerr-Schild -> KerrMetric, Boyer-Lindquist), and the spherical coordinates of an event of this chart (the
+//       inverse of event_from_spherical, outside the horizon). Lets what is defined in (t, r, theta, phi) be used
+//       in this chart: a thin disk's circular orbits (scene/thin_disk.hpp). No generic answer (HasSphericalChart).
 //   double capture_radius(const GeodesicState& y0) const;  bool leaves_interior(const GeodesicState& y0) const;
 //       For horizon-penetrating charts, where whether a ray can cross the horizon depends on its time direction
 //       (KerrSchildMetric). capture_radius: the radius r_cap of the tracer's horizon guard r = (1 + eps) r_cap for
@@ -41,6 +46,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <type_traits>
 
 namespace grtrace {
 
@@ -65,6 +71,14 @@ template <class M>
 concept HasSphericalMap = requires(const M m, const Vec4 x) {
   { m.event_from_spherical(x) } -> std::convertible_to<Vec4>;
   { m.jacobian_from_spherical(x) } -> std::convertible_to<Mat4>;
+};
+
+/// True for a chart that names its spacetime's spherical chart (see the top of this file).
+template <class M>
+concept HasSphericalChart = requires(const M m, const Vec4 x) {
+  { m.spherical_event(x) } -> std::convertible_to<Vec4>;
+  requires MetricPolicy<std::remove_cvref_t<decltype(m.spherical_chart())>>;
+  requires std::remove_cvref_t<decltype(m.spherical_chart())>::chart == Chart::spherical;
 };
 
 template <class M>

@@ -116,7 +116,7 @@ struct Scene {
       p.rgb = paint(horizon, o);
     } else {
       p.rgb = failure;  // a position outside the scene: cannot happen for the library's tracers
-      visit_object(o.object, [&](const auto& object) { p.rgb = object.colour(SurfaceHit{o.state, o.redshift}); });
+      visit_object(o.object, [&](const auto& object) { p.rgb = object.colour(SurfaceHit{o.state, o.redshift, o.radius}); });
     }
     return p;
   }

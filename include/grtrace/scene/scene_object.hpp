@@ -30,6 +30,12 @@
 //                                                   default false
 //   std::string label() const;                      this instance's name in image headers (two stars in one scene);
 //                                                   default: kind, numbered when the scene has several of a kind
+//   double surface(const Metric& m, const GeodesicState& y) const;   bool accepts(const Metric& m, y) const;
+//                                                   the event and the filter written with the metric at hand (e.g.
+//                                                   the thin disk's plane in a Cartesian chart, where its radius is
+//                                                   the metric's radius(x), not a coordinate); when present they are
+//                                                   used instead of operator()(y) and accepts(y) (the general scene
+//                                                   tracer binds its objects to the metric: bind_to_metric)
 // The event traits (two_sided, interior_samples, accepts) are read by GeodesicTracer for any event, scene object
 // or not: trace/geodesic_tracer.hpp defines their detectors (event_is_two_sided, event_interior_samples,
 // event_accepts).
@@ -50,6 +56,7 @@ namespace grtrace {
 struct SurfaceHit {
   GeodesicState state;  ///< (x^mu, k^mu) at the hit, in the metric's chart; k is the traced (past-directed) tangent
   double redshift;      ///< f_obs / f_src
+  double radius = std::numeric_limits<double>::quiet_NaN();  ///< the metric's radius(x) at the hit
   Vec4 position() const { return state.head<4>(); }
   Vec4 momentum() const { return state.tail<4>(); }
 };

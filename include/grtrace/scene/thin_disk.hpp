@@ -3,7 +3,10 @@
 // geodesic (Keplerian) orbits of whatever metric it sits in (metric/circular_orbits.hpp: for Schwarzschild
 // Omega = sqrt(M / r^3), u^t = 1 / sqrt(1 - 3M/r)), turning towards +phi (sense = +1) or -phi (sense = -1).
 // A scene object (scene/scene_object.hpp) for metrics in a spherical chart: the two-sided surface g = cos(theta),
-// accepted only between its radii, so it is hit where the ray crosses the plane, from above or below.
+// accepted only between its radii, so it is hit where the ray crosses the plane, from above or below. The same disk
+// in a Cartesian chart that names its spherical chart (metric/metric_traits.hpp HasSphericalChart: Kerr-Schild) is
+// the plane z = 0 between the metric's radii, its matter on the circular orbits of the spherical chart pushed
+// into this one (surface, accepts and emitter_velocity with the metric at hand).
 // Colour: a Shakura-Sunyaev / Novikov-Thorne-like temperature profile T(r) ~ r^(-3/4) (1 - sqrt(r_in/r))^(1/4),
 // shifted by the redshift g to T_obs = g T and dimmed with g (bolometric g^4 T^4, compressed for display),
 // as a blackbody colour.
@@ -11,6 +14,7 @@
 
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/circular_orbits.hpp"
+#include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/scene/colour_maps.hpp"
 #include "grtrace/scene/scene_object.hpp"
 
@@ -34,16 +38,39 @@ struct ThinDisk {
   double operator()(const GeodesicState& y) const { return std::cos(y[2]); }
   bool accepts(const GeodesicState& y) const { return y[1] >= r_in && y[1] <= r_out; }
 
-  /// The circular orbit's 4-velocity at the hit's radius (NaN where the metric has none: refused up front by
-  /// check_disk_orbits, so a render never meets it).
+  /// The same with the metric at hand: in a Cartesian chart the equatorial plane is z = 0 (Kerr-Schild's
+  /// z = r cos theta) and the radius is the metric's (Kerr-Schild's quadric r, not a coordinate).
   template <MetricPolicy M>
-    requires(M::chart == Chart::spherical)
+  double surface(const M& /*metric*/, const GeodesicState& y) const {
+    if constexpr (M::chart == Chart::spherical) return std::cos(y[2]);
+    else return y[3];
+  }
+  template <MetricPolicy M>
+  bool accepts(const M& metric, const GeodesicState& y) const {
+    const double r = metric.radius(y.template head<4>());
+    return r >= r_in && r <= r_out;
+  }
+
+  /// The circular orbit's 4-velocity at the hit's radius (NaN where the metric has none: refused up front by
+  /// check_disk_orbits, so a render never meets it). In a Cartesian chart: the orbit of its spherical chart at the
+  /// hit's spherical event, pushed forward with d(chart)/d(spherical) (metric_traits.hpp jacobian_of_spherical).
+  template <MetricPolicy M>
+    requires(M::chart == Chart::spherical || HasSphericalChart<M>)
   Vec4 emitter_velocity(const M& metric, const Vec4& x) const {
-    if (auto u = circular_orbit_velocity(metric, x[1], sense)) return *u;
+    if constexpr (M::chart == Chart::spherical) {
+      if (auto u = circular_orbit_velocity(metric, x[1], sense)) return *u;
+    } else {
+      const Vec4 xs = metric.spherical_event(x);
+      if (auto u = circular_orbit_velocity(metric.spherical_chart(), xs[1], sense))
+        return jacobian_of_spherical(metric, xs) * *u;
+    }
     return Vec4::Constant(std::numeric_limits<double>::quiet_NaN());
   }
 
-  Rgb colour(const SurfaceHit& hit) const { return colour(hit.state[1], hit.redshift); }
+  /// The hit's radius (SurfaceHit::radius; a hit without one, in a spherical chart: x^1) and redshift.
+  Rgb colour(const SurfaceHit& hit) const {
+    return colour(std::isfinite(hit.radius) ? hit.radius : hit.state[1], hit.redshift);
+  }
 
   /// Linear RGB of the disk at radius r seen with redshift g = f_obs / f_src.
   Rgb colour(double r, double g) const {
@@ -62,15 +89,22 @@ struct ThinDisk {
 /// whose inner edge has no timelike circular orbit in the metric (for Schwarzschild: r_in <= 3M).
 template <MetricPolicy M>
 void check_disk_orbits(const M& metric, const ThinDisk& disk) {
-  if (!(std::isfinite(disk.r_in) && std::isfinite(disk.r_out) && disk.r_in > 0.0 && disk.r_out > disk.r_in))
-    throw std::invalid_argument("disk: radii must be finite with 0 < inner < outer");
-  if (const double rh = metric.horizon_radius(); !(disk.r_in > rh))
-    throw std::invalid_argument("disk: the inner radius " + std::to_string(disk.r_in) +
-                                " is inside the horizon; raise it");
-  if (!circular_orbit_velocity(metric, disk.r_in, disk.sense))
-    throw std::invalid_argument("disk: no timelike circular orbit exists at the inner radius r = " +
-                                std::to_string(disk.r_in) +
-                                " in this metric (Schwarzschild: circular orbits need r > 3M); raise the inner radius");
+  if constexpr (M::chart != Chart::spherical) {
+    static_assert(HasSphericalChart<M>, "check_disk_orbits: a thin disk in a Cartesian chart needs the chart's "
+                                        "spherical_chart() and spherical_event(x) (metric/metric_traits.hpp)");
+    check_disk_orbits(metric.spherical_chart(), disk);  // the same radii, horizon and orbits
+  } else {
+    if (!(std::isfinite(disk.r_in) && std::isfinite(disk.r_out) && disk.r_in > 0.0 && disk.r_out > disk.r_in))
+      throw std::invalid_argument("disk: radii must be finite with 0 < inner < outer");
+    if (const double rh = metric.horizon_radius(); !(disk.r_in > rh))
+      throw std::invalid_argument("disk: the inner radius " + std::to_string(disk.r_in) +
+                                  " is inside the horizon; raise it");
+    if (!circular_orbit_velocity(metric, disk.r_in, disk.sense))
+      throw std::invalid_argument("disk: no timelike circular orbit exists at the inner radius r = " +
+                                  std::to_string(disk.r_in) +
+                                  " in this metric (Schwarzschild: circular orbits need r > 3M); raise the inner "
+                                  "radius");
+  }
 }
 
 }  // namespace grtrace

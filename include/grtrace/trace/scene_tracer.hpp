@@ -48,6 +48,32 @@ struct ObjectsIn<Metric, std::tuple<Objects...>> {
 };
 }  // namespace detail
 
+/// A scene object seen as the tracer's event in a given metric: the object's surface(metric, y) and
+/// accepts(metric, y) where it provides them (scene/scene_object.hpp), its two_sided and interior_samples as they
+/// are. Holds pointers: the object and the metric must outlive it (a tracer's trace call).
+template <class O, class M>
+struct MetricBoundObject {
+  const O* object;
+  const M* metric;
+  static constexpr bool two_sided = event_is_two_sided<O>();
+  static constexpr int interior_samples = event_interior_samples<O>();
+  double operator()(const GeodesicState& y) const { return object->surface(*metric, y); }
+  bool accepts(const GeodesicState& y) const {
+    if constexpr (requires { { object->accepts(*metric, y) } -> std::convertible_to<bool>; })
+      return object->accepts(*metric, y);
+    else return event_accepts(*object, y);
+  }
+};
+
+/// The event a tracer integrating in `metric` checks for `object`: the object itself, or a MetricBoundObject when
+/// it writes its surface with the metric at hand (the thin disk in a Cartesian chart).
+template <class O, MetricPolicy M>
+decltype(auto) bind_to_metric(const O& object, const M& metric) {
+  if constexpr (requires(const GeodesicState y) { { object.surface(metric, y) } -> std::convertible_to<double>; })
+    return MetricBoundObject<O, M>{&object, &metric};
+  else return (object);
+}
+
 /// True when every object of the scene can say how its matter moves in the metric (e.g. ThinDisk needs a
 /// spherical chart): programs that choose metric and scene at run time test this before instantiating a tracer.
 template <class Metric, class SceneT>
@@ -67,8 +93,9 @@ class GeneralSceneTracer {
         scene_(std::move(scene)) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
-    const TraceResult r = std::apply([&](const auto&... o) { return tracer_.trace(y0, o...); }, scene_.objects);
     const Metric& m = tracer_.metric();
+    const TraceResult r =
+        std::apply([&](const auto&... o) { return tracer_.trace(y0, bind_to_metric(o, m)...); }, scene_.objects);
     RayOutcome out;
     out.status = r.status;
     out.steps = r.accepted;

@@ -13,6 +13,7 @@
 
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
 #include "grtrace/viz/frame_image.hpp"
 #include "grtrace/viz/traced_path.hpp"
@@ -89,7 +90,8 @@ RayPick pick_ray(const SceneTracer& scene_tracer, const PixelState& pixel_state,
   std::vector<TracedPath> paths = std::apply(
       [&](const auto&... objects) {
         return trace_pixels(scene_tracer.tracer(), pixel_state, std::span<const std::array<int, 2>>(one),
-                            samples_per_step, observer_velocity, frame, objects...);
+                            samples_per_step, observer_velocity, frame,
+                            bind_to_metric(objects, scene_tracer.tracer().metric())...);
       },
       scene_tracer.scene().objects);
   pick.path = std::move(paths.front());

@@ -60,7 +60,8 @@ using SkyDirections = std::vector<SkyDirection>;
 /// The frame for any metric through the tracer asked for: --tracer general, or auto / planar: the fastest whose
 /// assumptions hold (trace/auto_tracer.hpp; --tracer planar was refused up front where it does not apply). Every
 /// (tableau, controller) pair and both preset scene types are instantiated for Metric. A scene whose objects do
-/// not fit the metric's chart (the thin disk needs a spherical chart) is refused with a message.
+/// not fit the metric's chart (the thin disk needs a spherical chart, or a Cartesian one that names its spherical
+/// chart) is refused with a message.
 /// With q.flight.cameras: every frame of the flight through q.flight's skip and sink, and nothing returned.
 template <MetricPolicy Metric>
 std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyDirections* directions,

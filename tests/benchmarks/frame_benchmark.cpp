@@ -39,6 +39,7 @@
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
+#include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/symmetric_scene_tracer.hpp"
 
@@ -256,10 +257,10 @@ RenderStats render_metric_answers(const Tracer& tracer, const Camera& cam, Image
       quiet_options());
 }
 
-template <class T, class C, class Metric, class SceneT>
-void frame_metric(benchmark::State& state, const Metric& metric, const SceneT& scene, int n, double rtol) {
+/// One row: the frame traced by `tracer` (a scene tracer for metric and scene), judged against the general tracer.
+template <class Tracer, class Metric, class SceneT>
+void frame_metric_with(benchmark::State& state, const Tracer& tracer, const Metric& metric, const SceneT& scene, int n) {
   const Camera cam = metric_camera(metric, n);
-  const auto tracer = make_general_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene);
   Image image(n, n);
   MetricAnswers answers(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
   RenderStats stats;
@@ -315,6 +316,19 @@ void frame_metric(benchmark::State& state, const Metric& metric, const SceneT& s
   state.counters["failures"] = static_cast<double>(stats.failures());
 }
 
+template <class T, class C, class Metric, class SceneT>
+void frame_metric(benchmark::State& state, const Metric& metric, const SceneT& scene, int n, double rtol) {
+  frame_metric_with(state, make_general_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene), metric,
+                    scene, n);
+}
+
+/// The same frame through the reduced Kerr tracer (trace/kerr_mino_tracer.hpp), Boyer-Lindquist.
+template <class T, class C, class SceneT>
+void frame_mino(benchmark::State& state, const KerrMetric& metric, const SceneT& scene, int n, double rtol) {
+  frame_metric_with(state, make_kerr_mino_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene),
+                    metric, scene, n);
+}
+
 /// Issue 12's Kerr disk frame (a = 0.9, prograde disk from the ISCO to 20 M, ZAMO camera at r = 50 M, 80 degrees,
 /// fov 60), as grtrace-render --metric kerr --spin 0.9 --scene disk draws it.
 DiskScene kerr_disk() {
@@ -350,6 +364,8 @@ void register_metric_frames(const std::string& method, double rtol, int n) {
   add("kerr_ks_disk", [=](benchmark::State& s) {
     frame_metric<T, C>(s, kerr_schild_for_camera_rays(1.0, 0.9), kerr_disk(), n, rtol);
   });
+  add("kerr_bl_mino", [=](benchmark::State& s) { frame_mino<T, C>(s, KerrMetric{1.0, 0.9}, background_scene({}), n, rtol); });
+  add("kerr_bl_disk_mino", [=](benchmark::State& s) { frame_mino<T, C>(s, KerrMetric{1.0, 0.9}, kerr_disk(), n, rtol); });
 }
 
 

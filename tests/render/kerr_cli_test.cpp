@@ -1,6 +1,7 @@
 // grtrace-render --metric kerr as a program (issue 12): bad Kerr input is refused before any ray is traced (exit
 // code 2, a message on stderr that says what to change, nothing on stdout, no file left behind); the disk defaults
-// to the ISCO of its sense and the EXR header records spin, chart, observer and the disk's sense and radii.
+// to the ISCO of its sense and the EXR header records spin, chart, observer, the disk's sense and radii and the
+// tracer auto picked (kerr-mino in Boyer-Lindquist with an adaptive controller, general otherwise).
 //
 // The binary: GRTRACE_RENDER_BINARY if CMake defines it for this target (tests/render/CMakeLists.txt), else
 // <build>/examples/render/grtrace-render next to this test's <build>/tests/render/.
@@ -137,15 +138,17 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
     std::vector<std::string> args;
     double spin;
     grtrace::exact::Orbit orbit;
-    std::string sense, observer, chart;
+    std::string sense, observer, chart, tracer;  ///< tracer: the one auto picks (or --tracer asks for)
   };
   using grtrace::exact::Orbit;
   const std::vector<Case> cases = {
-      {{"--spin", "0.9"}, 0.9, Orbit::prograde, "prograde", "zamo", "bl"},
+      {{"--spin", "0.9"}, 0.9, Orbit::prograde, "prograde", "zamo", "bl", "kerr-mino"},
       {{"--spin", "0.9", "--disk-retrograde", "--observer", "static"}, 0.9, Orbit::retrograde, "retrograde", "static",
-       "bl"},
-      {{"--spin", "-0.5"}, -0.5, Orbit::prograde, "prograde", "zamo", "bl"},
-      {{"--spin", "0.9", "--chart", "ks"}, 0.9, Orbit::prograde, "prograde", "zamo", "ks"},  // the disk in KS too
+       "bl", "kerr-mino"},
+      {{"--spin", "-0.5", "--tracer", "general"}, -0.5, Orbit::prograde, "prograde", "zamo", "bl", "general"},
+      {{"--spin", "0.9", "--chart", "ks"}, 0.9, Orbit::prograde, "prograde", "zamo", "ks", "general"},  // KS disk too
+      {{"--spin", "0.5", "--control", "fixed", "--step", "0.5"}, 0.5, Orbit::prograde, "prograde", "zamo", "bl",
+       "general"},  // a fixed step means something else in Mino time
   };
   for (const auto& c : cases) {
     const std::string path = out("disk.exr").string();
@@ -159,6 +162,7 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
     EXPECT_DOUBLE_EQ(std::stod(md.at("spin")), c.spin);
     EXPECT_EQ(md.at("chart"), c.chart);
     EXPECT_EQ(md.at("observer"), c.observer);
+    EXPECT_EQ(md.at("tracer"), c.tracer);
     EXPECT_EQ(md.at("disk_sense"), c.sense);
     EXPECT_NEAR(std::stod(md.at("disk_inner")), grtrace::exact::isco_radius(c.spin, c.orbit), 1e-12);
     // The disk is in the picture.

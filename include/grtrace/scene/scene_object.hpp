@@ -28,6 +28,10 @@
 //                                                   accepts() says where in the plane); the planar tracer
 //                                                   (trace/planar_scene_tracer.hpp) draws only such objects;
 //                                                   default false
+//   static constexpr bool stationary = true;        the object and its matter's motion do not depend on t (its
+//                                                   event never reads y[0]); tracers that do not follow t (the
+//                                                   reduced Kerr tracer, trace/kerr_mino_tracer.hpp) draw only
+//                                                   such objects; default: false, or true for an equatorial one
 //   std::string label() const;                      this instance's name in image headers (two stars in one scene);
 //                                                   default: kind, numbered when the scene has several of a kind
 //   double surface(const Metric& m, const GeodesicState& y) const;   bool accepts(const Metric& m, y) const;
@@ -88,6 +92,14 @@ constexpr bool check_scene_object() {
                 "scene object: add `Vec4 emitter_velocity(const Metric&, const Vec4& x) const` for this metric (the "
                 "4-velocity of its matter at x; a template on the metric serves every metric)");
   return true;
+}
+
+/// True when the object declares itself stationary, or equatorial (which implies it: see the top of this file).
+template <class O>
+constexpr bool object_is_stationary() {
+  if constexpr (requires { O::stationary; }) return O::stationary;
+  else if constexpr (requires { O::equatorial; }) return O::equatorial;
+  else return false;
 }
 
 /// The name of one object in image headers: its label() if it has one, else its kind.

@@ -31,6 +31,7 @@ struct ThinDisk {
   static constexpr std::string_view kind = "disk";
   static constexpr bool two_sided = true;
   static constexpr bool equatorial = true;  ///< lies in theta = pi / 2: the planar tracer can draw it
+  static constexpr bool stationary = true;  ///< nothing depends on t: the reduced Kerr tracer can draw it
   double r_in = 6.0, r_out = 20.0;
   double peak_temperature = 5000.0;  ///< kelvin, at the hottest radius (for the colour only)
   int sense = +1;                    ///< +1: the gas turns towards +phi; -1: towards -phi

@@ -7,6 +7,9 @@
 //   planar         a static spherically symmetric metric with a horizon (StaticSphericalMetric), a scene whose
 //                  objects lie in the equatorial plane (planar_supports_scene), an adaptive step controller:
 //                  one table of rays for the frame (trace/planar_scene_tracer.hpp)
+//   kerr-mino      KerrMetric (Boyer-Lindquist), a scene of stationary objects (kerr_mino_supports_scene), an
+//                  adaptive step controller: every pixel integrated on Kerr's separated equations in Mino time
+//                  (trace/kerr_mino_tracer.hpp)
 //   general        anything else: every pixel integrated (trace/scene_tracer.hpp)
 //
 // Takes:   the tableau and controller (template arguments), the metric, trace settings, the camera (the planar
@@ -19,13 +22,20 @@
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/observer/camera.hpp"
+#include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/planar_scene_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/straight_line.hpp"
 
+#include <type_traits>
 #include <utility>
 
 namespace grtrace {
+
+/// True when the reduced Kerr tracer can draw this scene in this metric with this controller.
+template <class Metric, class SceneT, class C>
+inline constexpr bool kerr_mino_tracer_applies =
+    std::is_same_v<Metric, KerrMetric> && kerr_mino_supports_scene<SceneT> && C::estimate != ErrorEstimate::none;
 
 /// True when the planar tracer can draw this scene in this metric with this controller (its run-time condition,
 /// a horizon, is checked by with_auto_tracer).
@@ -47,7 +57,11 @@ decltype(auto) with_auto_tracer(const Metric& metric, const TraceSettings& setti
         return f(planar);
       }
     }
-    return f(make_general_tracer<T, C>(metric, settings, correction, scene));
+    if constexpr (kerr_mino_tracer_applies<Metric, SceneT, C>) {
+      return f(make_kerr_mino_tracer<T, C>(metric, settings, correction, scene));
+    } else {
+      return f(make_general_tracer<T, C>(metric, settings, correction, scene));
+    }
   }
 }
 

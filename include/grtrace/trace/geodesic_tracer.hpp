@@ -23,6 +23,7 @@
 #include "grtrace/integrate/event_locator.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/trace/geodesic_system.hpp"
 
 #include <algorithm>
 #include <array>
@@ -75,28 +76,6 @@ struct TraceResult {
   int chart_wraps = 0;           ///< times the ray crossed the polar axis of a spherical chart (see wrap_polar_axis)
 };
 
-/// Relative violation of the geodesic's constraint g(k,k) = const: |g(k,k) - norm0| / sum |g_mn k^m k^n|.
-template <MetricPolicy Metric>
-double constraint_violation(const Metric& metric, const GeodesicState& y, double norm0) {
-  const Vec4 x = y.head<4>(), k = y.tail<4>();
-  const Mat4 g = metric.metric(x);
-  const double size = k.cwiseAbs().dot(g.cwiseAbs() * k.cwiseAbs());
-  const double v = std::abs(k.dot(g * k) - norm0) / size;
-  return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
-}
-
-/// Spherical charts cover the sphere once with theta in [0, pi]. A ray through (or numerically across) the axis
-/// comes out with theta < 0 or > pi; the same event and direction are theta' = -theta (or 2 pi - theta),
-/// phi' = phi + pi, k^theta' = -k^theta. Returns true when it changed y.
-inline bool wrap_polar_axis(GeodesicState& y) {
-  constexpr double pi = std::numbers::pi;
-  if (y[2] >= 0.0 && y[2] <= pi) return false;
-  y[2] = y[2] < 0.0 ? -y[2] : 2.0 * pi - y[2];
-  y[3] += pi;
-  y[6] = -y[6];
-  return true;
-}
-
 /// Optional: how many interior points of each step an event samples (to catch a surface entered and left
 /// within one step). Events declare `static constexpr int interior_samples = n;`; default 0.
 template <class E>
@@ -126,6 +105,195 @@ struct NullObserver {
   void operator()(const Integrator&, double /*theta_end*/) const {}
 };
 
+namespace detail {
+template <class Tuple, class F>
+void for_each_event(const Tuple& events, F&& f) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (f(I, std::get<I>(events)), ...);
+  }(std::make_index_sequence<std::tuple_size_v<Tuple>>{});
+}
+
+inline RayStatus status_of(std::size_t event_index, TraceResult& result) {
+  if (event_index == 0) return RayStatus::captured;
+  if (event_index == 1) return RayStatus::escaped;
+  result.hit_event = static_cast<int>(event_index) - 2;
+  return RayStatus::hit;
+}
+
+// Moves a crossing located on the dense output onto the integrator's own step map, so that a hit is as
+// accurate as the integration and not only as its interpolant (cubic Hermite for tableaux without their own
+// is ~1e-5 M off on the long steps of a high-order method at tight tolerance).
+// Takes:   the integrator right after the accepted step that contains the crossing, the system (its right-hand
+//          side), the oriented event on the dense output (g_dense(theta) = side * e(dense(theta))), the event on
+//          the integrated state (g_state(z) = side * e(geodesic_state(z))) and the dense crossing c.
+// Returns: the crossing's step fraction and state on the step map, found by refine_crossing (secant from
+//          c.theta with g_dense's slope there); its last, tiny correction is applied to first order,
+//          z + dtheta h f(z), for one right-hand side instead of another step. Typically 1 step + 1 evaluation
+//          with a tableau's own interpolant, 2 steps + 1 with Hermite; a step costs (stages - 1) right-hand
+//          sides (3 (stages - 1) + 1 for step doubling); all counted in rhs_evals. The dense crossing itself
+//          when refinement is off (refine: settings().refine_events, refine_escape) or impossible (c is at
+//          theta = 0 or non-finite, or the step map is non-finite there).
+// Assumes: c came from locate_first_crossing on this step.
+template <class Integrator, class System, class GDense, class GState>
+std::pair<double, typename System::State> refine_located(Integrator& integ, const System& system,
+                                                         const GDense& g_dense, const GState& g_state,
+                                                         const EventCrossing& c, bool refine) {
+  using State = typename System::State;
+  if (!refine || !(c.theta > 0.0) || !std::isfinite(c.value)) return {c.theta, integ.dense(c.theta)};
+  // The interpolant's slope at the crossing (central difference; it is a polynomial in theta), for the first
+  // secant correction.
+  constexpr double delta = 1e-4;
+  const double lo = std::max(0.0, c.theta - delta), hi = std::min(1.0, c.theta + delta);
+  const double slope0 = (g_dense(hi) - g_dense(lo)) / (hi - lo);
+  auto probe = [&](double t) {
+    State z = integ.step_from_previous(system, t);
+    return std::pair<double, State>{g_state(z), std::move(z)};
+  };
+  const auto refined = refine_crossing(probe, c.theta, slope0);
+  if (!refined) return {c.theta, integ.dense(c.theta)};
+  if (refined->pending == 0.0) return {refined->theta, refined->payload};
+  const State& z_probed = refined->payload;
+  const State z = z_probed + (refined->pending * integ.last_step()) * integ.evaluate(system, z_probed);
+  if (!all_finite(z)) return {refined->theta, refined->payload};
+  return {refined->theta + refined->pending, z};
+}
+}  // namespace detail
+
+/// The tracing loop, for any geodesic system (trace/geodesic_system.hpp): integrates z0 until the horizon guard,
+/// the sky sphere or one of the events ends it (see the top of this file for the statuses and the guard).
+/// Takes:   the system built for this ray, the settings, a controller, z0, the capture radius r_cap of the ray
+///          (<= 0: no horizon), whether a ray that starts inside the guard leaves the hole (its guard is then
+///          armed once it is outside), an observer (called with the integrator; its dense output is in the
+///          system's variables) and the events (on geodesic_state(z)).
+/// Returns: the TraceResult, its states mapped to (x, k) by the system; lambda is the system's parameter.
+template <ExplicitTableau Tableau, StepController Controller, GeodesicSystem System, class Observer, class... Events>
+TraceResult trace_geodesic_system(const System& system, const TraceSettings& settings, const Controller& controller,
+                                  const typename System::State& z0, double r_capture, bool leaves_interior,
+                                  Observer&& observer, const Events&... events) {
+  using Integrator = ControlledIntegrator<Tableau, Controller, System::dimension>;
+  using State = typename System::State;
+  // Metrics without a horizon (flat space, wormholes: horizon_radius() == 0) get no capture surface at all.
+  // The guard and the sky sphere are located on the system's radial coordinate rho(r) (increasing in r).
+  const bool has_horizon = r_capture > 0.0;
+  const double r_guard = system.radial_coordinate_at((1.0 + settings.horizon_epsilon) * r_capture);
+  const double r_escape = system.radial_coordinate_at(settings.escape_radius);
+  // A ray that starts inside the guard and comes out (a camera inside the hole, in a chart that penetrates the
+  // horizon) is not captured there: its guard is armed once it is outside it (a ray that then falls back in is
+  // captured as any other).
+  bool guard_armed = !(has_horizon && !(system.radial_coordinate(z0) > r_guard) && leaves_interior);
+  // Slots 0 and 1 of the event list are the horizon guard and the sky sphere, both read off the radial coordinate
+  // (on_state); their callables are only placeholders.
+  const auto radius_surface = [](const GeodesicState&) { return 1.0; };
+  constexpr std::size_t K = 2 + sizeof...(Events);
+  constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};
+  constexpr std::array<bool, K> two_sided = {false, false, event_is_two_sided<Events>()...};
+  // Each event on the integrated state: the horizon and the sky on its radius, the others on its (x, k).
+  auto on_state = [&](std::size_t i, const auto& e, const State& z) -> double {
+    if (i == 0) return has_horizon && guard_armed ? system.radial_coordinate(z) - r_guard : 1.0;
+    if (i == 1) return r_escape - system.radial_coordinate(z);
+    return e(system.geodesic_state(z));
+  };
+  const auto all = std::tie(radius_surface, radius_surface, events...);
+
+  TraceResult result;
+  auto finish = [&](RayStatus status, const State& z, double lambda, const Integrator& integ) {
+    result.status = status;
+    result.final_state = system.geodesic_state(z);
+    result.step_end_state = integ.accepted() > 0 ? system.geodesic_state(integ.state()) : result.final_state;
+    result.lambda = lambda;
+    result.accepted = integ.accepted();
+    result.rejected = integ.rejected();
+    result.rhs_evals = integ.rhs_evals();
+    result.constraint_drift = system.constraint_drift(z);
+    return result;
+  };
+  const double guard = settings.constraint_tolerance;
+  auto violated = [&](const State& z) { return guard > 0.0 && system.constraint_violation(z) > guard; };
+  const int check_interval = std::max(1, settings.constraint_check_interval);
+  int steps_since_check = 0;
+
+  std::array<double, K> g_prev{};
+  detail::for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = on_state(i, e, z0); });
+
+  Integrator integ(settings.integrator, controller);
+  if (!all_finite(z0)) return finish(RayStatus::non_finite, z0, 0.0, integ);
+  for (std::size_t i = 0; i < K; ++i)
+    if (!two_sided[i] && !(g_prev[i] > 0.0)) return finish(detail::status_of(i, result), z0, 0.0, integ);
+
+  integ.start(system, z0, settings.initial_step);
+  for (int step = 0; step < settings.max_steps; ++step) {
+    const StepOutcome outcome = integ.advance(system);
+    if (outcome != StepOutcome::ok) {
+      // An underflow where the right-hand side itself is not finite (e.g. a start on the polar axis of a
+      // spherical chart, where cot(theta) diverges) is a non-finite ray, not a step-size problem.
+      // A state that fails the constraint guard (not checked since the last interval) is non_finite too.
+      const bool rhs_finite = outcome == StepOutcome::step_underflow && all_finite(system(integ.state())) &&
+                              !(steps_since_check > 0 && violated(integ.state()));
+      return finish(rhs_finite ? RayStatus::step_underflow : RayStatus::non_finite, integ.state(), integ.lambda(),
+                    integ);
+    }
+    // The earliest surface crossed inside this step ends the ray.
+    double theta_first = std::numeric_limits<double>::infinity();
+    State z_first = State::Zero();
+    std::size_t first = K;
+    // The horizon and the sky sphere test the same radius: computed once per step (a square root or two for
+    // Kerr-Schild); the values are those horizon(y) and escape(y) return.
+    const double r_now = system.radial_coordinate(integ.state());
+    detail::for_each_event(all, [&](std::size_t i, const auto& e) {
+      const double g1 = i == 0   ? (has_horizon && guard_armed ? r_now - r_guard : 1.0)
+                        : i == 1 ? r_escape - r_now
+                                 : on_state(i, e, integ.state());
+      // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
+      const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
+      if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {
+        g_prev[i] = g1;
+        return;
+      }
+      auto g_state = [&](const State& z) { return side * on_state(i, e, z); };
+      auto g_of_theta = [&](double t) { return g_state(integ.dense(t)); };
+      // Bracketed on the dense output (cheap), then refined on the step map (a few steps); a crossing the
+      // dense output puts after an already accepted one is not refined: it cannot end the ray.
+      if (auto c = locate_first_crossing(g_of_theta, side * g_prev[i], side * g1, samples[i]);
+          c && c->theta < theta_first) {
+        const long evals_before = integ.rhs_evals();
+        const bool refine = settings.refine_events && (i != 1 || settings.refine_escape);  // 1: the sky sphere
+        const auto [theta_hit, z_hit] = detail::refine_located(integ, system, g_of_theta, g_state, *c, refine);
+        result.refinement_evals += integ.rhs_evals() - evals_before;
+        if (theta_hit < theta_first && event_accepts(e, system.geodesic_state(z_hit))) {
+          theta_first = theta_hit;
+          z_first = z_hit;
+          first = i;
+        }
+      }
+      g_prev[i] = g1;
+    });
+    if (first < K) {
+      observer(integ, theta_first);
+      const double lambda_hit = integ.previous_lambda() + theta_first * integ.last_step();
+      if (violated(z_first)) return finish(RayStatus::non_finite, z_first, lambda_hit, integ);
+      return finish(detail::status_of(first, result), z_first, lambda_hit, integ);
+    }
+    if (!guard_armed && r_now > r_guard) {  // out of the hole: from here on a fall back inside is a capture
+      guard_armed = true;
+      g_prev[0] = r_now - r_guard;
+    }
+    if (++steps_since_check >= check_interval) {
+      steps_since_check = 0;
+      if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
+    }
+    observer(integ, 1.0);
+    if (State z = integ.state(); system.wrap_chart(z)) {
+      ++result.chart_wraps;
+      integ.reseat(system, z);
+      detail::for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = on_state(i, e, z); });
+    }
+  }
+  if (steps_since_check > 0 && violated(integ.state()))
+    return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
+  return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ);
+}
+
+/// The tracer of any metric policy: the geodesic equation (MetricGeodesicSystem) through trace_geodesic_system.
 template <MetricPolicy Metric, ExplicitTableau Tableau, StepController Controller = PIController>
 class GeodesicTracer {
  public:
@@ -145,184 +313,12 @@ class GeodesicTracer {
 
   template <class Observer, class... Events>
   TraceResult trace_observed(const GeodesicState& y0, Observer&& observer, const Events&... events) const {
-    const GeodesicEquation<Metric> rhs{&metric_};
-    // Metrics without a horizon (flat space, wormholes: horizon_radius() == 0) get no capture surface at all.
-    const double r_capture = capture_radius_of(metric_, y0);
-    const bool has_horizon = r_capture > 0.0;
-    const double r_guard = (1.0 + settings_.horizon_epsilon) * r_capture;
-    const double r_escape = settings_.escape_radius;
-    // A ray that starts inside the guard and comes out (a camera inside the hole, in a chart that penetrates the
-    // horizon) is not captured there: its guard is armed once it is outside it (a ray that then falls back in is
-    // captured as any other).
-    bool guard_armed = !(has_horizon && !(metric_.radius(y0.head<4>()) > r_guard) && leaves_interior_of(metric_, y0));
-    auto horizon = [&](const GeodesicState& y) {
-      return has_horizon && guard_armed ? metric_.radius(y.head<4>()) - r_guard : 1.0;
-    };
-    auto escape = [&](const GeodesicState& y) { return r_escape - metric_.radius(y.head<4>()); };
-    const auto all = std::tie(horizon, escape, events...);
-    constexpr std::size_t K = 2 + sizeof...(Events);
-    constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};
-    constexpr std::array<bool, K> two_sided = {false, false, event_is_two_sided<Events>()...};
-
-    TraceResult result;
-    const double norm0 = inner_product(metric_, y0.head<4>(), y0.tail<4>(), y0.tail<4>());
-    auto finish = [&](RayStatus status, const GeodesicState& y, double lambda, const Integrator& integ) {
-      result.status = status;
-      result.final_state = y;
-      result.step_end_state = integ.accepted() > 0 ? integ.state() : y;
-      result.lambda = lambda;
-      result.accepted = integ.accepted();
-      result.rejected = integ.rejected();
-      result.rhs_evals = integ.rhs_evals();
-      result.constraint_drift = inner_product(metric_, y.head<4>(), y.tail<4>(), y.tail<4>()) - norm0;
-      return result;
-    };
-    const double guard = settings_.constraint_tolerance;
-    auto violated = [&](const GeodesicState& y) { return guard > 0.0 && constraint_violation(metric_, y, norm0) > guard; };
-    const int check_interval = std::max(1, settings_.constraint_check_interval);
-    int steps_since_check = 0;
-
-    std::array<double, K> g_prev{};
-    for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = e(y0); });
-
-    Integrator integ(settings_.integrator, controller_);
-    if (!y0.allFinite()) return finish(RayStatus::non_finite, y0, 0.0, integ);
-    for (std::size_t i = 0; i < K; ++i)
-      if (!two_sided[i] && !(g_prev[i] > 0.0)) return finish(status_of(i, result), y0, 0.0, integ);
-
-    integ.start(rhs, y0, settings_.initial_step);
-    for (int step = 0; step < settings_.max_steps; ++step) {
-      const StepOutcome outcome = integ.advance(rhs);
-      if (outcome != StepOutcome::ok) {
-        // An underflow where the right-hand side itself is not finite (e.g. a start on the polar axis of a
-        // spherical chart, where cot(theta) diverges) is a non-finite ray, not a step-size problem.
-        // A state that fails the constraint guard (not checked since the last interval) is non_finite too.
-        const bool rhs_finite = outcome == StepOutcome::step_underflow && rhs(integ.state()).allFinite() &&
-                                !(steps_since_check > 0 && violated(integ.state()));
-        return finish(rhs_finite ? RayStatus::step_underflow : RayStatus::non_finite, integ.state(), integ.lambda(),
-                      integ);
-      }
-      // The earliest surface crossed inside this step ends the ray.
-      double theta_first = std::numeric_limits<double>::infinity();
-      GeodesicState y_first = GeodesicState::Zero();
-      std::size_t first = K;
-      // The horizon and the sky sphere test the same radius: computed once per step (a square root or two for
-      // Kerr-Schild); the values are those horizon(y) and escape(y) return.
-      const double r_now = metric_.radius(integ.state().template head<4>());
-      for_each_event(all, [&](std::size_t i, const auto& e) {
-        const double g1 =
-            i == 0 ? (has_horizon && guard_armed ? r_now - r_guard : 1.0) : i == 1 ? r_escape - r_now : e(integ.state());
-        // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
-        const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
-        if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {
-          g_prev[i] = g1;
-          return;
-        }
-        auto g_of_theta = [&](double t) { return side * e(integ.dense(t)); };
-        // Bracketed on the dense output (cheap), then refined on the step map (a few steps); a crossing the
-        // dense output puts after an already accepted one is not refined: it cannot end the ray.
-        if (auto c = locate_first_crossing(g_of_theta, side * g_prev[i], side * g1, samples[i]);
-            c && c->theta < theta_first) {
-          const long evals_before = integ.rhs_evals();
-          const bool refine = settings_.refine_events && (i != 1 || settings_.refine_escape);  // 1: the sky sphere
-          const LocatedCrossing hit = refine_located(integ, rhs, g_of_theta, e, side, *c, refine);
-          result.refinement_evals += integ.rhs_evals() - evals_before;
-          if (hit.theta < theta_first && event_accepts(e, hit.state)) {
-            theta_first = hit.theta;
-            y_first = hit.state;
-            first = i;
-          }
-        }
-        g_prev[i] = g1;
-      });
-      if (first < K) {
-        const GeodesicState& y_hit = y_first;
-        observer(integ, theta_first);
-        const double lambda_hit = integ.previous_lambda() + theta_first * integ.last_step();
-        if (violated(y_hit)) return finish(RayStatus::non_finite, y_hit, lambda_hit, integ);
-        return finish(status_of(first, result), y_hit, lambda_hit, integ);
-      }
-      if (!guard_armed && r_now > r_guard) {  // out of the hole: from here on a fall back inside is a capture
-        guard_armed = true;
-        g_prev[0] = r_now - r_guard;
-      }
-      if (++steps_since_check >= check_interval) {
-        steps_since_check = 0;
-        if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
-      }
-      observer(integ, 1.0);
-      if constexpr (Metric::chart == Chart::spherical) {
-        GeodesicState y = integ.state();
-        if (wrap_polar_axis(y)) {
-          ++result.chart_wraps;
-          integ.reseat(rhs, y);
-          for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = e(y); });
-        }
-      }
-    }
-    if (steps_since_check > 0 && violated(integ.state()))
-      return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
-    return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ);
+    const MetricGeodesicSystem<Metric> system(metric_, y0);
+    return trace_geodesic_system<Tableau>(system, settings_, controller_, y0, capture_radius_of(metric_, y0),
+                                          leaves_interior_of(metric_, y0), observer, events...);
   }
 
  private:
-  struct LocatedCrossing {
-    double theta;         ///< step fraction
-    GeodesicState state;  ///< the state there
-  };
-
-  // Moves a crossing located on the dense output onto the integrator's own step map, so that a hit is as
-  // accurate as the integration and not only as its interpolant (cubic Hermite for tableaux without their own
-  // is ~1e-5 M off on the long steps of a high-order method at tight tolerance).
-  // Takes:   the integrator right after the accepted step that contains the crossing, the right-hand side, the
-  //          oriented event on the dense output (g_dense(theta) = side * e(dense(theta))), the event e, its
-  //          orientation side (+1 or -1, as for the locator) and the dense crossing c.
-  // Returns: the crossing's step fraction and state on the step map, found by refine_crossing (secant from
-  //          c.theta with g_dense's slope there); its last, tiny correction is applied to first order,
-  //          y + dtheta h f(y), for one right-hand side instead of another step. Typically 1 step + 1 evaluation
-  //          with a tableau's own interpolant, 2 steps + 1 with Hermite; a step costs (stages - 1) right-hand
-  //          sides (3 (stages - 1) + 1 for step doubling); all counted in rhs_evals. The dense crossing itself
-  //          when refinement is off (refine: settings().refine_events, refine_escape) or impossible (c is at theta = 0 or non-finite,
-  //          or the step map is non-finite there).
-  // Assumes: c came from locate_first_crossing on this step.
-  template <class GDense, class Event>
-  LocatedCrossing refine_located(Integrator& integ, const GeodesicEquation<Metric>& rhs, const GDense& g_dense,
-                                 const Event& e, double side, const EventCrossing& c, bool refine) const {
-    if (!refine || !(c.theta > 0.0) || !std::isfinite(c.value)) {
-      return {c.theta, integ.dense(c.theta)};
-    }
-    // The interpolant's slope at the crossing (central difference; it is a polynomial in theta), for the first
-    // secant correction.
-    constexpr double delta = 1e-4;
-    const double lo = std::max(0.0, c.theta - delta), hi = std::min(1.0, c.theta + delta);
-    const double slope0 = (g_dense(hi) - g_dense(lo)) / (hi - lo);
-    auto probe = [&](double t) {
-      GeodesicState y = integ.step_from_previous(rhs, t);
-      return std::pair<double, GeodesicState>{side * e(y), std::move(y)};
-    };
-    const auto refined = refine_crossing(probe, c.theta, slope0);
-    if (!refined) return {c.theta, integ.dense(c.theta)};
-    if (refined->pending == 0.0) return {refined->theta, refined->payload};
-    const GeodesicState& y_probed = refined->payload;
-    const GeodesicState y = y_probed + (refined->pending * integ.last_step()) * integ.evaluate(rhs, y_probed);
-    if (!y.allFinite()) return {refined->theta, refined->payload};
-    return {refined->theta + refined->pending, y};
-  }
-
-  template <class Tuple, class F>
-  static void for_each_event(const Tuple& events, F&& f) {
-    [&]<std::size_t... I>(std::index_sequence<I...>) {
-      (f(I, std::get<I>(events)), ...);
-    }(std::make_index_sequence<std::tuple_size_v<Tuple>>{});
-  }
-
-  static RayStatus status_of(std::size_t event_index, TraceResult& result) {
-    if (event_index == 0) return RayStatus::captured;
-    if (event_index == 1) return RayStatus::escaped;
-    result.hit_event = static_cast<int>(event_index) - 2;
-    return RayStatus::hit;
-  }
-
   Metric metric_;
   TraceSettings settings_;
   Controller controller_;

@@ -79,6 +79,43 @@ decltype(auto) bind_to_metric(const O& object, const M& metric) {
 template <class Metric, class SceneT>
 inline constexpr bool scene_fits_metric = detail::ObjectsIn<Metric, decltype(SceneT::objects)>::value;
 
+/// What a scene tracer reports for a ray the tracing loop ended with r (trace/ray_outcome.hpp): the object, where,
+/// the end state and the redshift against the emitter there (the object's matter, or the rest frame for the sky
+/// and the horizon). Escaped rays are continued to the sky from the last accepted step (correction).
+template <MetricPolicy Metric, class SceneT>
+RayOutcome scene_outcome(const Metric& m, const SceneT& scene, AngleCorrection correction, const TraceResult& r) {
+  RayOutcome out;
+  out.status = r.status;
+  out.steps = r.accepted;
+  if (is_failure(r.status)) return out;  // no position, no redshift
+  const GeodesicState& y = r.final_state;
+  const Vec4 x = y.head<4>();
+  out.state = y;
+  out.radius = m.radius(x);
+  Vec4 u = Vec4::Zero();
+  if (r.status == RayStatus::hit) {
+    out.object = kFirstSceneObject + r.hit_event;
+    out.where = position_direction(m, x);
+    scene.visit_object(out.object, [&](const auto& o) { u = o.emitter_velocity(m, x); });
+  } else {
+    out.object = r.status == RayStatus::escaped ? kSkyObject : kHorizonObject;
+    // The exact continuation holds from any point of the outgoing leg: start it from the last accepted step.
+    out.where = r.status == RayStatus::escaped ? continued_direction(m, r.step_end_state, y, correction)
+                                               : position_direction(m, x);
+    u = rest_emitter_velocity(m, x);
+  }
+  out.redshift = redshift_at(m, u, y);
+  return out;
+}
+
+/// The settings a scene tracer integrates with: the exact continuation starts from the last accepted step, not
+/// from the sky sphere, so refining the sphere's crossing would buy nothing there (TraceSettings::refine_escape).
+template <MetricPolicy Metric>
+TraceSettings with_escape_refinement(TraceSettings s, AngleCorrection correction) {
+  if (HasExactContinuation<Metric> && correction == AngleCorrection::exact) s.refine_escape = false;
+  return s;
+}
+
 template <MetricPolicy Metric, ExplicitTableau T, StepController C, class SceneT>
 class GeneralSceneTracer {
   static_assert(detail::ObjectsFit<Metric, decltype(SceneT::objects)>::value);
@@ -89,35 +126,14 @@ class GeneralSceneTracer {
   using SceneType = SceneT;
 
   GeneralSceneTracer(Metric metric, TraceSettings settings, C controller, AngleCorrection correction, SceneT scene)
-      : tracer_(metric, with_escape_refinement(settings, metric, correction), controller), correction_(correction),
+      : tracer_(metric, with_escape_refinement<Metric>(settings, correction), controller), correction_(correction),
         scene_(std::move(scene)) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
     const Metric& m = tracer_.metric();
-    const TraceResult r =
-        std::apply([&](const auto&... o) { return tracer_.trace(y0, bind_to_metric(o, m)...); }, scene_.objects);
-    RayOutcome out;
-    out.status = r.status;
-    out.steps = r.accepted;
-    if (is_failure(r.status)) return out;  // no position, no redshift
-    const GeodesicState& y = r.final_state;
-    const Vec4 x = y.head<4>();
-    out.state = y;
-    out.radius = m.radius(x);
-    Vec4 u = Vec4::Zero();
-    if (r.status == RayStatus::hit) {
-      out.object = kFirstSceneObject + r.hit_event;
-      out.where = position_direction(m, x);
-      scene_.visit_object(out.object, [&](const auto& o) { u = o.emitter_velocity(m, x); });
-    } else {
-      out.object = r.status == RayStatus::escaped ? kSkyObject : kHorizonObject;
-      // The exact continuation holds from any point of the outgoing leg: start it from the last accepted step.
-      out.where = r.status == RayStatus::escaped ? continued_direction(m, r.step_end_state, y, correction_)
-                                                 : position_direction(m, x);
-      u = rest_emitter_velocity(m, x);
-    }
-    out.redshift = redshift_at(m, u, y);
-    return out;
+    return scene_outcome(
+        m, scene_, correction_,
+        std::apply([&](const auto&... o) { return tracer_.trace(y0, bind_to_metric(o, m)...); }, scene_.objects));
   }
 
   const SceneT& scene() const { return scene_; }
@@ -125,13 +141,6 @@ class GeneralSceneTracer {
   AngleCorrection correction() const { return correction_; }
 
  private:
-  /// The exact continuation starts from the last accepted step, not from the sky sphere: refining the sphere's
-  /// crossing would buy nothing there (TraceSettings::refine_escape).
-  static TraceSettings with_escape_refinement(TraceSettings s, const Metric&, AngleCorrection correction) {
-    if (HasExactContinuation<Metric> && correction == AngleCorrection::exact) s.refine_escape = false;
-    return s;
-  }
-
   GeodesicTracer<Metric, T, C> tracer_;
   AngleCorrection correction_;
   SceneT scene_;

@@ -1,0 +1,102 @@
+// grtrace/trace/geodesic_system.hpp
+// What the tracing loop (trace/geodesic_tracer.hpp trace_geodesic_system) integrates: a system of first-order
+// equations whose state describes one geodesic, possibly in reduced variables, with the map back to (x, k).
+//
+// A geodesic system is a small value type built for one ray, with:
+//   static constexpr int dimension               the number of integrated variables (8 for (x, k))
+//   using State = Vector<dimension>
+//   State operator()(const State& z) const       dz/ds, autonomous (s: the affine parameter for the geodesic
+//                                                equation of a metric, Mino time for the reduced Kerr system)
+//   double radius(const State& z) const          the metric's radius at z
+//   double radial_coordinate(const State& z) const   an increasing function rho(r) of that radius, smooth along
+//                                                the ray: what the horizon guard and the sky sphere are located on
+//                                                (r itself; -1/r for a system in u = 1/r, whose rays pass through
+//                                                u = 0, infinity, within a step, where r jumps from +inf to -inf)
+//   double radial_coordinate_at(double r) const  rho at the radius r (the guard's, the sky sphere's)
+//   geodesic_state(const State& z) const         the state (x^mu, k^mu = dx^mu/dlambda, affine) in the metric's
+//                                                chart: what events, observers of results and colours see
+//                                                (a GeodesicState, or a reference to z when z is one)
+//   double constraint_violation(const State& z) const   the relative violation of the conserved quantities the
+//                                                equations do not enforce (g(k, k) for the geodesic equation):
+//                                                the tracer's guard against a lost geodesic (TraceSettings)
+//   double constraint_drift(const State& z) const       g(k, k) at z minus its value at the start
+//   bool wrap_chart(State& z) const              maps z back into the chart's range where the integration left
+//                                                it (a spherical chart's polar axis) and says whether it did
+// The library's systems: MetricGeodesicSystem (any metric policy: the geodesic equation itself, below) and
+// KerrMinoSystem (trace/kerr_mino_tracer.hpp: Kerr's separated equations in Mino time).
+#pragma once
+
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+
+#include <cmath>
+#include <concepts>
+#include <limits>
+#include <numbers>
+
+namespace grtrace {
+
+template <class S>
+concept GeodesicSystem = requires(const S s, typename S::State z) {
+  { S::dimension } -> std::convertible_to<int>;
+  requires std::same_as<typename S::State, Vector<S::dimension>>;
+  { s(z) } -> std::convertible_to<typename S::State>;
+  { s.radius(z) } -> std::convertible_to<double>;
+  { s.radial_coordinate(z) } -> std::convertible_to<double>;
+  { s.radial_coordinate_at(1.0) } -> std::convertible_to<double>;
+  { s.geodesic_state(z) } -> std::convertible_to<GeodesicState>;
+  { s.constraint_violation(z) } -> std::convertible_to<double>;
+  { s.constraint_drift(z) } -> std::convertible_to<double>;
+  { s.wrap_chart(z) } -> std::same_as<bool>;
+};
+
+/// Relative violation of the geodesic's constraint g(k,k) = const: |g(k,k) - norm0| / sum |g_mn k^m k^n|.
+template <MetricPolicy Metric>
+double constraint_violation(const Metric& metric, const GeodesicState& y, double norm0) {
+  const Vec4 x = y.head<4>(), k = y.tail<4>();
+  const Mat4 g = metric.metric(x);
+  const double size = k.cwiseAbs().dot(g.cwiseAbs() * k.cwiseAbs());
+  const double v = std::abs(k.dot(g * k) - norm0) / size;
+  return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
+}
+
+/// Spherical charts cover the sphere once with theta in [0, pi]. A ray through (or numerically across) the axis
+/// comes out with theta < 0 or > pi; the same event and direction are theta' = -theta (or 2 pi - theta),
+/// phi' = phi + pi, k^theta' = -k^theta. Returns true when it changed y.
+inline bool wrap_polar_axis(GeodesicState& y) {
+  constexpr double pi = std::numbers::pi;
+  if (y[2] >= 0.0 && y[2] <= pi) return false;
+  y[2] = y[2] < 0.0 ? -y[2] : 2.0 * pi - y[2];
+  y[3] += pi;
+  y[6] = -y[6];
+  return true;
+}
+
+/// The geodesic equation of a metric policy, d/dlambda (x, k) = (k, -Gamma(k, k)), as a geodesic system: the
+/// state is (x, k) itself; the constraint is g(k, k) = its value at the start (norm0).
+template <MetricPolicy Metric>
+struct MetricGeodesicSystem {
+  static constexpr int dimension = 8;
+  using State = GeodesicState;
+  const Metric* metric;
+  double norm0 = 0.0;
+
+  MetricGeodesicSystem(const Metric& m, const GeodesicState& y0)
+      : metric(&m), norm0(inner_product(m, y0.head<4>(), y0.tail<4>(), y0.tail<4>())) {}
+
+  State operator()(const State& y) const { return GeodesicEquation<Metric>{metric}(y); }
+  double radius(const State& y) const { return metric->radius(y.head<4>()); }
+  double radial_coordinate(const State& y) const { return radius(y); }
+  static double radial_coordinate_at(double r) { return r; }
+  const GeodesicState& geodesic_state(const State& y) const { return y; }
+  double constraint_violation(const State& y) const { return grtrace::constraint_violation(*metric, y, norm0); }
+  double constraint_drift(const State& y) const {
+    return inner_product(*metric, y.head<4>(), y.tail<4>(), y.tail<4>()) - norm0;
+  }
+  bool wrap_chart(State& y) const {
+    if constexpr (Metric::chart == Chart::spherical) return wrap_polar_axis(y);
+    else return false;
+  }
+};
+
+}  // namespace grtrace

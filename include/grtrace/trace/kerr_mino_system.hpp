@@ -1,0 +1,139 @@
+// grtrace/trace/kerr_mino_system.hpp
+// Kerr's null geodesics reduced by their constants of motion: a geodesic system (trace/geodesic_system.hpp) of five
+// variables in Mino time whose right-hand side is a few polynomials, in place of the eight-variable geodesic
+// equation of KerrMetric (Boyer-Lindquist).
+//
+// Takes:   a KerrMetric and a null state (x, k) in Boyer-Lindquist coordinates, outside r_+ and off the axis.
+// Returns: the system for that ray and its initial state z0 = (u, theta, phi, u', theta'); its geodesic_state(z)
+//          is the Boyer-Lindquist (x, k) again (k = dx/dlambda, affine), except t, which it does not follow (NaN:
+//          a stationary scene does not depend on it; the scene tracer that uses this system refuses other scenes).
+// Method:  Carter (1968): a null geodesic has the constants E = p_t, L = -p_phi (KerrMetric::energy,
+//          angular_momentum) and Q (carter_constant); with Mino time, d lambda_M = d lambda / Sigma (Mino 2003),
+//          the radial and polar motions separate: (dr/dlambda_M)^2 = R(r), (dtheta/dlambda_M)^2 = Theta(theta).
+//          Their second-order forms, d^2 r/dlambda_M^2 = R'(r) / 2 and the same for theta, pass through the turning
+//          points (where the square roots of the first-order forms change sign) without special treatment.
+//          The radius is carried as u = 1/r: u^4 R(1/u) = R~(u) is a polynomial, regular at infinity, so a ray
+//          leaving towards the sky sphere is a nearly straight line in (lambda_M, u) and not a pole at finite
+//          Mino time as r is:
+//            R~(u)     = P~^2 - K u^2 Delta~,    P~ = E + A u^2,  A = a (a E - L),  Delta~ = 1 - 2 M u + a^2 u^2,
+//                        K = Q + (L - a E)^2
+//            u''       = R~'(u) / 2 = 2 A u P~ - K u + 3 M K u^2 - 2 a^2 K u^3
+//            Theta     = Q + a^2 E^2 cos^2 th - L^2 cot^2 th,   theta'' = Theta'/2 = cos th (L^2 / sin^3 th - a^2 E^2 sin th)
+//            phi'      = a P~ / Delta~ - a E + L / sin^2 th
+//          and back to the affine tangent: k^r = -r^2 u' / Sigma, k^th = theta' / Sigma, k^ph = phi' / Sigma,
+//          k^t = ((r^2 + a^2) P~ / Delta~ - a (a E sin^2 th - L)) / Sigma (Sigma = r^2 + a^2 cos^2 th).
+//          theta is kept (not cos theta) so that a ray through the axis is re-charted exactly as in the
+//          geodesic equation (wrap_chart: theta -> -theta, phi -> phi + pi, theta' -> -theta'): in cos theta the
+//          axis would be a turning point and a ray with L = 0 would miss its jump of pi in phi.
+// Assumes: null rays (g(k, k) = 0: the camera's). The constraints the second-order forms do not enforce,
+//          u'^2 = R~(u) and theta'^2 = Theta, are the tracer's guard (constraint_violation).
+#pragma once
+
+#include "grtrace/core/sin_cos.hpp"
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/kerr.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace grtrace {
+
+struct KerrMinoSystem {
+  static constexpr int dimension = 5;
+  using State = Vector<5>;  ///< (u = 1/r, theta, phi, du/dlambda_M, dtheta/dlambda_M)
+
+  KerrMetric metric;
+  double energy = 0.0, angular_momentum = 0.0, carter = 0.0;  ///< E, L_z, Q of the ray
+
+  /// The system of the ray y0 (Boyer-Lindquist, null, outside r_+).
+  KerrMinoSystem(const KerrMetric& m, const GeodesicState& y0)
+      : metric(m), energy(m.energy(y0)), angular_momentum(m.angular_momentum(y0)), carter(m.carter_constant(y0)) {
+    const double a = m.spin, e = energy, l = angular_momentum;
+    a2_ = a * a;
+    big_a_ = a * (a * e - l);
+    k_ = carter + (l - a * e) * (l - a * e);
+    a2e2_ = a2_ * e * e;
+    l2_ = l * l;
+  }
+
+  /// z0 of the ray y0 the system was built for: u = 1/r, u' = -Sigma k^r / r^2, theta' = Sigma k^theta.
+  State initial_state(const GeodesicState& y0) const {
+    const double r = y0[1], c = std::cos(y0[2]), sigma = r * r + a2_ * c * c;
+    State z;
+    z << 1.0 / r, y0[2], y0[3], -sigma * y0[5] / (r * r), sigma * y0[6];
+    return z;
+  }
+
+  /// dz/dlambda_M. Forced inline: a call costs as much as the polynomials (the stepper calls it once per stage).
+  [[gnu::always_inline]] State operator()(const State& z) const {
+    const double u = z[0], u2 = u * u, m = metric.mass;
+    const SinCos sc = sin_cos(z[1]);
+    const double s2 = sc.sin * sc.sin, inv_s2 = 1.0 / s2;
+    const double p = energy + big_a_ * u2, delta = 1.0 - 2.0 * m * u + a2_ * u2;
+    State dz;
+    dz[0] = z[3];
+    dz[1] = z[4];
+    dz[2] = metric.spin * (p / delta - energy) + angular_momentum * inv_s2;
+    dz[3] = u * (2.0 * big_a_ * p - k_ + u * k_ * (3.0 * m - 2.0 * a2_ * u));
+    dz[4] = sc.cos * sc.sin * (l2_ * inv_s2 * inv_s2 - a2e2_);
+    return dz;
+  }
+
+  double radius(const State& z) const { return 1.0 / z[0]; }
+  /// -u = -1/r: increasing in r and smooth through infinity (u = 0), which a step towards the sky may cross.
+  double radial_coordinate(const State& z) const { return -z[0]; }
+  static double radial_coordinate_at(double r) { return -1.0 / r; }
+
+  /// (x, k) in Boyer-Lindquist coordinates, t = NaN (not followed).
+  GeodesicState geodesic_state(const State& z) const {
+    const double u = z[0], r = 1.0 / z[0], u2 = u * u, a = metric.spin;
+    const SinCos sc = sin_cos(z[1]);
+    const double s2 = sc.sin * sc.sin, inv_sigma = 1.0 / (r * r + a2_ * sc.cos * sc.cos);
+    const double p_over_delta = (energy + big_a_ * u2) / (1.0 - 2.0 * metric.mass * u + a2_ * u2);
+    GeodesicState y;
+    y << std::numeric_limits<double>::quiet_NaN(), r, z[1], z[2],
+        ((r * r + a2_) * p_over_delta - a * (a * energy * s2 - angular_momentum)) * inv_sigma,
+        -r * r * z[3] * inv_sigma, z[4] * inv_sigma,
+        (a * (p_over_delta - energy) + angular_momentum / s2) * inv_sigma;
+    return y;
+  }
+
+  /// The larger of the relative residuals of u'^2 = R~(u) and theta'^2 = Theta(theta), each against the size of
+  /// its terms (for Theta: Q, a^2 E^2 and L^2 / sin^2 theta, not their products with cos theta, which vanish on the
+  /// equator, where an equatorial ray's Theta and theta' are both zero to round-off).
+  double constraint_violation(const State& z) const {
+    const double u = z[0], u2 = u * u, p = energy + big_a_ * u2;
+    const double delta = 1.0 - 2.0 * metric.mass * u + a2_ * u2;
+    const double radial = std::abs(z[3] * z[3] - (p * p - k_ * u2 * delta)) / (z[3] * z[3] + p * p + std::abs(k_ * u2 * delta));
+    const SinCos sc = sin_cos(z[1]);
+    const double c2 = sc.cos * sc.cos, inv_s2 = 1.0 / (sc.sin * sc.sin);
+    const double polar = std::abs(z[4] * z[4] - (carter + a2e2_ * c2 - l2_ * c2 * inv_s2)) /
+                         (z[4] * z[4] + std::abs(carter) + a2e2_ + l2_ * inv_s2);
+    const double v = std::max(radial, polar);
+    return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
+  }
+
+  /// g(k, k) at z (the ray is null: 0 at the start).
+  double constraint_drift(const State& z) const {
+    GeodesicState y = geodesic_state(z);
+    y[0] = 0.0;  // the metric does not depend on t
+    return inner_product(metric, y.head<4>(), y.tail<4>(), y.tail<4>());
+  }
+
+  /// The polar axis crossed: theta -> -theta (or 2 pi - theta), phi -> phi + pi, theta' -> -theta'.
+  bool wrap_chart(State& z) const {
+    constexpr double pi = std::numbers::pi;
+    if (z[1] >= 0.0 && z[1] <= pi) return false;
+    z[1] = z[1] < 0.0 ? -z[1] : 2.0 * pi - z[1];
+    z[2] += pi;
+    z[4] = -z[4];
+    return true;
+  }
+
+ private:
+  double a2_ = 0.0, big_a_ = 0.0, k_ = 0.0, a2e2_ = 0.0, l2_ = 0.0;
+};
+
+}  // namespace grtrace

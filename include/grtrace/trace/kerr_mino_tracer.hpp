@@ -1,0 +1,96 @@
+// grtrace/trace/kerr_mino_tracer.hpp
+// The reduced Kerr scene tracer: every camera ray integrated, as by GeneralSceneTracer, but on Kerr's separated
+// equations in Mino time (trace/kerr_mino_system.hpp: five variables, a few polynomials and one sincos per
+// right-hand side) instead of the geodesic equation of KerrMetric (eight variables, ~115 flops). Same tableaux,
+// controllers, events, guards and outcome (trace_geodesic_system, scene_outcome), so it reports what the general
+// tracer reports for the same scene (tests/kerr_mino_test.cpp compares them pixel by pixel).
+//
+// Takes:   a KerrMetric (Boyer-Lindquist), trace settings (the same meaning as for the general tracer, applied to
+//          the reduced variables: rtol on u = 1/r, theta, phi and their Mino-time derivatives), an adaptive
+//          controller, the angle correction, and a scene whose objects are all stationary
+//          (scene/scene_object.hpp: the tracer does not follow t).
+// Returns: per ray a RayOutcome; its end state's t is NaN (not followed), everything else in Boyer-Lindquist.
+// Assumes: null camera rays from outside r_+ (a camera in the Boyer-Lindquist chart always is).
+// trace/auto_tracer.hpp picks it for KerrMetric scenes it can draw.
+#pragma once
+
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/scene/scene_object.hpp"
+#include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/kerr_mino_system.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
+
+#include <tuple>
+#include <utility>
+
+namespace grtrace {
+
+namespace detail {
+template <class Tuple>
+struct AllStationary;
+template <class... Objects>
+struct AllStationary<std::tuple<Objects...>> {
+  static constexpr bool value = (object_is_stationary<Objects>() && ...);
+};
+}  // namespace detail
+
+/// True when the reduced Kerr tracer can draw every object of the scene (a scene without objects always).
+template <class SceneT>
+inline constexpr bool kerr_mino_supports_scene = detail::AllStationary<decltype(SceneT::objects)>::value;
+
+/// One ray of a Kerr metric on the separated equations: the TraceResult of GeodesicTracer<KerrMetric>::trace for
+/// the same ray and events (within the integration's tolerance), lambda in Mino time, t not followed (NaN).
+template <ExplicitTableau T, StepController C, class... Events>
+TraceResult trace_kerr_mino(const KerrMetric& metric, const TraceSettings& settings, const C& controller,
+                            const GeodesicState& y0, const Events&... events) {
+  const KerrMinoSystem system(metric, y0);
+  return trace_geodesic_system<T>(system, settings, controller, system.initial_state(y0), metric.horizon_radius(),
+                                  false, NullObserver{}, events...);
+}
+
+template <ExplicitTableau T, StepController C, class SceneT>
+class KerrMinoSceneTracer {
+  static_assert(kerr_mino_supports_scene<SceneT>,
+                "the reduced Kerr tracer does not follow t: every object must be stationary (declare `static "
+                "constexpr bool stationary = true;` if yours is); other objects need GeneralSceneTracer");
+  static_assert(C::estimate != ErrorEstimate::none,
+                "the reduced Kerr tracer integrates in Mino time, not in the affine parameter: a fixed step would "
+                "mean something else there; use an adaptive controller (i, pi, doubling)");
+  static_assert(detail::ObjectsFit<KerrMetric, decltype(SceneT::objects)>::value);
+
+ public:
+  static constexpr const char* name = "kerr-mino";
+  using MetricType = KerrMetric;
+  using SceneType = SceneT;
+
+  KerrMinoSceneTracer(KerrMetric metric, TraceSettings settings, C controller, AngleCorrection correction,
+                      SceneT scene)
+      : metric_(metric), settings_(with_escape_refinement<KerrMetric>(settings, correction)),
+        controller_(controller), correction_(correction), scene_(std::move(scene)) {}
+
+  RayOutcome trace(const GeodesicState& y0) const {
+    return scene_outcome(metric_, scene_, correction_, std::apply([&](const auto&... o) {
+                           return trace_kerr_mino<T>(metric_, settings_, controller_, y0, bind_to_metric(o, metric_)...);
+                         }, scene_.objects));
+  }
+
+  const SceneT& scene() const { return scene_; }
+  const KerrMetric& metric() const { return metric_; }
+  AngleCorrection correction() const { return correction_; }
+
+ private:
+  KerrMetric metric_;
+  TraceSettings settings_;
+  C controller_;
+  AngleCorrection correction_;
+  SceneT scene_;
+};
+
+/// Deduces the scene: make_kerr_mino_tracer<RKF78, IController>(metric, settings, correction, scene).
+template <ExplicitTableau T, StepController C, class SceneT>
+KerrMinoSceneTracer<T, C, SceneT> make_kerr_mino_tracer(KerrMetric metric, TraceSettings settings,
+                                                        AngleCorrection correction, SceneT scene, C controller = {}) {
+  return {metric, settings, controller, correction, std::move(scene)};
+}
+
+}  // namespace grtrace

@@ -84,7 +84,8 @@ struct MetricGeodesicSystem {
   MetricGeodesicSystem(const Metric& m, const GeodesicState& y0)
       : metric(&m), norm0(inner_product(m, y0.head<4>(), y0.tail<4>(), y0.tail<4>())) {}
 
-  State operator()(const State& y) const { return GeodesicEquation<Metric>{metric}(y); }
+  /// Forced inline: the stepper calls it once per stage, and it is no more than the metric's acceleration.
+  [[gnu::always_inline]] State operator()(const State& y) const { return GeodesicEquation<Metric>{metric}(y); }
   double radius(const State& y) const { return metric->radius(y.head<4>()); }
   double radial_coordinate(const State& y) const { return radius(y); }
   static double radial_coordinate_at(double r) { return r; }

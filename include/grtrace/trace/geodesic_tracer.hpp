@@ -166,8 +166,9 @@ std::pair<double, typename System::State> refine_located(Integrator& integ, cons
 ///          armed once it is outside), an observer (called with the integrator; its dense output is in the
 ///          system's variables) and the events (on geodesic_state(z)).
 /// Returns: the TraceResult, its states mapped to (x, k) by the system; lambda is the system's parameter.
+/// The system is taken by value: a small local object, which the optimiser keeps in registers.
 template <ExplicitTableau Tableau, StepController Controller, GeodesicSystem System, class Observer, class... Events>
-TraceResult trace_geodesic_system(const System& system, const TraceSettings& settings, const Controller& controller,
+TraceResult trace_geodesic_system(const System system, const TraceSettings& settings, const Controller& controller,
                                   const typename System::State& z0, double r_capture, bool leaves_interior,
                                   Observer&& observer, const Events&... events) {
   using Integrator = ControlledIntegrator<Tableau, Controller, System::dimension>;

@@ -78,11 +78,14 @@ struct Scene {
   /// more than once without labels are numbered ("star-1", "star-2") so every position has its own name.
   std::vector<std::string> object_names() const {
     std::vector<std::string> names{"sky", "horizon"};
-    std::apply([&](const auto&... o) { (names.push_back(object_label(o)), ...); }, objects);
-    std::map<std::string, int> total, seen;
-    for (std::size_t i = 2; i < names.size(); ++i) ++total[names[i]];
-    for (std::size_t i = 2; i < names.size(); ++i)
-      if (total[names[i]] > 1) names[i] += "-" + std::to_string(++seen[names[i]]);
+    // (Without objects there is nothing to number; GCC 12 also warns, wrongly, on the loops' dead bodies then.)
+    if constexpr (sizeof...(Objects) > 0) {
+      std::apply([&](const auto&... o) { (names.push_back(object_label(o)), ...); }, objects);
+      std::map<std::string, int> total, seen;
+      for (std::size_t i = 2; i < names.size(); ++i) ++total[names[i]];
+      for (std::size_t i = 2; i < names.size(); ++i)
+        if (total[names[i]] > 1) names[i] += "-" + std::to_string(++seen[names[i]]);
+    }
     return names;
   }
 

@@ -99,7 +99,11 @@ CommandLine make_command_line() {
             "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
             "elliptic-integral direction from the camera (Schwarzschild/flat only); write <out>-error.png "
             "(heat map, log scale 1e-12 .. 1e-2 rad) and report max_error/median_error in the JSON")
-      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
+      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)")
+      .flag("no-mirrors",
+            "trace every pixel: by default a frame that is mirror symmetric (camera on the equator looking along its "
+            "axes; no metric rotation or orbiting disk for the left-right mirror) traces half or a quarter of its "
+            "pixels and reflects the rest (JSON traced_rays, EXR header mirrors)");
   tools::declare_disk_retrograde_flag(cli, "");
   tools::declare_flight_options(cli,
                                 "grtrace-render renders a sequence along it instead of one frame (aberration and "
@@ -336,6 +340,7 @@ Request read_request(const CommandLine& cli) {
   }
 
   q.error_map = cli.flag_set("error-map");
+  q.mirror_symmetry = !cli.flag_set("no-mirrors");
   if (q.error_map && ms.name != "schwarzschild" && ms.name != "minkowski")
     throw UsageError("--error-map needs --metric schwarzschild or minkowski (the exact elliptic-integral reference)");
 
@@ -566,7 +571,7 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   json.add("flight", q.flight.name).add("frames", frames).add("frames_rendered", stats.rendered);
   json.add("frames_skipped", stats.skipped).add("width", q.camera->width()).add("height", q.camera->height());
   json.add("proper_time_step", q.flight.dtau).add("seconds", stats.seconds);
-  json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds);
+  json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds).add("traced_rays", stats.traced_rays);
   json.add("status_counts", status_counts_json(stats.status_counts));
   json.add("tracer", table.name).add("tableau", q.tableau).add("control", q.control);
   json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
@@ -637,6 +642,7 @@ int main(int argc, char** argv) {
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
     json.add("out", q.out).add("png", png).add("threads", st.threads);
+    json.add("traced_rays", st.traced_rays).add("mirrors", image.metadata["mirrors"]);
     if (status_map) json.add("status_map", status_map_path(q.out));
     if (q.error_map) {
       json.add("max_error", errors.max).add("median_error", errors.median);

@@ -51,6 +51,7 @@ struct Request {
   int threads = 0;
   int table_nodes = 2048;
   bool error_map = false;
+  bool mirror_symmetry = true;  ///< false: --no-mirrors (trace every pixel of a mirror-symmetric frame)
   FlightRequest flight;
 };
 
@@ -68,6 +69,7 @@ std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyD
                                     TracerReport* table = nullptr) {
   RenderOptions options;
   options.threads = q.threads;
+  options.mirror_symmetry = q.mirror_symmetry;
   std::optional<Frame> frame;
   dispatch_method(q.tableau, q.control, [&]<class T, class C>() {
     with_standard_scene(q.scene, [&]<class Scene>(Scene scene) {

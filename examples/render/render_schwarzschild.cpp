@@ -12,6 +12,7 @@ namespace grtrace::render_tool {
 std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TracerReport& table) {
   RenderOptions options;
   options.threads = q.threads;
+  options.mirror_symmetry = q.mirror_symmetry;
   const Camera& cam = *q.camera;
   if (q.tracer == "straight-line")
     return with_standard_scene(q.scene, [&](auto scene) -> std::optional<Frame> {

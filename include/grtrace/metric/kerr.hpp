@@ -112,6 +112,8 @@ inline Christoffel christoffel_from_derivatives(const Mat4& g_inv, const std::ar
 struct KerrMetric {
   static constexpr std::string_view name = "kerr";
   static constexpr Chart chart = Chart::spherical;
+  /// Optional trait (metric_traits.hpp): unchanged by theta -> pi - theta; not by phi -> -phi (it rotates).
+  static constexpr bool equator_mirror_symmetric = true;
   double mass = 1.0;
   double spin = 0.0;  ///< a = J/M, |a| < M; the sign gives the sense of rotation about +z
 

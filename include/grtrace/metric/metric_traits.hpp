@@ -27,6 +27,12 @@
 //       when it comes out (a camera inside a black hole looking back at the ray's past: the ray leaves through
 //       the future horizon); the guard then takes effect only once the ray is outside it. Generic answers:
 //       horizon_radius(), and false (a ray that starts inside the guard is captured at once).
+//   static constexpr bool equator_mirror_symmetric = true;  static constexpr bool meridian_mirror_symmetric = true;
+//       In a spherical chart: the metric is unchanged by the reflection theta -> pi - theta (Kerr, every spherically
+//       symmetric metric), or by every reflection phi -> 2 phi0 - phi (axisymmetric and not rotating: Schwarzschild,
+//       not Kerr). A frame whose scene and camera are mirror symmetric too traces only the pixels of one half or
+//       one quarter (render/mirror_symmetry.hpp). Generic answer: false, except both true for a
+//       StaticSphericalMetric (metric/static_spherical.hpp), which is spherically symmetric by construction.
 //   static constexpr bool flat = true;
 //       The metric is flat everywhere: light moves on straight lines, so trace/straight_line.hpp follows rays
 //       without integrating (MinkowskiMetric, MinkowskiSpherical). Default: false.
@@ -41,6 +47,7 @@
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
+#include "grtrace/metric/static_spherical.hpp"
 
 #include <array>
 #include <cmath>
@@ -66,6 +73,22 @@ concept HasExactContinuation = requires(const M m, const GeodesicState y) {
 /// True for metrics that declare themselves flat everywhere (the straight-line tracer's precondition).
 template <class M>
 concept FlatMetric = MetricPolicy<M> && requires { requires M::flat; };
+
+/// True when the metric, in a spherical chart, is unchanged by theta -> pi - theta (see the top of this file).
+template <MetricPolicy M>
+constexpr bool metric_is_equator_mirror_symmetric() {
+  if constexpr (M::chart != Chart::spherical) return false;
+  else if constexpr (requires { M::equator_mirror_symmetric; }) return M::equator_mirror_symmetric;
+  else return StaticSphericalMetric<M>;
+}
+
+/// True when the metric, in a spherical chart, is unchanged by every phi -> 2 phi0 - phi (see the top of this file).
+template <MetricPolicy M>
+constexpr bool metric_is_meridian_mirror_symmetric() {
+  if constexpr (M::chart != Chart::spherical) return false;
+  else if constexpr (requires { M::meridian_mirror_symmetric; }) return M::meridian_mirror_symmetric;
+  else return StaticSphericalMetric<M>;
+}
 
 template <class M>
 concept HasSphericalMap = requires(const M m, const Vec4 x) {

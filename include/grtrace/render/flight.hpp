@@ -46,7 +46,8 @@ struct FlightStats {
   int frames = 0;    ///< cameras in the flight
   int rendered = 0;  ///< frames traced in this call
   int skipped = 0;   ///< frames skip() declared done
-  long rays = 0;     ///< pixels traced (rendered frames only)
+  long rays = 0;     ///< pixels rendered (rendered frames only)
+  long traced_rays = 0;  ///< of those, pixels traced (the rest reflected: render/mirror_symmetry.hpp)
   std::array<long, kRayStatusCount> status_counts{};
   double seconds = 0.0;  ///< wall time of the whole call, the sink's included
   long count(RayStatus s) const { return status_counts[static_cast<std::size_t>(s)]; }
@@ -104,6 +105,7 @@ FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_
       });
       ++stats.rendered;
       stats.rays += frame->stats.rays;
+      stats.traced_rays += frame->stats.traced_rays;
       for (std::size_t s = 0; s < kRayStatusCount; ++s) stats.status_counts[s] += frame->stats.status_counts[s];
       wait_for_writer();
       writer = std::thread([&sink, &write_error, index = static_cast<int>(i), f = std::move(*frame),

@@ -11,13 +11,17 @@
 //          (threads, tiles, progress: render/parallel_render.hpp); optionally a vector to receive every pixel's
 //          sky direction in double precision (the channels are float), e.g. for error maps.
 // Returns: the Image (channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps) and its RenderStats.
-//          Metadata written: tracer, object_names (by scene position), camera_position, tetrad_e0..e3,
+//          Metadata written: tracer, mirrors (the reflections used: render/mirror_symmetry.hpp; a frame whose
+//          metric, scene and camera are mirror symmetric traces only half or a quarter of its pixels, see
+//          RenderStats::traced_rays; RenderOptions::mirror_symmetry = false traces every pixel),
+//          object_names (by scene position), camera_position, tetrad_e0..e3,
 //          fov_degrees, and the statistics (record_render_stats). Callers add their own (tool options, metric).
 // Guarantees: those of render_image (no NaN colour, statuses counted, deterministic for any thread count).
 #pragma once
 
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/render/image.hpp"
+#include "grtrace/render/mirror_symmetry.hpp"
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/trace/scene_tracer_concept.hpp"
 
@@ -51,6 +55,21 @@ inline void record_camera(Image& image, const Camera& camera) {
   image.metadata["fov_degrees"] = exact_number(camera.fov_degrees());
 }
 
+/// The reflections render_frame uses for this tracer and camera: none for a tracer that does not name its metric
+/// and scene types (MetricType, SceneType and metric()), or when options.mirror_symmetry is off.
+template <SceneTracer Tracer>
+FrameMirrors frame_mirrors_of(const Tracer& tracer, const Camera& camera, const RenderOptions& options) {
+  if constexpr (requires {
+                  typename Tracer::MetricType;
+                  typename Tracer::SceneType;
+                  { tracer.metric() } -> std::convertible_to<const typename Tracer::MetricType&>;
+                }) {
+    if (options.mirror_symmetry)
+      return frame_mirrors<typename Tracer::MetricType, typename Tracer::SceneType>(tracer.metric(), camera);
+  }
+  return {};
+}
+
 template <SceneTracer Tracer>
 Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptions& options = {},
                    std::vector<SkyDirection>* directions = nullptr) {
@@ -58,15 +77,34 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
   Image& image = frame.image;
   if (directions) directions->assign(image.pixel_count(), SkyDirection{RayOutcome::nan, RayOutcome::nan});
   const auto& scene = tracer.scene();
-  frame.stats = render_image(
-      image,
-      [&](int col, int row) {
+  // A mirror-symmetric frame traces the top-left half or quarter (the middle row and column of odd sizes
+  // included) and reflects each outcome into the pixels it mirrors (render/mirror_symmetry.hpp).
+  const FrameMirrors mirrors = frame_mirrors_of(tracer, camera, options);
+  const int width = image.width(), height = image.height();
+  const int traced_width = mirrors.meridian ? (width + 1) / 2 : width;
+  const int traced_height = mirrors.equator ? (height + 1) / 2 : height;
+  struct NoScratch {};
+  frame.stats = render_image_by_orbits(
+      image, traced_width, traced_height, [] { return NoScratch{}; },
+      [&](int col, int row, NoScratch&, const auto& emit) {
+        const auto put = [&](int c, int r, const RayOutcome& o) {
+          if (directions) (*directions)[image.index(c, r)] = o.where;  // distinct pixels: no data race
+          emit(c, r, scene.shade(o));
+        };
         const RayOutcome o = tracer.trace(camera.pixel_state(col, row));
-        if (directions) (*directions)[image.index(col, row)] = o.where;  // distinct pixels: no data race
-        return scene.shade(o);
+        put(col, row, o);
+        const int mirror_col = width - 1 - col, mirror_row = height - 1 - row;
+        const bool rows = mirrors.equator && mirror_row != row, cols = mirrors.meridian && mirror_col != col;
+        if (rows) put(col, mirror_row, reflected_in_equator(o));
+        if (cols) {
+          const RayOutcome m = reflected_in_meridian(o, mirrors.camera_phi);
+          put(mirror_col, row, m);
+          if (rows) put(mirror_col, mirror_row, reflected_in_equator(m));
+        }
       },
       options);
   image.metadata["tracer"] = Tracer::name;
+  image.metadata["mirrors"] = mirrors.names();
   std::string names;
   for (const std::string& n : scene.object_names()) names += (names.empty() ? "" : ",") + n;
   image.metadata["object_names"] = names;

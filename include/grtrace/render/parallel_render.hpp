@@ -53,6 +53,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(_OPENMP)
@@ -71,13 +72,17 @@ struct RenderOptions {
   /// A bar owned by the caller that this render advances instead of drawing its own (progress and progress_label
   /// are then unused): one bar over a sequence of frames (render/flight.hpp). Must outlive the call.
   ProgressBar* shared_progress = nullptr;
+  /// render_frame (render/frame.hpp): copy mirror images instead of tracing them where the frame is mirror
+  /// symmetric (render/mirror_symmetry.hpp); false traces every pixel (for comparisons).
+  bool mirror_symmetry = true;
 };
 
 struct RenderStats {
   int width = 0;
   int height = 0;
   int threads = 0;                                    ///< threads that actually ran the loop
-  long rays = 0;                                      ///< pixels traced (= width * height)
+  long rays = 0;                                      ///< pixels rendered (= width * height)
+  long traced_rays = 0;  ///< pixels whose pixel function ran: rays, or fewer where mirror images were copied
   std::array<long, kRayStatusCount> status_counts{};  ///< indexed by RayStatus; sums to `rays`
   long total_steps = 0;                               ///< sum of PixelSample::steps
   long bad_colour = 0;                                ///< pixels whose R,G,B were non-finite and got error_rgb
@@ -141,18 +146,16 @@ inline int max_threads() {
 
 }  // namespace detail
 
-/// Renders every pixel of `image` (its nine standard channels) with `pixel(x, y, scratch) -> PixelSample`,
-/// where each thread owns the object `make_scratch()` returned (called serially, once per thread, before the
-/// loop). See the top of this file for the guarantees. Throws std::invalid_argument for bad options (negative
-/// threads, tile sizes out of range, a non-finite error colour) and whatever the factory or pixel function threw.
-template <class ScratchFactory, class PixelFn>
-requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int, int,
-    std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>
-& > &&std::convertible_to<
-        std::invoke_result_t<const PixelFn&, int, int, std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>&>,
-        PixelSample>
-        RenderStats render_image(Image& image, ScratchFactory&& make_scratch, const PixelFn& pixel,
-                                 const RenderOptions& options = {}) {
+/// The loop of render_image over a traced grid of traced_width x traced_height pixels (the image's top-left part),
+/// where each call orbit(x, y, scratch, emit) delivers the samples of every image pixel that grid point stands for
+/// by calling emit(col, row, PixelSample) once per pixel: itself and, in a mirror-symmetric frame, its mirror
+/// images (render/frame.hpp). Every image pixel must be emitted exactly once over the whole grid; emit applies the
+/// colour and status rules, counts the sample and advances the progress by one pixel. Same guarantees and errors
+/// as render_image (of which it is the general form); RenderStats::traced_rays is the traced grid's size.
+template <class ScratchFactory, class OrbitFn>
+requires std::invocable<ScratchFactory&>
+RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_height, ScratchFactory&& make_scratch,
+                                   const OrbitFn& orbit, const RenderOptions& options = {}) {
   using Scratch = std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>;
   using Slot = detail::ScratchSlot<Scratch>;
 
@@ -161,10 +164,12 @@ requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int
   if (options.tile_height < 1) throw std::invalid_argument("render_image: tile_height must be >= 1");
   for (float c : options.error_rgb)
     if (!std::isfinite(c)) throw std::invalid_argument("render_image: error_rgb must be finite");
+  if (traced_width < 1 || traced_width > image.width() || traced_height < 1 || traced_height > image.height())
+    throw std::invalid_argument("render_image: the traced grid must lie inside the image");
 
   const auto start = std::chrono::steady_clock::now();
-  const int width = image.width();
-  const int height = image.height();
+  const int width = traced_width;
+  const int height = traced_height;
   const Image::PixelWriter writer = image.pixel_writer();
 
   const int tile_w = options.tile_width == 0 ? width : std::min(options.tile_width, width);
@@ -210,14 +215,15 @@ requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int
         const int y0 = static_cast<int>(tile / tiles_x) * tile_h;
         const int x1 = std::min(x0 + tile_w, width);
         const int y1 = std::min(y0 + tile_h, height);
-        for (int y = y0; y < y1; ++y) {
-          for (int x = x0; x < x1; ++x) {
-            PixelSample s = pixel(x, y, scratch);
-            detail::sanitize_and_count(s, options, tally);
-            writer.set(image.index(x, y), s);
-          }
-        }
-        progress.advance(static_cast<long>(x1 - x0) * static_cast<long>(y1 - y0));
+        long emitted = 0;
+        const auto emit = [&](int col, int row, PixelSample s) {
+          detail::sanitize_and_count(s, options, tally);
+          writer.set(image.index(col, row), s);
+          ++emitted;
+        };
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x) orbit(x, y, scratch, emit);
+        progress.advance(emitted);
       } catch (...) {
         std::lock_guard lock(error_mutex);
         if (!first_error) first_error = std::current_exception();
@@ -230,10 +236,11 @@ requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int
   if (first_error) std::rethrow_exception(first_error);
 
   RenderStats stats;
-  stats.width = width;
-  stats.height = height;
+  stats.width = image.width();
+  stats.height = image.height();
   stats.threads = team_size;
   stats.rays = static_cast<long>(image.pixel_count());
+  stats.traced_rays = static_cast<long>(traced_width) * static_cast<long>(traced_height);
   for (const auto& tally : tallies) {
     for (std::size_t i = 0; i < kRayStatusCount; ++i) stats.status_counts[i] += tally.status_counts[i];
     stats.total_steps += tally.steps;
@@ -244,6 +251,23 @@ requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int
   stats.rays_per_second = stats.seconds > 0.0 ? static_cast<double>(stats.rays) / stats.seconds : 0.0;
   stats.mean_steps = stats.rays > 0 ? static_cast<double>(stats.total_steps) / static_cast<double>(stats.rays) : 0.0;
   return stats;
+}
+
+/// Renders every pixel of `image` (its nine standard channels) with `pixel(x, y, scratch) -> PixelSample`,
+/// where each thread owns the object `make_scratch()` returned (called serially, once per thread, before the
+/// loop). See the top of this file for the guarantees. Throws std::invalid_argument for bad options (negative
+/// threads, tile sizes out of range, a non-finite error colour) and whatever the factory or pixel function threw.
+template <class ScratchFactory, class PixelFn>
+requires std::invocable<ScratchFactory&> && std::invocable < const PixelFn&, int, int,
+    std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>
+& > &&std::convertible_to<
+        std::invoke_result_t<const PixelFn&, int, int, std::remove_cvref_t<std::invoke_result_t<ScratchFactory&>>&>,
+        PixelSample>
+        RenderStats render_image(Image& image, ScratchFactory&& make_scratch, const PixelFn& pixel,
+                                 const RenderOptions& options = {}) {
+  return render_image_by_orbits(
+      image, image.width(), image.height(), std::forward<ScratchFactory>(make_scratch),
+      [&pixel](int x, int y, auto& scratch, const auto& emit) { emit(x, y, pixel(x, y, scratch)); }, options);
 }
 
 /// The same loop for a pixel function without per-thread state: pixel(x, y) -> PixelSample, called
@@ -259,7 +283,7 @@ requires std::invocable<const PixelFn&, int, int> &&
 }
 
 /// Records the statistics of a render in the image's metadata (written as EXR header attributes):
-/// render_seconds, rays_per_second, mean_steps, render_threads, and status_counts as a JSON object
+/// render_seconds, rays_per_second, mean_steps, render_threads, traced_rays, and status_counts as a JSON object
 /// {"escaped":N,...} with every status name. Existing keys are overwritten.
 inline void record_render_stats(Image& image, const RenderStats& stats) {
   char buffer[64];
@@ -270,6 +294,7 @@ inline void record_render_stats(Image& image, const RenderStats& stats) {
   std::snprintf(buffer, sizeof buffer, "%.6g", stats.mean_steps);
   image.metadata["mean_steps"] = buffer;
   image.metadata["render_threads"] = std::to_string(stats.threads);
+  image.metadata["traced_rays"] = std::to_string(stats.traced_rays);
   std::string counts = "{";
   for (std::size_t i = 0; i < kRayStatusCount; ++i) {
     if (i > 0) counts.push_back(',');

@@ -125,6 +125,26 @@ struct Scene {
   }
 };
 
+namespace detail {
+template <class Tuple>
+struct EveryObject;
+template <class... Objects>
+struct EveryObject<std::tuple<Objects...>> {
+  template <class Predicate>
+  static constexpr bool holds(const Predicate& p) {
+    return (p.template operator()<Objects>() && ...);
+  }
+};
+}  // namespace detail
+
+/// True when `predicate.template operator()<O>()` holds for the type O of every object of the scene type SceneT
+/// (true for a scene without objects): what a tracer asks of a whole scene, e.g.
+///   every_object_of<SceneT>([]<class O>() { return object_is_stationary<O>(); })
+template <class SceneT, class Predicate>
+constexpr bool every_object_of(const Predicate& predicate) {
+  return detail::EveryObject<decltype(SceneT::objects)>::holds(predicate);
+}
+
 template <ScenePainter Sky, ScenePainter Horizon, SceneObject... Objects>
 Scene<Sky, Horizon, Objects...> make_scene(Sky sky, Horizon horizon, Objects... objects) {
   return {std::move(sky), std::move(horizon), std::tuple<Objects...>(std::move(objects)...)};

@@ -32,6 +32,15 @@
 //                                                   event never reads y[0]); tracers that do not follow t (the
 //                                                   reduced Kerr tracer, trace/kerr_mino_tracer.hpp) draw only
 //                                                   such objects; default: false, or true for an equatorial one
+//   static constexpr bool equator_mirror_symmetric = true;   the object (where it is, what accepts() takes, how
+//                                                   its matter moves) is unchanged by the reflection
+//                                                   theta -> pi - theta; its colour need not be (each pixel is
+//                                                   coloured at its own hit). A frame whose metric and camera are
+//                                                   symmetric too traces only half its rows (render/mirror_symmetry.hpp);
+//                                                   default false
+//   static constexpr bool meridian_mirror_symmetric = true;  the same for phi -> 2 phi0 - phi, every phi0 (an
+//                                                   axisymmetric object whose matter does not orbit; not a
+//                                                   Keplerian disk); half the columns; default false
 //   std::string label() const;                      this instance's name in image headers (two stars in one scene);
 //                                                   default: kind, numbered when the scene has several of a kind
 //   double surface(const Metric& m, const GeodesicState& y) const;   bool accepts(const Metric& m, y) const;
@@ -94,11 +103,31 @@ constexpr bool check_scene_object() {
   return true;
 }
 
+/// True when the object declares itself equatorial (see the top of this file).
+template <class O>
+constexpr bool object_is_equatorial() {
+  if constexpr (requires { O::equatorial; }) return O::equatorial;
+  else return false;
+}
+
 /// True when the object declares itself stationary, or equatorial (which implies it: see the top of this file).
 template <class O>
 constexpr bool object_is_stationary() {
   if constexpr (requires { O::stationary; }) return O::stationary;
-  else if constexpr (requires { O::equatorial; }) return O::equatorial;
+  else return object_is_equatorial<O>();
+}
+
+/// True when the object declares itself unchanged by the reflection theta -> pi - theta (see the top of this file).
+template <class O>
+constexpr bool object_is_equator_mirror_symmetric() {
+  if constexpr (requires { O::equator_mirror_symmetric; }) return O::equator_mirror_symmetric;
+  else return false;
+}
+
+/// True when the object declares itself unchanged by every reflection phi -> 2 phi0 - phi (see the top of this file).
+template <class O>
+constexpr bool object_is_meridian_mirror_symmetric() {
+  if constexpr (requires { O::meridian_mirror_symmetric; }) return O::meridian_mirror_symmetric;
   else return false;
 }
 

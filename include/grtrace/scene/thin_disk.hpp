@@ -32,6 +32,9 @@ struct ThinDisk {
   static constexpr bool two_sided = true;
   static constexpr bool equatorial = true;  ///< lies in theta = pi / 2: the planar tracer can draw it
   static constexpr bool stationary = true;  ///< nothing depends on t: the reduced Kerr tracer can draw it
+  /// The plane, the annulus and the orbits are unchanged by theta -> pi - theta (not by phi -> -phi: the gas
+  /// orbits): mirror-symmetric frames trace half their rows (render/mirror_symmetry.hpp).
+  static constexpr bool equator_mirror_symmetric = true;
   double r_in = 6.0, r_out = 20.0;
   double peak_temperature = 5000.0;  ///< kelvin, at the hottest radius (for the colour only)
   int sense = +1;                    ///< +1: the gas turns towards +phi; -1: towards -phi

@@ -62,15 +62,21 @@ double constraint_violation(const Metric& metric, const GeodesicState& y, double
 
 /// Spherical charts cover the sphere once with theta in [0, pi]. A ray through (or numerically across) the axis
 /// comes out with theta < 0 or > pi; the same event and direction are theta' = -theta (or 2 pi - theta),
-/// phi' = phi + pi, k^theta' = -k^theta. Returns true when it changed y.
-inline bool wrap_polar_axis(GeodesicState& y) {
+/// phi' = phi + pi, dtheta'/dlambda = -dtheta/dlambda. Theta, Phi and ThetaRate are the slots of theta, phi and
+/// dtheta/dlambda in the state (any system that carries them: the reduced Kerr system's are 1, 2, 4).
+/// Returns true when it changed y.
+template <int Theta, int Phi, int ThetaRate, class State>
+bool wrap_polar_axis(State& y) {
   constexpr double pi = std::numbers::pi;
-  if (y[2] >= 0.0 && y[2] <= pi) return false;
-  y[2] = y[2] < 0.0 ? -y[2] : 2.0 * pi - y[2];
-  y[3] += pi;
-  y[6] = -y[6];
+  if (y[Theta] >= 0.0 && y[Theta] <= pi) return false;
+  y[Theta] = y[Theta] < 0.0 ? -y[Theta] : 2.0 * pi - y[Theta];
+  y[Phi] += pi;
+  y[ThetaRate] = -y[ThetaRate];
   return true;
 }
+
+/// The same for a geodesic state (x, k) of a spherical chart: theta = x^2, phi = x^3, k^theta.
+inline bool wrap_polar_axis(GeodesicState& y) { return wrap_polar_axis<2, 3, 6>(y); }
 
 /// The geodesic equation of a metric policy, d/dlambda (x, k) = (k, -Gamma(k, k)), as a geodesic system: the
 /// state is (x, k) itself; the constraint is g(k, k) = its value at the start (norm0).

@@ -176,23 +176,26 @@ TraceResult trace_geodesic_system(const System system, const TraceSettings& sett
   // Metrics without a horizon (flat space, wormholes: horizon_radius() == 0) get no capture surface at all.
   // The guard and the sky sphere are located on the system's radial coordinate rho(r) (increasing in r).
   const bool has_horizon = r_capture > 0.0;
-  const double r_guard = system.radial_coordinate_at((1.0 + settings.horizon_epsilon) * r_capture);
-  const double r_escape = system.radial_coordinate_at(settings.escape_radius);
+  const double rho_guard = system.radial_coordinate_at((1.0 + settings.horizon_epsilon) * r_capture);
+  const double rho_escape = system.radial_coordinate_at(settings.escape_radius);
   // A ray that starts inside the guard and comes out (a camera inside the hole, in a chart that penetrates the
   // horizon) is not captured there: its guard is armed once it is outside it (a ray that then falls back in is
   // captured as any other).
-  bool guard_armed = !(has_horizon && !(system.radial_coordinate(z0) > r_guard) && leaves_interior);
+  bool guard_armed = !(has_horizon && !(system.radial_coordinate(z0) > rho_guard) && leaves_interior);
   // Slots 0 and 1 of the event list are the horizon guard and the sky sphere, both read off the radial coordinate
   // (on_state); their callables are only placeholders.
   const auto radius_surface = [](const GeodesicState&) { return 1.0; };
   constexpr std::size_t K = 2 + sizeof...(Events);
   constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};
   constexpr std::array<bool, K> two_sided = {false, false, event_is_two_sided<Events>()...};
-  // Each event on the integrated state: the horizon and the sky on its radius, the others on its (x, k).
+  // The horizon (slot 0) and the sky sphere (slot 1) at the radial coordinate rho; every event on the integrated
+  // state: those two on its rho, the others on its (x, k).
+  auto radial_event = [&](std::size_t i, double rho) -> double {
+    if (i == 0) return has_horizon && guard_armed ? rho - rho_guard : 1.0;
+    return rho_escape - rho;
+  };
   auto on_state = [&](std::size_t i, const auto& e, const State& z) -> double {
-    if (i == 0) return has_horizon && guard_armed ? system.radial_coordinate(z) - r_guard : 1.0;
-    if (i == 1) return r_escape - system.radial_coordinate(z);
-    return e(system.geodesic_state(z));
+    return i < 2 ? radial_event(i, system.radial_coordinate(z)) : e(system.geodesic_state(z));
   };
   const auto all = std::tie(radius_surface, radius_surface, events...);
 
@@ -237,13 +240,11 @@ TraceResult trace_geodesic_system(const System system, const TraceSettings& sett
     double theta_first = std::numeric_limits<double>::infinity();
     State z_first = State::Zero();
     std::size_t first = K;
-    // The horizon and the sky sphere test the same radius: computed once per step (a square root or two for
-    // Kerr-Schild); the values are those horizon(y) and escape(y) return.
-    const double r_now = system.radial_coordinate(integ.state());
+    // The horizon and the sky sphere test the same radial coordinate: computed once per step (a square root or
+    // two for Kerr-Schild).
+    const double rho_now = system.radial_coordinate(integ.state());
     detail::for_each_event(all, [&](std::size_t i, const auto& e) {
-      const double g1 = i == 0   ? (has_horizon && guard_armed ? r_now - r_guard : 1.0)
-                        : i == 1 ? r_escape - r_now
-                                 : on_state(i, e, integ.state());
+      const double g1 = i < 2 ? radial_event(i, rho_now) : on_state(i, e, integ.state());
       // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
       const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
       if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {
@@ -274,9 +275,9 @@ TraceResult trace_geodesic_system(const System system, const TraceSettings& sett
       if (violated(z_first)) return finish(RayStatus::non_finite, z_first, lambda_hit, integ);
       return finish(detail::status_of(first, result), z_first, lambda_hit, integ);
     }
-    if (!guard_armed && r_now > r_guard) {  // out of the hole: from here on a fall back inside is a capture
+    if (!guard_armed && rho_now > rho_guard) {  // out of the hole: from here on a fall back inside is a capture
       guard_armed = true;
-      g_prev[0] = r_now - r_guard;
+      g_prev[0] = rho_now - rho_guard;
     }
     if (++steps_since_check >= check_interval) {
       steps_since_check = 0;

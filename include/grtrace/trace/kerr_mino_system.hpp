@@ -33,6 +33,7 @@
 #include "grtrace/core/sin_cos.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/kerr.hpp"
+#include "grtrace/trace/geodesic_system.hpp"  // wrap_polar_axis
 
 #include <algorithm>
 #include <cmath>
@@ -128,14 +129,7 @@ struct KerrMinoSystem {
   }
 
   /// The polar axis crossed: theta -> -theta (or 2 pi - theta), phi -> phi + pi, theta' -> -theta'.
-  bool wrap_chart(State& z) const {
-    constexpr double pi = std::numbers::pi;
-    if (z[1] >= 0.0 && z[1] <= pi) return false;
-    z[1] = z[1] < 0.0 ? -z[1] : 2.0 * pi - z[1];
-    z[2] += pi;
-    z[4] = -z[4];
-    return true;
-  }
+  bool wrap_chart(State& z) const { return wrap_polar_axis<1, 2, 4>(z); }
 
  private:
   double a2_ = 0.0, big_a_ = 0.0, k_ = 0.0, a2e2_ = 0.0, l2_ = 0.0;

@@ -15,7 +15,7 @@
 #pragma once
 
 #include "grtrace/metric/kerr.hpp"
-#include "grtrace/scene/scene_object.hpp"
+#include "grtrace/scene/scene.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/kerr_mino_system.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
@@ -25,18 +25,11 @@
 
 namespace grtrace {
 
-namespace detail {
-template <class Tuple>
-struct AllStationary;
-template <class... Objects>
-struct AllStationary<std::tuple<Objects...>> {
-  static constexpr bool value = (object_is_stationary<Objects>() && ...);
-};
-}  // namespace detail
-
-/// True when the reduced Kerr tracer can draw every object of the scene (a scene without objects always).
+/// True when the reduced Kerr tracer can draw every object of the scene: each is stationary (optional object trait,
+/// scene/scene_object.hpp); a scene without objects always.
 template <class SceneT>
-inline constexpr bool kerr_mino_supports_scene = detail::AllStationary<decltype(SceneT::objects)>::value;
+inline constexpr bool kerr_mino_supports_scene =
+    every_object_of<SceneT>([]<class O>() { return object_is_stationary<O>(); });
 
 /// One ray of a Kerr metric on the separated equations: the TraceResult of GeodesicTracer<KerrMetric>::trace for
 /// the same ray and events (within the integration's tolerance), lambda in Mino time, t not followed (NaN).
@@ -56,7 +49,7 @@ class KerrMinoSceneTracer {
   static_assert(C::estimate != ErrorEstimate::none,
                 "the reduced Kerr tracer integrates in Mino time, not in the affine parameter: a fixed step would "
                 "mean something else there; use an adaptive controller (i, pi, doubling)");
-  static_assert(detail::ObjectsFit<KerrMetric, decltype(SceneT::objects)>::value);
+  static_assert(scene_objects_checked<KerrMetric, SceneT>);
 
  public:
   static constexpr const char* name = "kerr-mino";

@@ -37,26 +37,11 @@
 
 namespace grtrace {
 
-/// Optional object trait (scene/scene_object.hpp): the object lies in the equatorial plane theta = pi / 2 (its
-/// event function vanishes there and only there; accepts() says where in the plane it is).
-template <class O>
-constexpr bool is_equatorial_object() {
-  if constexpr (requires { O::equatorial; }) return O::equatorial;
-  else return false;
-}
-
-namespace detail {
-template <class Tuple>
-struct AllEquatorial;
-template <class... Objects>
-struct AllEquatorial<std::tuple<Objects...>> {
-  static constexpr bool value = (is_equatorial_object<Objects>() && ...);
-};
-}  // namespace detail
-
-/// True when the planar tracer can draw every object of the scene (a scene without objects always).
+/// True when the planar tracer can draw every object of the scene: each lies in the equatorial plane (optional
+/// object trait `equatorial`, scene/scene_object.hpp); a scene without objects always.
 template <class SceneT>
-inline constexpr bool planar_supports_scene = detail::AllEquatorial<decltype(SceneT::objects)>::value;
+inline constexpr bool planar_supports_scene =
+    every_object_of<SceneT>([]<class O>() { return object_is_equatorial<O>(); });
 
 /// The range [min, max] of the angle delta (trace/planar_geometry.hpp) over the camera's pixel centres, without
 /// visiting every pixel: delta is the angle between the pixel's direction in the static frame and the outward
@@ -192,6 +177,7 @@ class PlanarSceneTracer {
   }
 
   const SceneT& scene() const { return fallback_.scene(); }  // the fallback tracer holds the one copy
+  const Metric& metric() const { return metric_; }
   const PlanarPathTable<Metric, T, C>& table() const { return *table_; }
   /// Pixels traced by the general tracer instead (see the top of this file), since construction.
   long fallback_rays() const { return fallbacks_.load(std::memory_order_relaxed); }

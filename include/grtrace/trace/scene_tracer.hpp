@@ -32,21 +32,11 @@ double redshift_at(const M& metric, const Vec4& u, const GeodesicState& y) {
   return -1.0 / u.dot(metric.metric(y.head<4>()) * y.tail<4>());
 }
 
-namespace detail {
-template <class Metric, class Tuple>
-struct ObjectsFit;
-template <class Metric, class... Objects>
-struct ObjectsFit<Metric, std::tuple<Objects...>> {
-  static constexpr bool value = (check_scene_object<Objects, Metric>() && ...);
-};
-
-template <class Metric, class Tuple>
-struct ObjectsIn;
-template <class Metric, class... Objects>
-struct ObjectsIn<Metric, std::tuple<Objects...>> {
-  static constexpr bool value = (SceneObjectIn<Objects, Metric> && ...);
-};
-}  // namespace detail
+/// Every object of the scene checked against the metric with check_scene_object (static_asserts whose messages name
+/// what an object lacks): what a scene tracer's class asserts.
+template <class Metric, class SceneT>
+inline constexpr bool scene_objects_checked =
+    every_object_of<SceneT>([]<class O>() { return check_scene_object<O, Metric>(); });
 
 /// A scene object seen as the tracer's event in a given metric: the object's surface(metric, y) and
 /// accepts(metric, y) where it provides them (scene/scene_object.hpp), its two_sided and interior_samples as they
@@ -77,7 +67,7 @@ decltype(auto) bind_to_metric(const O& object, const M& metric) {
 /// True when every object of the scene can say how its matter moves in the metric (e.g. ThinDisk needs a
 /// spherical chart): programs that choose metric and scene at run time test this before instantiating a tracer.
 template <class Metric, class SceneT>
-inline constexpr bool scene_fits_metric = detail::ObjectsIn<Metric, decltype(SceneT::objects)>::value;
+inline constexpr bool scene_fits_metric = every_object_of<SceneT>([]<class O>() { return SceneObjectIn<O, Metric>; });
 
 /// What a scene tracer reports for a ray the tracing loop ended with r (trace/ray_outcome.hpp): the object, where,
 /// the end state and the redshift against the emitter there (the object's matter, or the rest frame for the sky
@@ -118,7 +108,7 @@ TraceSettings with_escape_refinement(TraceSettings s, AngleCorrection correction
 
 template <MetricPolicy Metric, ExplicitTableau T, StepController C, class SceneT>
 class GeneralSceneTracer {
-  static_assert(detail::ObjectsFit<Metric, decltype(SceneT::objects)>::value);
+  static_assert(scene_objects_checked<Metric, SceneT>);
 
  public:
   static constexpr const char* name = "general";
@@ -137,6 +127,7 @@ class GeneralSceneTracer {
   }
 
   const SceneT& scene() const { return scene_; }
+  const Metric& metric() const { return tracer_.metric(); }
   const GeodesicTracer<Metric, T, C>& tracer() const { return tracer_; }
   AngleCorrection correction() const { return correction_; }
 

@@ -5,6 +5,11 @@
 //                                                from several threads at once (no mutable state)
 //   const Scene& scene() const                   the scene it traces through: shade(outcome) -> PixelSample and
 //                                                object_names() (scene/scene.hpp)
+// May provide (detected at compile time):
+//   using MetricType = ...; using SceneType = ...; const MetricType& metric() const;
+//                                                the spacetime and scene it traces: render_frame then checks the
+//                                                frame's mirror symmetries (render/mirror_symmetry.hpp) and traces
+//                                                only the pixels it cannot reflect; without them every pixel is traced
 // The library's tracers: GeneralSceneTracer (any metric, every pixel integrated, trace/scene_tracer.hpp),
 // SymmetricSceneTracer (Schwarzschild sky and horizon from one table of rays), StraightLineTracer (flat space).
 #pragma once

@@ -28,7 +28,7 @@ namespace grtrace {
 
 template <FlatMetric Metric, class SceneT>
 class StraightLineTracer {
-  static_assert(detail::ObjectsFit<Metric, decltype(SceneT::objects)>::value);
+  static_assert(scene_objects_checked<Metric, SceneT>);
 
  public:
   static constexpr const char* name = "straight-line";
@@ -85,6 +85,7 @@ class StraightLineTracer {
   }
 
   const SceneT& scene() const { return scene_; }
+  const Metric& metric() const { return metric_; }
 
  private:
   /// (t, X | k^t, V) of the embedding as a state of the metric's chart.

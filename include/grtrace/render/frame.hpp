@@ -83,26 +83,33 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
   const int width = image.width(), height = image.height();
   const int traced_width = mirrors.meridian ? (width + 1) / 2 : width;
   const int traced_height = mirrors.equator ? (height + 1) / 2 : height;
-  struct NoScratch {};
-  frame.stats = render_image_by_orbits(
-      image, traced_width, traced_height, [] { return NoScratch{}; },
-      [&](int col, int row, NoScratch&, const auto& emit) {
-        const auto put = [&](int c, int r, const RayOutcome& o) {
-          if (directions) (*directions)[image.index(c, r)] = o.where;  // distinct pixels: no data race
-          emit(c, r, scene.shade(o));
-        };
-        const RayOutcome o = tracer.trace(camera.pixel_state(col, row));
-        put(col, row, o);
-        const int mirror_col = width - 1 - col, mirror_row = height - 1 - row;
-        const bool rows = mirrors.equator && mirror_row != row, cols = mirrors.meridian && mirror_col != col;
-        if (rows) put(col, mirror_row, reflected_in_equator(o));
-        if (cols) {
-          const RayOutcome m = reflected_in_meridian(o, mirrors.camera_phi);
-          put(mirror_col, row, m);
-          if (rows) put(mirror_col, mirror_row, reflected_in_equator(m));
-        }
-      },
-      options);
+  const auto shade = [&](int col, int row, const RayOutcome& o) {
+    if (directions) (*directions)[image.index(col, row)] = o.where;  // distinct pixels: no data race
+    return scene.shade(o);
+  };
+  if (!mirrors.any()) {
+    // Every pixel traced: one trace and one shade per pixel, the loop frames had before mirrors (the mirrored loop
+    // below measured up to ~5 % slower on such frames, within the noise of one run).
+    frame.stats = render_image(
+        image, [&](int col, int row) { return shade(col, row, tracer.trace(camera.pixel_state(col, row))); }, options);
+  } else {
+    struct NoScratch {};
+    frame.stats = render_image_by_orbits(
+        image, traced_width, traced_height, [] { return NoScratch{}; },
+        [&](int col, int row, NoScratch&, const auto& emit) {
+          const RayOutcome o = tracer.trace(camera.pixel_state(col, row));
+          emit(col, row, shade(col, row, o));
+          const int mirror_col = width - 1 - col, mirror_row = height - 1 - row;
+          const bool rows = mirrors.equator && mirror_row != row, cols = mirrors.meridian && mirror_col != col;
+          if (rows) emit(col, mirror_row, shade(col, mirror_row, reflected_in_equator(o)));
+          if (cols) {
+            const RayOutcome m = reflected_in_meridian(o, mirrors.camera_phi);
+            emit(mirror_col, row, shade(mirror_col, row, m));
+            if (rows) emit(mirror_col, mirror_row, shade(mirror_col, mirror_row, reflected_in_equator(m)));
+          }
+        },
+        options);
+  }
   image.metadata["tracer"] = Tracer::name;
   image.metadata["mirrors"] = mirrors.names();
   std::string names;

@@ -183,7 +183,7 @@ TraceResult trace_geodesic_system(const System system, const TraceSettings& sett
   // captured as any other).
   bool guard_armed = !(has_horizon && !(system.radial_coordinate(z0) > rho_guard) && leaves_interior);
   // Slots 0 and 1 of the event list are the horizon guard and the sky sphere, both read off the radial coordinate
-  // (on_state); their callables are only placeholders.
+  // (radial_event); their callables are only placeholders.
   const auto radius_surface = [](const GeodesicState&) { return 1.0; };
   constexpr std::size_t K = 2 + sizeof...(Events);
   constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};

@@ -4,7 +4,7 @@
 #   <prefix>/<libdir>/cmake/grtrace/grtraceConfig.cmake        find_package(grtrace CONFIG)
 #   <prefix>/<libdir>/cmake/grtrace/grtraceConfigVersion.cmake SameMajorVersion
 #   <prefix>/<libdir>/cmake/grtrace/grtraceTargets.cmake       grtrace::grtrace (Eigen3 + GLM only)
-#   <prefix>/<libdir>/cmake/grtrace/grtraceRenderTargets.cmake grtrace::render  (+ OpenMP, OpenEXR, libpng), if built
+#   <prefix>/<libdir>/cmake/grtrace/grtraceRenderTargets.cmake grtrace::render  (+ OpenMP, OpenEXR, libpng, libdeflate), if built
 #   <prefix>/<libdir>/cmake/grtrace/grtraceVizTargets.cmake    grtrace::viz     (compiled, VTK), if built
 #   <prefix>/<libdir>/cmake/grtrace/grtraceTestingTargets.cmake grtrace::testing (+ GTest), if GTest was found
 #

@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libglm-dev libeigen3-dev            # core: numerics (Eigen) and graphics vectors (GLM)
   libopenexr-dev libpng-dev           # renderer output
+  libdeflate-dev                      # renderer: fast deflate of the EXR chunks
   libvtk9-dev                         # viz frontend
   libgtest-dev libbenchmark-dev       # tests and benchmarks
   xvfb xauth                          # headless VTK rendering in tests

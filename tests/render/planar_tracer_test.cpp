@@ -183,6 +183,59 @@ TEST(PlanarTable, EveryPathReachesItsNeighboursEnds) {
   }
 }
 
+// A table of ends only (what a frame without objects needs) integrates every ray exactly as the full table does up
+// to its end, so its fates, sweeps and step counts are the same bits; it stores no path, continues no ray past its
+// end and traces none again. The planar tracer builds one for a sky-only scene and a full one for a disk scene.
+TEST(PlanarTable, EndsOnlyTableHasTheSameEndsAndNoPaths) {
+  const SchwarzschildMetric metric{1.0};
+  using Table = PlanarPathTable<SchwarzschildMetric, Fehlberg78, IController>;
+  TraceSettings settings;
+  settings.integrator.tolerance = {1e-9, 1e-11};
+  settings.escape_radius = 1000.0;
+  for (const double camera_r : {8.0, 50.0}) {
+    const Table full(metric, camera_r, settings, 0.0, pi, 128, {}, true);
+    const Table ends(metric, camera_r, settings, 0.0, pi, 128, {}, false);
+    EXPECT_TRUE(full.keeps_paths());
+    EXPECT_FALSE(ends.keeps_paths());
+    EXPECT_EQ(ends.table_steps(), full.table_steps());
+    EXPECT_GT(full.retraced_rays(), 0) << "the full table reaches farther for its neighbours";
+    EXPECT_EQ(ends.retraced_rays(), 0);
+    for (int side : {+1, -1}) {
+      ASSERT_EQ(ends.nodes(side).size(), full.nodes(side).size());
+      for (std::size_t i = 0; i < full.nodes(side).size(); ++i) {
+        const auto &a = full.nodes(side)[i], &b = ends.nodes(side)[i];
+        EXPECT_EQ(b.status, a.status) << "node " << i;
+        EXPECT_EQ(b.steps, a.steps) << "node " << i;
+        auto same = [](double x, double y) { return (std::isnan(x) && std::isnan(y)) || x == y; };
+        EXPECT_TRUE(same(b.sweep_sky, a.sweep_sky)) << "node " << i << ": " << b.sweep_sky << " vs " << a.sweep_sky;
+        EXPECT_TRUE(same(b.sweep_infinity, a.sweep_infinity)) << "node " << i;
+        EXPECT_TRUE(same(b.sweep_guard, a.sweep_guard)) << "node " << i;
+        EXPECT_TRUE(b.path.empty());
+        EXPECT_FALSE(a.path.empty());
+      }
+    }
+    for (const double delta : {0.3, 1.5, 2.9}) {
+      const auto a = full.at(delta), b = ends.at(delta);
+      EXPECT_EQ(b.sweep_end, a.sweep_end);
+      EXPECT_TRUE(full.path_at(a, 0.5 * a.sweep_end).has_value());
+      EXPECT_FALSE(ends.path_at(b, 0.5 * b.sweep_end).has_value()) << "a table of ends only has no path to read";
+    }
+  }
+  CameraSpec cs;
+  cs.position = Vec4(0.0, 30.0, 1.3, 0.0);
+  cs.width = cs.height = 8;
+  const Camera camera = make_camera(metric, cs);
+  StandardSceneSpec spec;
+  spec.name = "disk";
+  const PlanarSceneTracer<SchwarzschildMetric, Fehlberg78, IController, DiskScene> disk(
+      metric, settings, camera, AngleCorrection::exact, disk_scene(spec), 64);
+  EXPECT_TRUE(disk.table().keeps_paths());
+  spec.name = "checker";
+  const PlanarSceneTracer<SchwarzschildMetric, Fehlberg78, IController, BackgroundScene> sky(
+      metric, settings, camera, AngleCorrection::exact, background_scene(spec), 64);
+  EXPECT_FALSE(sky.table().keeps_paths());
+}
+
 // The angle range from the frame's border (and the pixels that see straight out or in) equals a scan of every pixel.
 TEST(PlanarAngleRange, EqualsTheScanOfEveryPixel) {
   const SchwarzschildMetric metric{1.0};

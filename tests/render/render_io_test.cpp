@@ -227,6 +227,45 @@ TEST_F(Exr, ZipLevelOutsideOneToNineIsRefusedAndNothingIsWritten) {
   EXPECT_TRUE(listing().empty());
 }
 
+// ZIP, ZIPS and uncompressed files are laid out by grtrace itself (exr_io.hpp write_exr_scanlines) and deflated by
+// libdeflate: OpenEXR must read every chunk back, including chunks that do not compress (random bits: stored
+// raw, which a reader recognises by their size) next to chunks that do, a last chunk shorter than the others, and
+// names longer than 31 characters (the version's long-names flag). OpenEXR's own ZIP writer, given the same image,
+// produces a file that reads back to the same bits.
+TEST_F(Exr, GrtraceWrittenChunksReadBackInOpenExr) {
+  Image image(29, 37);  // 37 lines: two full ZIP chunks of 16 and one of 5
+  image.add_channel("a_channel_name_longer_than_31_characters");
+  image.metadata["an_attribute_name_longer_than_31_characters"] = "long names";
+  std::uint32_t state = 12345u;
+  std::size_t channel_index = 0;
+  for (const auto& name : image.channel_names()) {
+    auto& c = image.channel(name);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      state = state * 1664525u + 1013904223u;  // random bits in the even channels, smooth values in the odd ones
+      c[i] = channel_index % 2 == 0 ? from_bits(state) : static_cast<float>(i % 97) * 0.25f;
+    }
+    ++channel_index;
+  }
+  for (const auto compression : {Imf::NO_COMPRESSION, Imf::ZIP_COMPRESSION, Imf::ZIPS_COMPRESSION}) {
+    SCOPED_TRACE(static_cast<int>(compression));
+    ASSERT_TRUE(grtrace::detail::exr_written_by_grtrace(compression));
+    const fs::path path = dir_ / "frame.exr";
+    grtrace::write_exr(path, image, {.compression = compression, .threads = 3});
+    const Imf::InputFile file(path.c_str());
+    EXPECT_EQ(file.header().compression(), compression);
+    EXPECT_TRUE(file.isComplete());
+    const Image back = grtrace::read_exr(path);
+    expect_channels_bit_identical(image, back);
+    EXPECT_EQ(back.metadata.at("an_attribute_name_longer_than_31_characters"), "long names");
+  }
+  // Random bits do not deflate: a chunk of only random bits is stored raw, and still reads back.
+  Image noise(16, 3);
+  for (const auto& name : noise.channel_names())
+    for (float& v : noise.channel(name)) v = from_bits(state = state * 1664525u + 1013904223u);
+  grtrace::write_exr(dir_ / "noise.exr", noise, {.compression = Imf::ZIPS_COMPRESSION});
+  expect_channels_bit_identical(noise, grtrace::read_exr(dir_ / "noise.exr"));
+}
+
 TEST_F(Exr, AttributesRoundTrip) {
   Image image(3, 2);
   image.metadata["camera_r"] = "20";

@@ -6,11 +6,15 @@
 //
 // write_exr
 // - Every channel of the image, as 32-bit FLOAT, bit-exact (NaN payloads included); ZIP compression (lossless) at
-//   zlib level 1, compressed on all cores (OpenEXR's global thread pool, grown to ExrWriteOptions::threads if it is
-//   smaller), unless ExrWriteOptions says otherwise. exr_compression_from_name() maps the lossless compressions'
-//   names ("none", "rle", "zips", "zip", "piz") to Imf::Compression for command lines. Level 1 instead of
-//   OpenEXR's default 4 makes a 1024x1024 frame about 4% larger and 20% cheaper to write; any level reads back the
-//   same (docs/benchmarks.md).
+//   level 1, compressed on all cores (ExrWriteOptions::threads), unless ExrWriteOptions says otherwise.
+//   exr_compression_from_name() maps the lossless compressions' names ("none", "rle", "zips", "zip", "piz") to
+//   Imf::Compression for command lines. Level 1 instead of OpenEXR's default 4 makes a 1024x1024 frame about 4%
+//   larger and 20% cheaper to write; any level reads back the same (docs/benchmarks.md).
+// - ZIP, ZIPS and uncompressed files (the tools' choices by default) are laid out by write_exr_scanlines below and
+//   deflated with libdeflate, which compresses the main frame's chunks in 0.6 of zlib's time at level 1 and a
+//   little smaller; OpenEXR's header writer, its reader and any other reader see an ordinary scanline file
+//   (OpenEXR 2.0 layout). RLE and PIZ go through Imf::OutputFile (OpenEXR's global thread pool, grown to
+//   ExrWriteOptions::threads if it is smaller).
 // - Every Image::metadata entry becomes a string header attribute of the same name. A key that collides with
 //   an attribute OpenEXR itself requires (channels, compression, dataWindow, displayWindow, lineOrder,
 //   pixelAspectRatio, screenWindowCenter, screenWindowWidth) or is empty is refused (std::invalid_argument).
@@ -49,15 +53,20 @@
 #include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfTileDescription.h>
 #include <OpenEXR/ImfVersion.h>
+#include <libdeflate.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <ostream>
@@ -72,7 +81,7 @@ namespace grtrace {
 
 struct ExrWriteOptions {
   Imf::Compression compression = Imf::ZIP_COMPRESSION;  ///< any lossless one keeps floats bit-exact
-  int zip_level = 1;  ///< zlib level of ZIP and ZIPS: 1 (fastest) .. 9 (smallest); -1: OpenEXR's default
+  int zip_level = 1;  ///< deflate level of ZIP and ZIPS: 1 (fastest) .. 9 (smallest); -1: OpenEXR's default (4)
   int threads = 0;    ///< compression threads: 0 = all hardware threads, 1 = only the calling thread
 };
 
@@ -141,7 +150,159 @@ inline int exr_threads(int requested) {
   return n;
 }
 
-/// Writes the EXR into `os` (seekable; OpenEXR seeks back for its offset table); `name` for messages.
+/// Scanlines per chunk of a compression (the offset table has one 8-byte entry per chunk).
+inline int exr_lines_per_chunk(Imf::Compression c) {
+  switch (c) {
+    case Imf::NO_COMPRESSION:
+    case Imf::RLE_COMPRESSION:
+    case Imf::ZIPS_COMPRESSION: return 1;
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION: return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION: return 32;
+    default: return 256;  // DWAB and anything newer: the largest chunk
+  }
+}
+
+/// The compressions write_exr_scanlines writes itself; the others go through Imf::OutputFile.
+inline bool exr_written_by_grtrace(Imf::Compression c) {
+  return c == Imf::NO_COMPRESSION || c == Imf::ZIP_COMPRESSION || c == Imf::ZIPS_COMPRESSION;
+}
+
+/// The raw bytes of the chunk of scanlines [y0, y1): each scanline holds the channels in header order.
+inline void exr_pack_chunk(const std::vector<const float*>& channels, int width, int y0, int y1,
+                           std::vector<unsigned char>& raw) {
+  const std::size_t row_bytes = sizeof(float) * static_cast<std::size_t>(width);
+  raw.resize(row_bytes * channels.size() * static_cast<std::size_t>(y1 - y0));
+  unsigned char* p = raw.data();
+  for (int y = y0; y < y1; ++y)
+    for (const float* channel : channels) {
+      std::memcpy(p, channel + static_cast<std::size_t>(y) * static_cast<std::size_t>(width), row_bytes);
+      p += row_bytes;
+    }
+}
+
+/// One chunk of a ZIP or ZIPS file (the OpenEXR format's ZIP compressor): the chunk's raw bytes (exr_pack_chunk)
+/// split into those at even and at odd positions, even ones first, each byte after the first replaced by its
+/// difference to the one before it plus 128 (mod 256), then deflated into a zlib stream. Split and difference are
+/// one pass over the floats (a float's bytes 0 and 2 go to the even half, 1 and 3 to the odd half). When
+/// deflating does not make the chunk smaller, the raw bytes are stored instead: a reader takes a chunk whose size
+/// is the uncompressed size as stored.
+inline void exr_zip_chunk(libdeflate_compressor* compressor, const std::vector<const float*>& channels, int width,
+                          int y0, int y1, std::vector<unsigned char>& scratch, std::vector<unsigned char>& out) {
+  const std::size_t n = sizeof(float) * static_cast<std::size_t>(width) * channels.size() *
+                        static_cast<std::size_t>(y1 - y0);
+  scratch.resize(n);
+  unsigned char* even = scratch.data();
+  unsigned char* odd = scratch.data() + n / 2;  // n is a multiple of 4: the halves are equal
+  const float* last_channel = channels.back() + static_cast<std::size_t>(y1 - 1) * static_cast<std::size_t>(width);
+  unsigned char last[4];
+  std::memcpy(last, last_channel + width - 1, 4);
+  unsigned prev_even = 128u, prev_odd = last[2];  // the first byte stays as it is; the odd half follows the even
+  std::size_t k = 0;
+  for (int y = y0; y < y1; ++y)
+    for (const float* channel : channels) {
+      const float* row = channel + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+      for (int x = 0; x < width; ++x, k += 2) {
+        unsigned char b[4];
+        std::memcpy(b, row + x, 4);
+        even[k] = static_cast<unsigned char>(b[0] - prev_even + 128u);
+        even[k + 1] = static_cast<unsigned char>(b[2] - b[0] + 128u);
+        odd[k] = static_cast<unsigned char>(b[1] - prev_odd + 128u);
+        odd[k + 1] = static_cast<unsigned char>(b[3] - b[1] + 128u);
+        prev_even = b[2];
+        prev_odd = b[3];
+      }
+    }
+  out.resize(libdeflate_zlib_compress_bound(compressor, n));
+  const std::size_t size = libdeflate_zlib_compress(compressor, scratch.data(), n, out.data(), out.size());
+  if (size == 0 || size >= n) exr_pack_chunk(channels, width, y0, y1, out);
+  else out.resize(size);
+}
+
+/// Writes a scanline EXR of compression NONE, ZIP or ZIPS (exr_written_by_grtrace) into `os`: magic and version,
+/// the header by OpenEXR's own writer, the line offset table, then each chunk as (first line, byte count, bytes),
+/// in increasing y. The chunks are packed and deflated on `threads` threads (0: all hardware threads), each with
+/// its own libdeflate compressor, and written in order once all are done (the offsets are known before writing:
+/// no seeking back). Assumes a little-endian host (the floats are copied as they lie in memory; checked at
+/// compile time) and the header's channels all FLOAT, one per image channel. Throws what the stream's checks
+/// throw (ExrOStream) and std::bad_alloc when libdeflate cannot allocate a compressor.
+inline void write_exr_scanlines(std::ostream& os, const std::string& name, const Imf::Header& header,
+                                const Image& image, int level, int threads) {
+  static_assert(std::endian::native == std::endian::little,
+                "write_exr_scanlines copies floats as stored: a big-endian host needs a byte swap here");
+  const Imf::Compression compression = header.compression();
+  const int width = image.width(), height = image.height();
+  const int lines = exr_lines_per_chunk(compression);
+  const int chunks = (height + lines - 1) / lines;
+  std::vector<const float*> channels;  // in the header's (sorted) order, which is the order in each scanline
+  bool long_names = false;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+    channels.push_back(image.channel(it.name()).data());
+    long_names |= std::strlen(it.name()) > 31;
+  }
+  for (auto it = header.begin(); it != header.end(); ++it)
+    long_names |= std::strlen(it.name()) > 31 || std::strlen(it.attribute().typeName()) > 31;
+
+  std::vector<std::vector<unsigned char>> packed(static_cast<std::size_t>(chunks));
+  std::atomic<int> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&] {
+    try {
+      const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
+          compression == Imf::NO_COMPRESSION ? nullptr : libdeflate_alloc_compressor(level), &libdeflate_free_compressor);
+      if (compression != Imf::NO_COMPRESSION && !compressor) throw std::bad_alloc();
+      std::vector<unsigned char> scratch;
+      for (int c = next++; c < chunks; c = next++) {
+        const int y0 = c * lines, y1 = std::min(height, y0 + lines);
+        auto& out = packed[static_cast<std::size_t>(c)];
+        if (compressor) exr_zip_chunk(compressor.get(), channels, width, y0, y1, scratch, out);
+        else exr_pack_chunk(channels, width, y0, y1, out);
+      }
+    } catch (...) {
+      const std::lock_guard lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next = chunks;
+    }
+  };
+  const int n = std::clamp(threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency()), 1, chunks);
+  {
+    std::vector<std::jthread> pool;
+    for (int t = 1; t < n; ++t) pool.emplace_back(work);
+    work();
+  }
+  if (error) std::rethrow_exception(error);
+
+  ExrOStream stream(os, name.c_str());
+  auto put32 = [&](std::uint32_t v) {
+    const char b[4] = {static_cast<char>(v & 0xff), static_cast<char>(v >> 8 & 0xff), static_cast<char>(v >> 16 & 0xff),
+                       static_cast<char>(v >> 24 & 0xff)};
+    stream.write(b, 4);
+  };
+  auto put64 = [&](std::uint64_t v) {
+    put32(static_cast<std::uint32_t>(v & 0xffffffffu));
+    put32(static_cast<std::uint32_t>(v >> 32));
+  };
+  put32(static_cast<std::uint32_t>(Imf::MAGIC));
+  put32(static_cast<std::uint32_t>(Imf::EXR_VERSION | (long_names ? Imf::LONG_NAMES_FLAG : 0)));
+  header.writeTo(stream);
+  std::uint64_t offset = stream.tellp() + 8u * static_cast<std::uint64_t>(chunks);
+  for (const auto& chunk : packed) {
+    put64(offset);
+    offset += 8u + chunk.size();
+  }
+  for (int c = 0; c < chunks; ++c) {
+    const auto& chunk = packed[static_cast<std::size_t>(c)];
+    put32(static_cast<std::uint32_t>(c * lines));
+    put32(static_cast<std::uint32_t>(chunk.size()));
+    stream.write(reinterpret_cast<const char*>(chunk.data()), static_cast<int>(chunk.size()));
+  }
+}
+
+/// Writes the EXR into `os` (seekable: OpenEXR seeks back for its offset table); `name` for messages.
 inline void write_exr_stream(std::ostream& os, const std::string& name, const Image& image,
                              const ExrWriteOptions& options) {
   Imf::Header header(image.width(), image.height());
@@ -177,7 +338,10 @@ inline void write_exr_stream(std::ostream& os, const std::string& name, const Im
     frame.insert(channel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(data)), x_stride, y_stride));
   }
 
-  {
+  if (exr_written_by_grtrace(options.compression)) {
+    header.sanityCheck();
+    write_exr_scanlines(os, name, header, image, options.zip_level == -1 ? 4 : options.zip_level, options.threads);
+  } else {
     ExrOStream stream(os, name.c_str());
     Imf::OutputFile out(stream, header, exr_threads(options.threads));
     out.setFrameBuffer(frame);
@@ -195,22 +359,6 @@ inline void write_exr_into(TemporaryOutput& out, const Image& image, const ExrWr
     throw;
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot write EXR '" + out.target().string() + "': " + e.what());
-  }
-}
-
-/// Scanlines per chunk of a compression (the offset table has one 8-byte entry per chunk).
-inline int exr_lines_per_chunk(Imf::Compression c) {
-  switch (c) {
-    case Imf::NO_COMPRESSION:
-    case Imf::RLE_COMPRESSION:
-    case Imf::ZIPS_COMPRESSION: return 1;
-    case Imf::ZIP_COMPRESSION:
-    case Imf::PXR24_COMPRESSION: return 16;
-    case Imf::PIZ_COMPRESSION:
-    case Imf::B44_COMPRESSION:
-    case Imf::B44A_COMPRESSION:
-    case Imf::DWAA_COMPRESSION: return 32;
-    default: return 256;  // DWAB and anything newer: the largest chunk
   }
 }
 

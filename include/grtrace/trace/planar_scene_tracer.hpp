@@ -103,7 +103,9 @@ class PlanarSceneTracer {
       : metric_(metric), correction_(correction),
         fallback_(metric, settings, controller, correction, std::move(scene)) {
     const auto [lo, hi] = planar_angle_range(metric, camera);
-    table_.emplace(metric, camera.position()[1], settings, lo, hi, nodes_per_side, controller);
+    // A scene without objects reads only each ray's end: the table keeps no paths (planar_path_table.hpp).
+    table_.emplace(metric, camera.position()[1], settings, lo, hi, nodes_per_side, controller,
+                   /*keep_paths=*/SceneT::object_count > 0);
     camera_theta_ = camera.position()[2];
     camera_phi_ = camera.position()[3];
     camera_basis_ = spherical_basis(camera_theta_, camera_phi_);

@@ -93,7 +93,7 @@ CommandLine make_command_line() {
       .option("threads", "0", "OpenMP threads (0 = all cores)")
       .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
       .option("exr-compression", "zips", "EXR compression, all lossless (channels read back bit for bit): zips | zip "
-                                         "(zlib level 1; zips: one scanline per chunk) | piz (smallest, slower) | "
+                                         "(deflate level 1; zips: one scanline per chunk) | piz (smallest, slower) | "
                                          "rle | none (fastest, largest)")
       .flag("error-map",
             "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "

@@ -53,6 +53,14 @@ struct Request {
   bool error_map = false;
   bool mirror_symmetry = true;  ///< false: --no-mirrors (trace every pixel of a mirror-symmetric frame)
   FlightRequest flight;
+
+  /// The render loop's options this request asks for (threads, mirror symmetry).
+  RenderOptions render_options() const {
+    RenderOptions options;
+    options.threads = threads;
+    options.mirror_symmetry = mirror_symmetry;
+    return options;
+  }
 };
 
 /// Sky direction of every pixel in double precision (the EXR channels are float), kept for --error-map.
@@ -67,9 +75,7 @@ using SkyDirections = std::vector<SkyDirection>;
 template <MetricPolicy Metric>
 std::optional<Frame> render_general(const Request& q, const Metric& metric, SkyDirections* directions,
                                     TracerReport* table = nullptr) {
-  RenderOptions options;
-  options.threads = q.threads;
-  options.mirror_symmetry = q.mirror_symmetry;
+  const RenderOptions options = q.render_options();
   std::optional<Frame> frame;
   dispatch_method(q.tableau, q.control, [&]<class T, class C>() {
     with_standard_scene(q.scene, [&]<class Scene>(Scene scene) {

@@ -10,9 +10,7 @@ namespace grtrace::render_tool {
 /// trace/auto_tracer.hpp), every pixel integrated (--tracer general), or the older sky-only table (--tracer
 /// symmetric).
 std::optional<Frame> render_schwarzschild(const Request& q, SkyDirections* directions, TracerReport& table) {
-  RenderOptions options;
-  options.threads = q.threads;
-  options.mirror_symmetry = q.mirror_symmetry;
+  const RenderOptions options = q.render_options();
   const Camera& cam = *q.camera;
   if (q.tracer == "straight-line")
     return with_standard_scene(q.scene, [&](auto scene) -> std::optional<Frame> {

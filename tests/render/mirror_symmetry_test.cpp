@@ -11,6 +11,8 @@
 //      only for Kerr and for the (orbiting) disk, none off the equator, neither for a camera tilted or rolled,
 //      none for a moving camera with a velocity across the plane, none in a Cartesian chart;
 //  (c) the reflection of an outcome: angles into their ranges, the end state reflected.
+#include "grtrace/metric/examples/ellis_wormhole.hpp"
+#include "grtrace/metric/examples/schwarzschild_de_sitter.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -221,6 +223,12 @@ TEST(MirrorSymmetry, EachReflectionIsUsedOnlyWhereMetricSceneAndCameraHaveIt) {
   moving.velocity = Vec3(-0.4, 0.0, 0.2);
   EXPECT_EQ((mirrors_of<SchwarzschildMetric, BackgroundScene>(s, moving)), "equator");
 
+  // The example metrics of metric/examples declare both (spherically symmetric, written as AutoMetric components).
+  const AutoEllisWormhole ellis{EllisWormhole{1.0}};
+  EXPECT_EQ((mirrors_of<AutoEllisWormhole, BackgroundScene>(ellis, equator)), "equator,meridian");
+  const AutoSchwarzschildDeSitter sds{SchwarzschildDeSitter{1.0, 1e-4}};
+  EXPECT_EQ((mirrors_of<AutoSchwarzschildDeSitter, BackgroundScene>(sds, equator)), "equator,meridian");
+
   const KerrSchildMetric ks = kerr_schild_for_camera_rays(1.0, 0.9);  // a Cartesian chart: no theta to reflect
   EXPECT_EQ((mirrors_of<KerrSchildMetric, BackgroundScene>(ks, equator)), "none");
 
@@ -247,6 +255,15 @@ TEST(MirrorSymmetry, ReflectedOutcomesKeepTheirAnglesInRange) {
   EXPECT_NEAR(reflected_in_meridian(o, 2.0).where.phi, 7.0 - 2.0 * kPi, 1e-15);
   o.where.phi = 0.0;
   EXPECT_EQ(reflected_in_meridian(o, -kPi / 2).where.phi, kPi);  // -pi is reported as pi
+  // A camera phi far outside (-pi, pi] (one turn is not enough): reduced exactly, into range.
+  o.where.phi = 2.5;
+  for (const double phi_c : {20.0, -20.0, 7.5 * kPi}) {
+    const double phi = reflected_in_meridian(o, phi_c).where.phi;
+    EXPECT_GT(phi, -kPi) << phi_c;
+    EXPECT_LE(phi, kPi) << phi_c;
+    EXPECT_NEAR(std::remainder(phi - (2.0 * phi_c - 2.5), 2.0 * kPi), 0.0, 1e-14) << phi_c;
+  }
+  o.where.phi = 0.0;
   const RayOutcome m = reflected_in_meridian(o, 0.7);
   EXPECT_EQ(m.state[3], 2 * 0.7 - 3.0);
   EXPECT_EQ(m.state[7], 0.02);

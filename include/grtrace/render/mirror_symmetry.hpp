@@ -86,21 +86,40 @@ FrameMirrors frame_mirrors(const M& metric, const Camera& camera) {
   return m;
 }
 
-/// The outcome of the ray reflected in the equatorial plane: direction and end state reflected, the rest equal.
-inline RayOutcome reflected_in_equator(RayOutcome o) {
+/// Reflects an outcome in the equatorial plane, in place: direction and end state reflected, the rest equal.
+inline void reflect_in_equator(RayOutcome& o) {
   o.where.theta = std::numbers::pi - o.where.theta;
   o.state[2] = std::numbers::pi - o.state[2];
   o.state[6] = -o.state[6];
+}
+
+/// Reflects an outcome in the meridian plane phi = phi_c, in place: phi -> 2 phi_c - phi (the direction's brought
+/// back into (-pi, pi], as every tracer reports it), k^phi -> -k^phi.
+inline void reflect_in_meridian(RayOutcome& o, double phi_c) {
+  constexpr double pi = std::numbers::pi;
+  double phi = 2.0 * phi_c - o.where.phi;
+  // One turn brings it back when phi_c and phi are both in (-pi, pi] (the usual case, without std::remainder's
+  // cost); anything farther out is reduced exactly.
+  if (phi > pi) phi -= 2.0 * pi;
+  else if (phi <= -pi) phi += 2.0 * pi;
+  if (!(phi > -pi && phi <= pi)) {
+    phi = std::remainder(phi, 2.0 * pi);
+    if (phi == -pi) phi = pi;
+  }
+  o.where.phi = phi;
+  o.state[3] = 2.0 * phi_c - o.state[3];
+  o.state[7] = -o.state[7];
+}
+
+/// The outcome of the ray reflected in the equatorial plane (reflect_in_equator on a copy).
+inline RayOutcome reflected_in_equator(RayOutcome o) {
+  reflect_in_equator(o);
   return o;
 }
 
-/// The outcome of the ray reflected in the meridian plane phi = phi_c: phi -> 2 phi_c - phi (the direction's in
-/// (-pi, pi], as every tracer reports it), k^phi -> -k^phi.
+/// The outcome of the ray reflected in the meridian plane phi = phi_c (reflect_in_meridian on a copy).
 inline RayOutcome reflected_in_meridian(RayOutcome o, double phi_c) {
-  double phi = std::remainder(2.0 * phi_c - o.where.phi, 2.0 * std::numbers::pi);
-  o.where.phi = phi == -std::numbers::pi ? std::numbers::pi : phi;
-  o.state[3] = 2.0 * phi_c - o.state[3];
-  o.state[7] = -o.state[7];
+  reflect_in_meridian(o, phi_c);
   return o;
 }
 

@@ -33,6 +33,10 @@ struct EddingtonFinkelstein {
   bool outgoing = false;          ///< false: ingoing v = t + r*; true: outgoing u = t - r*
 
   static constexpr std::array<int, 2> depends_on = {1, 2};  ///< g(r, theta): v and phi are Killing
+  // Spherically symmetric: unchanged by theta -> pi - theta and phi -> 2 phi0 - phi (metric/metric_traits.hpp), so
+  // a mirror-symmetric frame traces a half or a quarter of its pixels (render/mirror_symmetry.hpp).
+  static constexpr bool equator_mirror_symmetric = true;
+  static constexpr bool meridian_mirror_symmetric = true;
 
   template <class S>
   Mat4Of<S> metric_components(const Vec4Of<S>& x) const {

@@ -234,6 +234,51 @@ TEST(PlanarTable, EndsOnlyTableHasTheSameEndsAndNoPaths) {
   EXPECT_FALSE(sky.table().keeps_paths());
 }
 
+// The table integrates its rays batch_lanes at a time (integrate/batch_stepper.hpp) with each ray's trial steps
+// judged by its own integrator: every node must be trace_node's for the same angle, bit for bit (fate, sweeps, step
+// count and stored path), for a tableau whose last stage is f(y_new) (Tsitouras 5(4), PI) and one whose is not
+// (Fehlberg 7(8), I), in full and ends-only tables, on both sides of delta_c, over chunk and lane boundaries (node
+// counts that are not multiples of the lanes). Step doubling takes trace_node's own path: the same there too.
+template <class Tableau, class Controller>
+void expect_nodes_are_trace_nodes(double camera_r, int nodes_per_side, bool keep_paths) {
+  using Table = PlanarPathTable<SchwarzschildMetric, Tableau, Controller>;
+  const Table table(SchwarzschildMetric{1.0}, camera_r, settings_at(1e-9, 1000.0), 0.0, pi, nodes_per_side, {},
+                    keep_paths);
+  int compared = 0;
+  for (int side : {+1, -1})
+    for (std::size_t i = 0; i < table.nodes(side).size(); ++i) {
+      const auto& node = table.nodes(side)[i];
+      // A node traced again to reach its neighbours' ends (build()) was integrated farther than trace_node(delta)
+      // goes: the same up to its end, but a longer path.
+      const auto alone = table.trace_node(node.delta);
+      const bool retraced = keep_paths && alone.path.size() != node.path.size();
+      auto same = [](double x, double y) { return (std::isnan(x) && std::isnan(y)) || x == y; };
+      const std::string where = "r_c " + std::to_string(camera_r) + " side " + std::to_string(side) + " node " +
+                                std::to_string(i) + " of " + std::to_string(nodes_per_side);
+      ASSERT_EQ(node.status, alone.status) << where;
+      ASSERT_EQ(node.steps, alone.steps) << where;
+      ASSERT_TRUE(same(node.sweep_sky, alone.sweep_sky)) << where << ": " << node.sweep_sky << " vs " << alone.sweep_sky;
+      ASSERT_TRUE(same(node.sweep_infinity, alone.sweep_infinity)) << where;
+      ASSERT_TRUE(same(node.sweep_guard, alone.sweep_guard)) << where;
+      if (!retraced) {
+        ASSERT_EQ(node.stopped_inside, alone.stopped_inside) << where;
+        ASSERT_EQ(node.path, alone.path) << where;  // element by element, exactly
+      }
+      ++compared;
+    }
+  EXPECT_EQ(compared, table.table_rays());
+}
+
+TEST(PlanarTable, BatchedNodesAreTraceNodesBitForBit) {
+  for (const double camera_r : {8.0, 50.0}) {
+    expect_nodes_are_trace_nodes<Tsitouras54, PIController>(camera_r, 37, true);
+    expect_nodes_are_trace_nodes<Tsitouras54, PIController>(camera_r, 70, false);
+    expect_nodes_are_trace_nodes<Fehlberg78, IController>(camera_r, 37, true);
+    expect_nodes_are_trace_nodes<Fehlberg78, IController>(camera_r, 70, false);
+    expect_nodes_are_trace_nodes<Tsitouras54, StepDoubling>(camera_r, 21, true);
+  }
+}
+
 // The angle range from the frame's border (and the pixels that see straight out or in) equals a scan of every pixel.
 TEST(PlanarAngleRange, EqualsTheScanOfEveryPixel) {
   const SchwarzschildMetric metric{1.0};

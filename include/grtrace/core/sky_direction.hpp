@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>  // cross product in angular_distance
 
 #include <cmath>
+#include <numbers>
 
 namespace grtrace {
 
@@ -16,6 +17,20 @@ struct SkyDirection {
   double theta;  ///< polar angle, [0, pi]
   double phi;    ///< azimuth, (-pi, pi]
 };
+
+/// An azimuth brought into (-pi, pi], the range of SkyDirection::phi (a spherical chart's phi keeps counting
+/// turns; a reflection phi -> 2 phi_c - phi leaves the range by up to one turn). One turn is added or taken off
+/// without std::remainder's cost, the usual case; anything farther out is reduced exactly by std::remainder.
+inline double azimuth_in_range(double phi) {
+  constexpr double pi = std::numbers::pi;
+  if (phi > pi) phi -= 2.0 * pi;
+  else if (phi <= -pi) phi += 2.0 * pi;
+  if (!(phi > -pi && phi <= pi)) {
+    phi = std::remainder(phi, 2.0 * pi);
+    if (phi == -pi) phi = pi;
+  }
+  return phi;
+}
 
 /// The sky direction of a nonzero Cartesian vector (a zero vector gives theta = NaN: callers never pass one).
 inline SkyDirection sky_direction_of(const Vec3& d) {

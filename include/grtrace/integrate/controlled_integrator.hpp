@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace grtrace {
 
@@ -79,8 +80,9 @@ class ControlledIntegrator {
   template <class Rhs>
   [[gnu::flatten]] StepOutcome advance(const Rhs& f) {
     for (;;) {
-      const double h = std::min(h_, settings_.h_max);
-      if (!(h >= settings_.h_min)) return StepOutcome::step_underflow;
+      const std::optional<double> trial = trial_step();
+      if (!trial) return StepOutcome::step_underflow;
+      const double h = *trial;
 
       State y_new;
       double err_norm = 0.0;
@@ -92,43 +94,39 @@ class ControlledIntegrator {
         State err;
         stepper_.step(f, y_, f_, h, y_new, err);
         rhs_evals_ += Stepper::evals_per_step;
-        err_norm = all_finite(y_new) ? norm_(err, y_, y_new, settings_.tolerance)
-                                     : std::numeric_limits<double>::infinity();
+        err_norm = embedded_error_norm(y_new, err);
       } else {
         err_norm = doubling_step(f, h, y_new);
       }
 
-      const StepDecision decision = controller_.decide(err_norm, h, error_exponent());
-      if (decision.accept) {
-        State f_new;
-        if constexpr (T::fsal && Controller::estimate != ErrorEstimate::step_doubling) {
-          f_new = stepper_.stage(T::stages - 1);
-        } else {
-          f_new = f(y_new);
-          ++rhs_evals_;
-        }
-        if (all_finite(f_new) && all_finite(y_new)) {
-          y_prev_ = y_;
-          f_prev_ = f_;
-          y_ = y_new;
-          f_ = f_new;
-          lambda_ += h;
-          h_last_ = h;
-          h_ = decision.h_next;
-          ++accepted_;
-          return StepOutcome::ok;
-        }
-        if constexpr (Controller::estimate == ErrorEstimate::none) {
-          return StepOutcome::non_finite;
-        } else {
-          ++rejected_;  // the new point itself is singular: shrink and retry
-          h_ = h * StepFactorLimits{}.min_factor;
-          continue;
-        }
-      }
-      ++rejected_;
-      h_ = decision.h_next;
+      const auto last_stage = [&]() -> const State& { return stepper_.stage(T::stages - 1); };
+      if (const auto outcome = conclude_trial(f, h, y_new, err_norm, last_stage)) return *outcome;
     }
+  }
+
+  /// The step the next trial takes, min(next_step(), h_max); nothing when it is below h_min (advance() then ends
+  /// with step_underflow).
+  std::optional<double> trial_step() const {
+    const double h = std::min(h_, settings_.h_max);
+    if (!(h >= settings_.h_min)) return std::nullopt;
+    return h;
+  }
+
+  /// The verdict on a trial step of size h = *trial_step() from the current state that a
+  /// batched stepper took on this integrator's behalf (integrate/batch_stepper.hpp): its result y_new, its embedded
+  /// error estimate err, and its last stage (read only for FSAL tableaux). Exactly what advance() does after its
+  /// own trial step, so a lane driven this way follows advance()'s steps bit for bit.
+  /// Returns: true when the step was accepted (the state moved on: state(), lambda(), ...), false when it was
+  /// rejected (next_step() is the step to try instead). Counts the trial's right-hand-side evaluations.
+  /// Only for controllers on an embedded estimate (I, PI).
+  template <class Rhs>
+  bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err, const State& last_stage)
+    requires(Controller::estimate == ErrorEstimate::embedded)
+  {
+    rhs_evals_ += Stepper::evals_per_step;
+    const auto outcome =
+        conclude_trial(f, h, y_new, embedded_error_norm(y_new, err), [&]() -> const State& { return last_stage; });
+    return outcome.has_value();  // an adaptive controller never ends a trial with non_finite
   }
 
   /// Replaces the current point by an equivalent one (e.g. the same event in another chart) and goes on from it
@@ -211,6 +209,50 @@ class ControlledIntegrator {
 
  private:
   using Stepper = RungeKuttaStepper<T, N>;
+
+  // The scaled norm of an embedded error estimate; infinite when the trial's result is not finite.
+  double embedded_error_norm(const State& y_new, const State& err) const {
+    return all_finite(y_new) ? norm_(err, y_, y_new, settings_.tolerance) : std::numeric_limits<double>::infinity();
+  }
+
+  // The controller's verdict on a trial step of size h with result y_new and error norm err_norm: accepted (the
+  // state moves on; StepOutcome::ok), a failure (StepOutcome::non_finite, fixed steps only), or rejected (nothing:
+  // h_ is the step to try next). last_stage() is the trial's last stage, f(y_new) for FSAL tableaux.
+  template <class Rhs, class LastStage>
+  std::optional<StepOutcome> conclude_trial(const Rhs& f, double h, const State& y_new, double err_norm,
+                                            const LastStage& last_stage) {
+    const StepDecision decision = controller_.decide(err_norm, h, error_exponent());
+    if (decision.accept) {
+      State f_new;
+      if constexpr (T::fsal && Controller::estimate != ErrorEstimate::step_doubling) {
+        f_new = last_stage();
+      } else {
+        f_new = f(y_new);
+        ++rhs_evals_;
+      }
+      if (all_finite(f_new) && all_finite(y_new)) {
+        y_prev_ = y_;
+        f_prev_ = f_;
+        y_ = y_new;
+        f_ = f_new;
+        lambda_ += h;
+        h_last_ = h;
+        h_ = decision.h_next;
+        ++accepted_;
+        return StepOutcome::ok;
+      }
+      if constexpr (Controller::estimate == ErrorEstimate::none) {
+        return StepOutcome::non_finite;
+      } else {
+        ++rejected_;  // the new point itself is singular: shrink and retry
+        h_ = h * StepFactorLimits{}.min_factor;
+        return std::nullopt;
+      }
+    }
+    ++rejected_;
+    h_ = decision.h_next;
+    return std::nullopt;
+  }
 
   // Two half steps against one full step; returns the scaled error norm and the value to propagate.
   template <class Rhs>

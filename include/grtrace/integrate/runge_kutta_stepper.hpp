@@ -13,9 +13,61 @@
 #include "grtrace/tableau/butcher_tableau.hpp"
 
 #include <array>
+#include <cstddef>
+#include <type_traits>
 #include <utility>
 
 namespace grtrace {
+
+/// The sums a Runge-Kutta step is made of, for one component (of one ray): sum_j a_Ij k_j, sum_j b_j k_j and
+/// sum_j (b_j - b_hat_j) k_j, with the coefficients as compile-time constants and zero terms left out. `k(J)` gives
+/// stage J's value of that component (J a std::integral_constant). Shared by the scalar stepper below and the
+/// batched one (integrate/batch_stepper.hpp), so both do the same operations in the same order: the batched
+/// stepper's lanes are bit for bit the scalar stepper's rays.
+template <ExplicitTableau T>
+struct StageSums {
+  enum class Weights { b, difference };
+
+  /// sum_{J < I} a_IJ k_J, accumulated from 0 in the order of J.
+  template <std::size_t I, class K>
+  static double row(const K& k) {
+    return sum<Row<I>>(k, std::make_index_sequence<I>{});
+  }
+
+  /// sum_J w_J k_J over all stages, w = b or b - b_hat.
+  template <Weights W, class K>
+  static double weighted(const K& k) {
+    return sum<Weight<W>>(k, std::make_index_sequence<T::stages>{});
+  }
+
+ private:
+  template <std::size_t I>
+  struct Row {
+    template <std::size_t J>
+    static constexpr double of() { return T::a[I][J]; }
+  };
+  template <Weights W>
+  struct Weight {
+    template <std::size_t J>
+    static constexpr double of() {
+      if constexpr (W == Weights::b) return T::b[J];
+      else return T::b[J] - T::b_hat[J];
+    }
+  };
+
+  template <class Coefficients, class K, std::size_t... J>
+  static double sum(const K& k, std::index_sequence<J...>) {
+    double acc = 0.0;
+    ((acc = term<Coefficients::template of<J>()>(acc, k, std::integral_constant<std::size_t, J>{})), ...);
+    return acc;
+  }
+
+  template <double Coefficient, class K, class J>
+  static double term(double acc, const K& k, J j) {
+    if constexpr (Coefficient != 0.0) return acc + Coefficient * k(j);
+    else return acc;
+  }
+};
 
 template <ExplicitTableau T, int N>
 class RungeKuttaStepper {
@@ -59,17 +111,12 @@ class RungeKuttaStepper {
   }
 
  private:
-  enum class Weights { b, difference };
+  using Sums = StageSums<T>;
+  using Weights = typename Sums::Weights;
 
-  template <Weights W, std::size_t I>
-  static constexpr double weight() {
-    if constexpr (W == Weights::b) return T::b[I];
-    else return T::b[I] - T::b_hat[I];
-  }
-
-  // The stage sums are written per component, with the coefficients as compile-time constants: one pass over
-  // the N components per sum, no Eigen temporaries or out-of-line expression calls (which the profile showed as
-  // 15-25 % of a step). The arithmetic is the same, term by term and in the same order, as
+  // The stage sums are written per component, with the coefficients as compile-time constants (StageSums): one
+  // pass over the N components per sum, no Eigen temporaries or out-of-line expression calls (which the profile
+  // showed as 15-25 % of a step). The arithmetic is the same, term by term and in the same order, as
   // acc = 0; acc += c_0 k_0; acc += c_1 k_1; ...; y + h acc, so the results are bit for bit those of the Eigen
   // expressions they replace.
   template <class Rhs, std::size_t... I>
@@ -81,38 +128,23 @@ class RungeKuttaStepper {
   template <std::size_t I, class Rhs>
   void compute_stage(const Rhs& f, const State& y, double h) {
     State y_stage;
-    for (int i = 0; i < N; ++i) y_stage[i] = y[i] + h * row_sum<I>(i, std::make_index_sequence<I>{});
+    for (int i = 0; i < N; ++i) y_stage[i] = y[i] + h * Sums::template row<I>(component(i));
     k_[I] = f(y_stage);
   }
 
-  template <std::size_t I, std::size_t... J>
-  double row_sum(int i, std::index_sequence<J...>) const {
-    double acc = 0.0;
-    ((acc = add_term<T::a[I][J], J>(acc, i)), ...);
-    return acc;
-  }
-
-  template <double Coefficient, std::size_t J>
-  double add_term(double acc, int i) const {
-    if constexpr (Coefficient != 0.0) return acc + Coefficient * k_[J][i];
-    else return acc;
-  }
-
-  template <Weights W, std::size_t... J>
-  double weighted_term_sum(int i, std::index_sequence<J...>) const {
-    double acc = 0.0;
-    ((acc = add_term<weight<W, J>(), J>(acc, i)), ...);
-    return acc;
+  /// Stage J's value of component i, for StageSums.
+  auto component(int i) const {
+    return [this, i](auto J) { return k_[decltype(J)::value][i]; };
   }
 
   /// out = base + h sum_j w_j k_j (base given) or h sum_j w_j k_j (no base), component by component.
   template <Weights W>
   void weighted_update(const State& base, double h, State& out) const {
-    for (int i = 0; i < N; ++i) out[i] = base[i] + h * weighted_term_sum<W>(i, std::make_index_sequence<S>{});
+    for (int i = 0; i < N; ++i) out[i] = base[i] + h * Sums::template weighted<W>(component(i));
   }
   template <Weights W>
   void weighted_scaled(double h, State& out) const {
-    for (int i = 0; i < N; ++i) out[i] = h * weighted_term_sum<W>(i, std::make_index_sequence<S>{});
+    for (int i = 0; i < N; ++i) out[i] = h * Sums::template weighted<W>(component(i));
   }
 
   std::array<State, S> k_;

@@ -165,11 +165,11 @@ Vec3 embedded_velocity_of(const M& /*metric*/, const GeodesicState& y) {
   else return y.tail<3>();
 }
 
-/// (theta, phi) of the event x seen from the centre of the embedding, phi reduced to (-pi, pi] (a spherical
-/// chart's phi keeps counting turns).
+/// (theta, phi) of the event x seen from the centre of the embedding, phi reduced to (-pi, pi] (azimuth_in_range:
+/// a spherical chart's phi keeps counting turns).
 template <MetricPolicy M>
 SkyDirection position_direction(const M& metric, const Vec4& x) {
-  if constexpr (M::chart == Chart::spherical) return {x[2], std::remainder(x[3], 2.0 * std::numbers::pi)};
+  if constexpr (M::chart == Chart::spherical) return {x[2], azimuth_in_range(x[3])};
   else return sky_direction_of(metric.to_cartesian(x));
 }
 

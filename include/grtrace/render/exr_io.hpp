@@ -171,6 +171,11 @@ inline bool exr_written_by_grtrace(Imf::Compression c) {
   return c == Imf::NO_COMPRESSION || c == Imf::ZIP_COMPRESSION || c == Imf::ZIPS_COMPRESSION;
 }
 
+/// Row y of a channel plane of the given width.
+inline const float* exr_row(const float* channel, int width, int y) {
+  return channel + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+}
+
 /// The raw bytes of the chunk of scanlines [y0, y1): each scanline holds the channels in header order.
 inline void exr_pack_chunk(const std::vector<const float*>& channels, int width, int y0, int y1,
                            std::vector<unsigned char>& raw) {
@@ -179,7 +184,7 @@ inline void exr_pack_chunk(const std::vector<const float*>& channels, int width,
   unsigned char* p = raw.data();
   for (int y = y0; y < y1; ++y)
     for (const float* channel : channels) {
-      std::memcpy(p, channel + static_cast<std::size_t>(y) * static_cast<std::size_t>(width), row_bytes);
+      std::memcpy(p, exr_row(channel, width, y), row_bytes);
       p += row_bytes;
     }
 }
@@ -197,14 +202,13 @@ inline void exr_zip_chunk(libdeflate_compressor* compressor, const std::vector<c
   scratch.resize(n);
   unsigned char* even = scratch.data();
   unsigned char* odd = scratch.data() + n / 2;  // n is a multiple of 4: the halves are equal
-  const float* last_channel = channels.back() + static_cast<std::size_t>(y1 - 1) * static_cast<std::size_t>(width);
   unsigned char last[4];
-  std::memcpy(last, last_channel + width - 1, 4);
+  std::memcpy(last, exr_row(channels.back(), width, y1 - 1) + width - 1, 4);
   unsigned prev_even = 128u, prev_odd = last[2];  // the first byte stays as it is; the odd half follows the even
   std::size_t k = 0;
   for (int y = y0; y < y1; ++y)
     for (const float* channel : channels) {
-      const float* row = channel + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+      const float* row = exr_row(channel, width, y);
       for (int x = 0; x < width; ++x, k += 2) {
         unsigned char b[4];
         std::memcpy(b, row + x, 4);
@@ -328,20 +332,22 @@ inline void write_exr_stream(std::ostream& os, const std::string& name, const Im
   if (image.has_channel("status")) add_default("status_names", exr_status_legend());
   if (image.has_channel("object")) add_default("object_names", "0=sky 1=horizon 2=disk 3=star");
 
-  Imf::FrameBuffer frame;
-  const std::size_t x_stride = sizeof(float);
-  const std::size_t y_stride = sizeof(float) * static_cast<std::size_t>(image.width());
-  for (const auto& channel : image.channel_names()) {
-    header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
-    // OpenEXR only reads through the pointer while writing; the cast drops const for its API.
-    const float* data = image.channel(channel).data();
-    frame.insert(channel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(data)), x_stride, y_stride));
-  }
+  for (const auto& channel : image.channel_names()) header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
 
   if (exr_written_by_grtrace(options.compression)) {
     header.sanityCheck();
     write_exr_scanlines(os, name, header, image, options.zip_level == -1 ? 4 : options.zip_level, options.threads);
   } else {
+    // Only Imf::OutputFile (rle, piz) reads the pixels through a frame buffer.
+    Imf::FrameBuffer frame;
+    const std::size_t x_stride = sizeof(float);
+    const std::size_t y_stride = sizeof(float) * static_cast<std::size_t>(image.width());
+    for (const auto& channel : image.channel_names()) {
+      // OpenEXR only reads through the pointer while writing; the cast drops const for its API.
+      const float* data = image.channel(channel).data();
+      frame.insert(channel,
+                   Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(data)), x_stride, y_stride));
+    }
     ExrOStream stream(os, name.c_str());
     Imf::OutputFile out(stream, header, exr_threads(options.threads));
     out.setFrameBuffer(frame);

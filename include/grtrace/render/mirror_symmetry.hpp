@@ -21,6 +21,7 @@
 // (tests/render/mirror_symmetry_test.cpp).
 #pragma once
 
+#include "grtrace/core/sky_direction.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/observer/camera.hpp"
@@ -96,17 +97,7 @@ inline void reflect_in_equator(RayOutcome& o) {
 /// Reflects an outcome in the meridian plane phi = phi_c, in place: phi -> 2 phi_c - phi (the direction's brought
 /// back into (-pi, pi], as every tracer reports it), k^phi -> -k^phi.
 inline void reflect_in_meridian(RayOutcome& o, double phi_c) {
-  constexpr double pi = std::numbers::pi;
-  double phi = 2.0 * phi_c - o.where.phi;
-  // One turn brings it back when phi_c and phi are both in (-pi, pi] (the usual case, without std::remainder's
-  // cost); anything farther out is reduced exactly.
-  if (phi > pi) phi -= 2.0 * pi;
-  else if (phi <= -pi) phi += 2.0 * pi;
-  if (!(phi > -pi && phi <= pi)) {
-    phi = std::remainder(phi, 2.0 * pi);
-    if (phi == -pi) phi = pi;
-  }
-  o.where.phi = phi;
+  o.where.phi = azimuth_in_range(2.0 * phi_c - o.where.phi);
   o.state[3] = 2.0 * phi_c - o.state[3];
   o.state[7] = -o.state[7];
 }

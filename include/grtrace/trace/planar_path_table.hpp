@@ -29,6 +29,7 @@
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
+#include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/trace/critical_angle_grid.hpp"
@@ -179,110 +180,227 @@ class PlanarPathTable {
   /// One table ray at angle delta (also what tests compare against the general tracer). Its path is continued past
   /// its own end (u = 0 for escaped rays, the horizon guard for captured ones) by one maximal step, and at least
   /// to swept angle `reach` (build() asks for more where a neighbour's pixels need it). A table of ends only
-  /// stops at the end and stores no path.
+  /// stops at the end and stores no path. The table's own nodes are these, bit for bit (build() integrates
+  /// several side by side: trace_nodes_batched).
   Node trace_node(double delta, double reach = 0.0) const {
+    thread_local std::vector<Accepted> accepted;  // one buffer per thread, reused from node to node
+    NodeRun run = begin_node(delta, reach, accepted);
+    Integrator integ(run.settings, controller_);
+    integ.start(run.eq, run.y0, settings_.initial_step);
+    while (continue_node(run, integ.advance(run.eq), integ)) {
+    }
+    end_node(run);
+    return std::move(run.node);
+  }
+
+  /// Table rays integrated side by side in one batch (integrate/batch_stepper.hpp), per thread.
+  static constexpr int batch_lanes = 4;
+
+ private:
+  using Integrator = ControlledIntegrator<T, C, 2>;
+  using Accepted = std::pair<double, std::array<double, 3>>;  ///< psi and (u, u', u'') of an accepted step
+
+  // One table ray in progress: its start, its equation, and what it has found so far. trace_node drives one with
+  // the integrator's own steps; trace_nodes_batched drives several with batched trial steps. Both feed every
+  // accepted step to continue_node, so both give the same node.
+  struct NodeRun {
     Node node;
-    node.delta = delta;
+    PlanarRayEquation<Metric> eq;
+    Vector<2> y0;
+    IntegratorSettings settings;
+    double reach = 0.0;
+    double psi_end_continuation = std::numeric_limits<double>::infinity();
+    bool ended = false;
+    int iterations = 0;
+    std::vector<Accepted>* accepted = nullptr;  ///< the accepted states (or the last two, for ends only)
+  };
+
+  NodeRun begin_node(double delta, double reach, std::vector<Accepted>& accepted) const {
+    NodeRun run;
+    run.node.delta = delta;
+    run.reach = reach;
     // The ray equation degenerates for an exactly radial ray (b = 0, psi never grows): keep nodes off it.
     constexpr double radial_margin = 1e-9;
     const double d = std::clamp(delta, radial_margin, std::numbers::pi - radial_margin);
     const double r = camera_r_, a = metric_.lapse_squared(r), bscale = radial_scale_squared(metric_, r);
     const double b = r * std::sin(d) / std::sqrt(a);
-    const PlanarRayEquation<Metric> eq{&metric_, 1.0 / (b * b)};
-    const double u_sky = 1.0 / sky_r_, u_guard = 1.0 / guard_r_;
+    run.eq = PlanarRayEquation<Metric>{&metric_, 1.0 / (b * b)};
+    run.settings = settings_.integrator;
+    run.settings.h_max = std::min(run.settings.h_max, max_step);
+    run.settings.h_min = 1e-15 * std::sin(d);  // psi ranges shrink with b: a near-radial ray sweeps ~sin(delta) in all
+    run.y0 = Vector<2>(1.0 / r, -std::cos(d) / (std::sin(d) * r * std::sqrt(bscale)));
+    accepted.clear();
+    run.accepted = &accepted;
+    record(run, 0.0, run.y0);
+    return run;
+  }
+
+  void record(NodeRun& run, double psi, const Vector<2>& y) const {
+    std::vector<Accepted>& accepted = *run.accepted;
+    if (!keep_paths_ && accepted.size() == 2) accepted.erase(accepted.begin());  // ends only: crossing() reads two
+    accepted.push_back({psi, {y[0], y[1], run.eq.curvature(y[0])}});
+  }
+
+  // psi where u crosses `level` inside the last accepted interval, on its quintic Hermite: Newton (the derivative
+  // w is at hand) kept inside the bracket [lo, hi] that bisection would keep (a Newton step leaving it is replaced
+  // by the midpoint); a few iterations where bisection to 1e-17 took ~57 evaluations.
+  static double crossing(const std::vector<Accepted>& accepted, double level) {
+    const auto& [p0, s0] = accepted[accepted.size() - 2];
+    const auto& [p1, s1] = accepted.back();
+    const double h = p1 - p0, sign = s1[0] > s0[0] ? 1.0 : -1.0;
+    double lo = 0.0, hi = 1.0, t = 0.5;
+    for (int it = 0; it < 100 && hi - lo > 1e-17; ++it) {
+      const PathPoint q = quintic_hermite(s0, s1, h, t);
+      const double f = sign * (q.u - level);
+      (f < 0.0 ? lo : hi) = t;
+      if (f == 0.0) break;
+      const double newton = t - (q.u - level) / (h * q.w);
+      const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+      if (std::abs(next - t) < 1e-16) break;
+      t = next;
+    }
+    return p0 + t * h;
+  }
+
+  // Takes the outcome of the integrator's last advance (ok: an accepted step, now its state) and records what it
+  // tells about the ray: its end (sky sphere or guard) and sweep to infinity, the path beyond them for neighbours.
+  // Returns false when the ray needs no more steps.
+  bool continue_node(NodeRun& run, StepOutcome outcome, const Integrator& integ) const {
+    Node& node = run.node;
+    if (outcome != StepOutcome::ok) {
+      if (!run.ended) node.status = outcome == StepOutcome::non_finite ? RayStatus::non_finite : RayStatus::step_underflow;
+      return false;
+    }
     // Where the continuation past the end stops: beyond infinity by a margin in psi (escaped), beyond the guard
     // (captured), or well inside the guard (u blows up at the central singularity).
     constexpr double margin = max_step;
-    const double u_stop_inside = 4.0 * u_guard;
-
-    IntegratorSettings is = settings_.integrator;
-    is.h_max = std::min(is.h_max, max_step);
-    is.h_min = 1e-15 * std::sin(d);  // psi ranges shrink with b: a near-radial ray sweeps ~sin(delta) in all
-    ControlledIntegrator<T, C, 2> integ(is, controller_);
-    Vector<2> y0(1.0 / r, -std::cos(d) / (std::sin(d) * r * std::sqrt(bscale)));
-    integ.start(eq, y0, settings_.initial_step);
-
-    // (psi, (u, u', u'')) of every accepted step; one buffer per thread, reused from node to node.
-    thread_local std::vector<std::pair<double, std::array<double, 3>>> accepted;
-    accepted.clear();
-    // Ends only: the last two accepted states are all that crossing() reads.
-    auto record = [&](double psi, const Vector<2>& y) {
-      if (!keep_paths_ && accepted.size() == 2) accepted.erase(accepted.begin());
-      accepted.push_back({psi, {y[0], y[1], eq.curvature(y[0])}});
-    };
-    record(0.0, y0);
-    // psi where u crosses `level` inside the last accepted interval, on its quintic Hermite: Newton (the derivative
-    // w is at hand) kept inside the bracket [lo, hi] that bisection would keep (a Newton step leaving it is replaced
-    // by the midpoint); a few iterations where bisection to 1e-17 took ~57 evaluations.
-    auto crossing = [&](double level) {
-      const auto& [p0, s0] = accepted[accepted.size() - 2];
-      const auto& [p1, s1] = accepted.back();
-      const double h = p1 - p0, sign = s1[0] > s0[0] ? 1.0 : -1.0;
-      double lo = 0.0, hi = 1.0, t = 0.5;
-      for (int it = 0; it < 100 && hi - lo > 1e-17; ++it) {
-        const PathPoint q = quintic_hermite(s0, s1, h, t);
-        const double f = sign * (q.u - level);
-        (f < 0.0 ? lo : hi) = t;
-        if (f == 0.0) break;
-        const double newton = t - (q.u - level) / (h * q.w);
-        const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
-        if (std::abs(next - t) < 1e-16) break;
-        t = next;
+    const double u_sky = 1.0 / sky_r_, u_guard = 1.0 / guard_r_, u_stop_inside = 4.0 * u_guard;
+    record(run, integ.lambda(), integ.state());
+    const double u = integ.state()[0], psi = integ.lambda();
+    if (!run.ended) {
+      if (run.iterations + 1 > settings_.max_steps) {
+        node.status = RayStatus::max_steps;
+        return false;
       }
-      return p0 + t * h;
-    };
-
-    double psi_end_continuation = std::numeric_limits<double>::infinity();
-    bool ended = false;
-    for (int step = 0; step < settings_.max_steps + 100000; ++step) {
-      const StepOutcome outcome = integ.advance(eq);
-      if (outcome != StepOutcome::ok) {
-        if (!ended) node.status = outcome == StepOutcome::non_finite ? RayStatus::non_finite : RayStatus::step_underflow;
-        break;
-      }
-      record(integ.lambda(), integ.state());
-      const double u = integ.state()[0], psi = integ.lambda();
-      if (!ended) {
-        if (step + 1 > settings_.max_steps) {
-          node.status = RayStatus::max_steps;
-          break;
-        }
-        if (u <= u_sky && integ.state()[1] < 0.0) {
-          node.status = RayStatus::escaped;
-          node.sweep_sky = crossing(u_sky);
-          node.steps = integ.accepted();
-          ended = true;
-        } else if (u >= u_guard) {
-          node.status = RayStatus::captured;
-          node.sweep_guard = crossing(u_guard);
-          node.steps = integ.accepted();
-          psi_end_continuation = std::max(node.sweep_guard, reach) + margin;
-          ended = true;
-        }
-      }
-      if (ended && node.status == RayStatus::escaped && std::isnan(node.sweep_infinity) && u <= 0.0) {
-        node.sweep_infinity = crossing(0.0);
-        psi_end_continuation = std::max(node.sweep_infinity, reach) + margin;
-      }
-      if (!keep_paths_ && ended && (node.status == RayStatus::captured || !std::isnan(node.sweep_infinity))) break;
-      if (psi >= psi_end_continuation) break;
-      if (ended && node.status == RayStatus::captured && u >= u_stop_inside) {
-        node.stopped_inside = true;
-        break;
+      if (u <= u_sky && integ.state()[1] < 0.0) {
+        node.status = RayStatus::escaped;
+        node.sweep_sky = crossing(*run.accepted, u_sky);
+        node.steps = integ.accepted();
+        run.ended = true;
+      } else if (u >= u_guard) {
+        node.status = RayStatus::captured;
+        node.sweep_guard = crossing(*run.accepted, u_guard);
+        node.steps = integ.accepted();
+        run.psi_end_continuation = std::max(node.sweep_guard, run.reach) + margin;
+        run.ended = true;
       }
     }
-    if (keep_paths_) resample(accepted, eq, node.path);
-    return node;
+    if (run.ended && node.status == RayStatus::escaped && std::isnan(node.sweep_infinity) && u <= 0.0) {
+      node.sweep_infinity = crossing(*run.accepted, 0.0);
+      run.psi_end_continuation = std::max(node.sweep_infinity, run.reach) + margin;
+    }
+    if (!keep_paths_ && run.ended && (node.status == RayStatus::captured || !std::isnan(node.sweep_infinity)))
+      return false;
+    if (psi >= run.psi_end_continuation) return false;
+    if (run.ended && node.status == RayStatus::captured && u >= u_stop_inside) {
+      node.stopped_inside = true;
+      return false;
+    }
+    return ++run.iterations < settings_.max_steps + 100000;
   }
 
- private:
+  void end_node(NodeRun& run) const {
+    if (keep_paths_) resample(*run.accepted, run.eq, run.node.path);
+  }
+
+  // Table rays nodes[i].delta, i in [begin, end), integrated batch_lanes at a time: each lane one ray, its trial
+  // steps taken together by the batched stepper and judged by the ray's own integrator (judge_trial), so each ray
+  // takes the steps trace_node takes, bit for bit; a lane whose ray ends takes the next one. Only for controllers
+  // on an embedded estimate (build() uses trace_node otherwise).
+  void trace_nodes_batched(std::vector<Node>& nodes, int begin, int end) const {
+    constexpr int W = batch_lanes;
+    using Stepper = RungeKuttaBatchStepper<T, 2, W>;
+    struct Lane {
+      std::optional<NodeRun> run;
+      std::optional<Integrator> integ;
+      int index = -1;
+      std::vector<Accepted> accepted;
+    };
+    thread_local std::array<Lane, W> lanes;  // the buffers are reused from call to call
+    std::array<PlanarRayEquation<Metric>, W> eqs;
+    eqs.fill(PlanarRayEquation<Metric>{&metric_, 1.0});
+    int next = begin;
+    auto take_next = [&](int l) {
+      Lane& lane = lanes[static_cast<std::size_t>(l)];
+      lane.run.reset();
+      if (next >= end) return;
+      lane.index = next++;
+      lane.run.emplace(begin_node(nodes[static_cast<std::size_t>(lane.index)].delta, 0.0, lane.accepted));
+      lane.integ.emplace(lane.run->settings, controller_);
+      lane.integ->start(lane.run->eq, lane.run->y0, settings_.initial_step);
+      eqs[static_cast<std::size_t>(l)] = lane.run->eq;
+    };
+    auto finish = [&](int l) {
+      Lane& lane = lanes[static_cast<std::size_t>(l)];
+      end_node(*lane.run);
+      nodes[static_cast<std::size_t>(lane.index)] = std::move(lane.run->node);
+      take_next(l);
+    };
+    for (int l = 0; l < W; ++l) take_next(l);
+
+    const auto rhs = [&](const Batch<2, W>& y, Batch<2, W>& dy) {
+      for (std::size_t l = 0; l < W; ++l) {
+        dy[0][l] = y[1][l];
+        dy[1][l] = eqs[l].curvature(y[0][l]);
+      }
+    };
+    Stepper stepper;
+    Batch<2, W> y{}, f{}, y_new{}, err{};
+    typename Stepper::Steps h{};
+    for (;;) {
+      // Every lane ready for a trial step (a ray whose step underflows ends here), or empty.
+      int first_active = -1;
+      for (int l = 0; l < W; ++l) {
+        Lane& lane = lanes[static_cast<std::size_t>(l)];
+        while (lane.run) {
+          if (const std::optional<double> trial = lane.integ->trial_step()) {
+            h[static_cast<std::size_t>(l)] = *trial;
+            set_lane(y, l, lane.integ->state());
+            set_lane(f, l, lane.integ->derivative());
+            if (first_active < 0) first_active = l;
+            break;
+          }
+          continue_node(*lane.run, StepOutcome::step_underflow, *lane.integ);
+          finish(l);
+        }
+      }
+      if (first_active < 0) return;
+      // Empty lanes compute on an active lane's numbers (their results are not read): no NaN or denormal traffic.
+      for (int l = 0; l < W; ++l)
+        if (!lanes[static_cast<std::size_t>(l)].run) {
+          h[static_cast<std::size_t>(l)] = h[static_cast<std::size_t>(first_active)];
+          set_lane(y, l, lane_of(y, first_active));
+          set_lane(f, l, lane_of(f, first_active));
+          eqs[static_cast<std::size_t>(l)] = eqs[static_cast<std::size_t>(first_active)];
+        }
+      stepper.step(rhs, y, f, h, y_new, err);
+      for (int l = 0; l < W; ++l) {
+        Lane& lane = lanes[static_cast<std::size_t>(l)];
+        if (!lane.run) continue;
+        const bool accepted = lane.integ->judge_trial(lane.run->eq, h[static_cast<std::size_t>(l)], lane_of(y_new, l),
+                                                      lane_of(err, l), lane_of(stepper.stage(T::stages - 1), l));
+        if (accepted && !continue_node(*lane.run, StepOutcome::ok, *lane.integ)) finish(l);
+      }
+    }
+  }
+
   struct Side {
     CriticalAngleGrid grid;
     std::vector<Node> nodes;
   };
 
   // The path on the uniform grid psi = j h, from the accepted states by quintic Hermite interpolation.
-  static void resample(const std::vector<std::pair<double, std::array<double, 3>>>& accepted,
+  static void resample(const std::vector<Accepted>& accepted,
                        const PlanarRayEquation<Metric>& eq, std::vector<std::array<double, 3>>& path) {
     if (accepted.size() < 2) return;
     const double last = accepted.back().first;
@@ -307,13 +425,24 @@ class PlanarPathTable {
     const int n = side.grid.nodes;
     side.nodes.resize(static_cast<std::size_t>(n));
     long steps = 0;
+    for (int i = 0; i < n; ++i) side.nodes[static_cast<std::size_t>(i)].delta = delta_c_ - sign * side.grid.gap_of_node(i);
+    if constexpr (C::estimate == ErrorEstimate::embedded) {
+      // Chunks of table rays, each integrated batch_lanes at a time (trace_nodes_batched: the same nodes as
+      // trace_node, bit for bit, in about half the time: docs/benchmarks.md).
+      constexpr int chunk = 32;
+      const int chunks = (n + chunk - 1) / chunk;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 8) reduction(+ : steps)
+#pragma omp parallel for schedule(dynamic, 1)
 #endif
-    for (int i = 0; i < n; ++i) {
-      side.nodes[static_cast<std::size_t>(i)] = trace_node(delta_c_ - sign * side.grid.gap_of_node(i));
-      steps += side.nodes[static_cast<std::size_t>(i)].steps;
+      for (int c = 0; c < chunks; ++c) trace_nodes_batched(side.nodes, c * chunk, std::min(n, (c + 1) * chunk));
+    } else {
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 8)
+#endif
+      for (int i = 0; i < n; ++i)
+        side.nodes[static_cast<std::size_t>(i)] = trace_node(side.nodes[static_cast<std::size_t>(i)].delta);
     }
+    for (const Node& node : side.nodes) steps += node.steps;
     total_steps_ += steps;
     if (!keep_paths_) return side;  // no path to read: nothing to reach for
     // A pixel reads its stencil's paths up to its own end, interpolated from the stencil's ends (path_at): so each

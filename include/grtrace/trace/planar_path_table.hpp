@@ -118,11 +118,13 @@ class PlanarPathTable {
     // stays finite (rays closer than 1e-14 rad to delta_c are read from the last node).
     constexpr double min_gap = 1e-14;
     if (delta_min < delta_c_)
-      escaped_ = build(+1, std::max(delta_c_ - std::min(delta_max, delta_c_), min_gap), delta_c_ - delta_min,
-                       nodes_per_side);
+      escaped_ = place_nodes(+1, std::max(delta_c_ - std::min(delta_max, delta_c_), min_gap), delta_c_ - delta_min,
+                             nodes_per_side);
     if (delta_max > delta_c_)
-      captured_ = build(-1, std::max(std::max(delta_min, delta_c_) - delta_c_, min_gap), delta_max - delta_c_,
-                        nodes_per_side);
+      captured_ = place_nodes(-1, std::max(std::max(delta_min, delta_c_) - delta_c_, min_gap), delta_max - delta_c_,
+                              nodes_per_side);
+    integrate_nodes();
+    if (keep_paths_) reach_neighbours_ends();
   }
 
   double critical_angle() const { return delta_c_; }
@@ -419,62 +421,84 @@ class PlanarPathTable {
     }
   }
 
-  // sign +1: escaped side, delta = delta_c - gap; sign -1: captured side, delta = delta_c + gap.
-  Side build(int sign, double gap_min, double gap_max, int nodes) {
+  // The nodes of one side (sign +1: escaped, delta = delta_c - gap; -1: captured, delta = delta_c + gap), their
+  // angles set, not yet integrated.
+  Side place_nodes(int sign, double gap_min, double gap_max, int nodes) const {
     Side side{CriticalAngleGrid(gap_min, gap_max, nodes), {}};
-    const int n = side.grid.nodes;
-    side.nodes.resize(static_cast<std::size_t>(n));
-    long steps = 0;
-    for (int i = 0; i < n; ++i) side.nodes[static_cast<std::size_t>(i)].delta = delta_c_ - sign * side.grid.gap_of_node(i);
-    if constexpr (C::estimate == ErrorEstimate::embedded) {
-      // Chunks of table rays, each integrated batch_lanes at a time (trace_nodes_batched: the same nodes as
-      // trace_node, bit for bit, in about half the time: docs/benchmarks.md).
-      constexpr int chunk = 32;
-      const int chunks = (n + chunk - 1) / chunk;
+    side.nodes.resize(static_cast<std::size_t>(side.grid.nodes));
+    for (int i = 0; i < side.grid.nodes; ++i)
+      side.nodes[static_cast<std::size_t>(i)].delta = delta_c_ - sign * side.grid.gap_of_node(i);
+    return side;
+  }
+
+  // Integrates every node of both sides in one parallel loop (one wait for the slowest thread, not one per side):
+  // chunks of table rays, each integrated batch_lanes at a time (trace_nodes_batched: the same nodes as
+  // trace_node, bit for bit, in about a third of the time: docs/benchmarks.md); trace_node itself, ray by ray,
+  // for step doubling.
+  void integrate_nodes() {
+    constexpr int chunk = C::estimate == ErrorEstimate::embedded ? 32 : 8;
+    struct Chunk {
+      std::vector<Node>* nodes;
+      int begin, end;
+    };
+    std::vector<Chunk> chunks;
+    for (Side* side : {&escaped_, &captured_}) {
+      const int n = static_cast<int>(side->nodes.size());
+      for (int begin = 0; begin < n; begin += chunk) chunks.push_back({&side->nodes, begin, std::min(n, begin + chunk)});
+    }
+    const int count = static_cast<int>(chunks.size());
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)
 #endif
-      for (int c = 0; c < chunks; ++c) trace_nodes_batched(side.nodes, c * chunk, std::min(n, (c + 1) * chunk));
-    } else {
-#ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 8)
-#endif
-      for (int i = 0; i < n; ++i)
-        side.nodes[static_cast<std::size_t>(i)] = trace_node(side.nodes[static_cast<std::size_t>(i)].delta);
-    }
-    for (const Node& node : side.nodes) steps += node.steps;
-    total_steps_ += steps;
-    if (!keep_paths_) return side;  // no path to read: nothing to reach for
-    // A pixel reads its stencil's paths up to its own end, interpolated from the stencil's ends (path_at): so each
-    // node must reach the farthest end among the nodes that share a stencil with it (three on each side). The few
-    // nodes that stop short are traced again with that reach.
-    std::vector<double> need(static_cast<std::size_t>(n), 0.0);
-    for (int i = 0; i < n; ++i) {
-      double farthest = 0.0;
-      for (int j = std::max(0, i - 3); j <= std::min(n - 1, i + 3); ++j) {
-        const Node& o = side.nodes[static_cast<std::size_t>(j)];
-        const double end = sign > 0 ? o.sweep_sky : o.sweep_guard;
-        if (std::isfinite(end)) farthest = std::max(farthest, end);
+    for (int c = 0; c < count; ++c) {
+      const Chunk& k = chunks[static_cast<std::size_t>(c)];
+      if constexpr (C::estimate == ErrorEstimate::embedded) {
+        trace_nodes_batched(*k.nodes, k.begin, k.end);
+      } else {
+        for (int i = k.begin; i < k.end; ++i) {
+          Node& node = (*k.nodes)[static_cast<std::size_t>(i)];
+          node = trace_node(node.delta);
+        }
       }
-      need[static_cast<std::size_t>(i)] = farthest;
     }
-    long retraced = 0;
+    for (const Side* side : {&escaped_, &captured_})
+      for (const Node& node : side->nodes) total_steps_ += node.steps;
+  }
+
+  // A pixel reads its stencil's paths up to its own end, interpolated from the stencil's ends (path_at): so each
+  // node must reach the farthest end among the nodes that share a stencil with it (three on each side). The few
+  // nodes that stop short are traced again with that reach (both sides in one parallel loop).
+  void reach_neighbours_ends() {
+    std::vector<std::pair<Node*, double>> short_nodes;  // the node and the swept angle it must reach
+    for (const int sign : {+1, -1}) {
+      std::vector<Node>& nodes = (sign > 0 ? escaped_ : captured_).nodes;
+      const int n = static_cast<int>(nodes.size());
+      for (int i = 0; i < n; ++i) {
+        double farthest = 0.0;
+        for (int j = std::max(0, i - 3); j <= std::min(n - 1, i + 3); ++j) {
+          const Node& o = nodes[static_cast<std::size_t>(j)];
+          const double end = sign > 0 ? o.sweep_sky : o.sweep_guard;
+          if (std::isfinite(end)) farthest = std::max(farthest, end);
+        }
+        Node& node = nodes[static_cast<std::size_t>(i)];
+        const double covered = static_cast<double>(node.path.size()) * grid_step - 2.0 * grid_step;
+        if (node.status != RayStatus::escaped && node.status != RayStatus::captured) continue;
+        if (covered >= farthest) continue;
+        if (node.status == RayStatus::captured && node.stopped_inside) continue;  // nothing more to read there
+        short_nodes.push_back({&node, farthest});
+      }
+    }
+    const int count = static_cast<int>(short_nodes.size());
 #ifdef _OPENMP
-#pragma omp parallel for schedule(dynamic, 8) reduction(+ : retraced)
+#pragma omp parallel for schedule(dynamic, 4)
 #endif
-    for (int i = 0; i < n; ++i) {
-      Node& node = side.nodes[static_cast<std::size_t>(i)];
-      const double covered = static_cast<double>(node.path.size()) * grid_step - 2.0 * grid_step;
-      if (node.status != RayStatus::escaped && node.status != RayStatus::captured) continue;
-      if (covered >= need[static_cast<std::size_t>(i)]) continue;
-      if (node.status == RayStatus::captured && node.stopped_inside) continue;  // nothing more to read there
-      const int node_steps = node.steps;
-      node = trace_node(node.delta, need[static_cast<std::size_t>(i)]);
-      node.steps = node_steps;
-      ++retraced;
+    for (int i = 0; i < count; ++i) {
+      auto& [node, reach] = short_nodes[static_cast<std::size_t>(i)];
+      const int node_steps = node->steps;
+      *node = trace_node(node->delta, reach);
+      node->steps = node_steps;
     }
-    retraced_ += retraced;
-    return side;
+    retraced_ += count;
   }
 
   Metric metric_;

@@ -44,7 +44,8 @@ class RungeKuttaBatchStepper {
     k_[0] = f0;
     compute_stages(f, y, h, std::make_index_sequence<S - 1>{});
     for (int i = 0; i < N; ++i)
-      for (int l = 0; l < W; ++l) y_new[idx(i)][idx(l)] = y[idx(i)][idx(l)] + h[idx(l)] * Sums::template weighted<Weights::b>(at(i, l));
+      for (int l = 0; l < W; ++l)
+        y_new[idx(i)][idx(l)] = y[idx(i)][idx(l)] + h[idx(l)] * Sums::template weighted<Weights::b>(at(i, l));
   }
 
   template <class Rhs>

@@ -120,7 +120,8 @@ class ControlledIntegrator {
   /// rejected (next_step() is the step to try instead). Counts the trial's right-hand-side evaluations.
   /// Only for controllers on an embedded estimate (I, PI).
   template <class Rhs>
-  bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err, const State& last_stage)
+  [[gnu::flatten]] bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err,
+                                    const State& last_stage)
     requires(Controller::estimate == ErrorEstimate::embedded)
   {
     rhs_evals_ += Stepper::evals_per_step;

@@ -117,7 +117,9 @@ struct alignas(64) RenderTally {
 };
 
 /// Applies the no-NaN-colour and valid-status rules (see the top of this file) and counts the sample.
-inline void sanitize_and_count(PixelSample& s, const RenderOptions& options, RenderTally& tally) {
+// Forced inline: once per pixel (out of line in grtrace-render's translation unit otherwise).
+[[gnu::always_inline]] inline void sanitize_and_count(PixelSample& s, const RenderOptions& options,
+                                                      RenderTally& tally) {
   auto status_index = static_cast<std::size_t>(s.status);
   if (status_index >= kRayStatusCount) {
     s.status = RayStatus::non_finite;

@@ -109,7 +109,7 @@ struct AnySky {
 
   Rgb operator()(double theta, double phi) const { return paint(sky, theta, phi); }
   /// The scene's choice (scene/scene.hpp OutcomePainter): the side from the end state, the colour at o.where.
-  Rgb operator()(const RayOutcome& o) const {
+  [[gnu::always_inline]] Rgb operator()(const RayOutcome& o) const {  // once per sky pixel (Scene::shade)
     const bool far = far_side && o.state[1] < 0.0;
     return paint(far ? *far_side : sky, o.where.theta, o.where.phi);
   }

@@ -270,7 +270,8 @@ class PlanarPathTable {
   bool continue_node(NodeRun& run, StepOutcome outcome, const Integrator& integ) const {
     Node& node = run.node;
     if (outcome != StepOutcome::ok) {
-      if (!run.ended) node.status = outcome == StepOutcome::non_finite ? RayStatus::non_finite : RayStatus::step_underflow;
+      if (!run.ended)
+        node.status = outcome == StepOutcome::non_finite ? RayStatus::non_finite : RayStatus::step_underflow;
       return false;
     }
     // Where the continuation past the end stops: beyond infinity by a margin in psi (escaped), beyond the guard
@@ -444,7 +445,8 @@ class PlanarPathTable {
     std::vector<Chunk> chunks;
     for (Side* side : {&escaped_, &captured_}) {
       const int n = static_cast<int>(side->nodes.size());
-      for (int begin = 0; begin < n; begin += chunk) chunks.push_back({&side->nodes, begin, std::min(n, begin + chunk)});
+      for (int begin = 0; begin < n; begin += chunk)
+        chunks.push_back({&side->nodes, begin, std::min(n, begin + chunk)});
     }
     const int count = static_cast<int>(chunks.size());
 #ifdef _OPENMP

@@ -3,6 +3,8 @@
 // approximate blackbody colour for the disk. Linear RGB in [0, 1] (the PNG preview applies sRGB).
 #pragma once
 
+#include "grtrace/core/rounding.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,8 +17,8 @@ using Rgb = std::array<float, 3>;
 /// Which square of an n_theta x (2 n_theta) checkerboard the direction (theta, phi) falls in: 0 or 1.
 inline int checker_parity(double theta, double phi, int n_theta) {
   const double cell = std::numbers::pi / n_theta;
-  const long i = static_cast<long>(std::floor(theta / cell));
-  const long j = static_cast<long>(std::floor(phi / cell));
+  const long i = floor_to_long(theta / cell);
+  const long j = floor_to_long(phi / cell);
   return static_cast<int>(((i + j) % 2 + 2) % 2);
 }
 

@@ -7,6 +7,7 @@
 // universe of a wormhole, where rays end with radial coordinate x^1 < 0 (Ellis: l < 0).
 #pragma once
 
+#include "grtrace/core/rounding.hpp"
 #include "grtrace/scene/colour_maps.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 
@@ -42,8 +43,8 @@ struct StarFieldSky {
     Rgb c{static_cast<float>(0.01 + 0.05 * band), static_cast<float>(0.012 + 0.045 * band),
           static_cast<float>(0.03 + 0.06 * band)};
     const double cell = std::numbers::pi / cells_theta;
-    const auto i = static_cast<std::uint64_t>(std::floor(theta / cell));
-    const auto j = static_cast<std::uint64_t>(std::floor((phi + std::numbers::pi) / cell));
+    const auto i = static_cast<std::uint64_t>(floor_to_long(theta / cell));
+    const auto j = static_cast<std::uint64_t>(floor_to_long((phi + std::numbers::pi) / cell));
     std::uint64_t h = (i * 0x9E3779B97F4A7C15ULL) ^ (j * 0xC2B2AE3D27D4EB4FULL);
     h ^= h >> 31;
     h *= 0xBF58476D1CE4E5B9ULL;
@@ -67,7 +68,7 @@ struct TextureSky {
   Rgb operator()(double theta, double phi) const {
     const double x = (phi + std::numbers::pi) / (2 * std::numbers::pi) * width - 0.5;
     const double y = std::clamp(theta / std::numbers::pi * height - 0.5, 0.0, height - 1.0);
-    const long x0 = static_cast<long>(std::floor(x)), y0 = static_cast<long>(std::floor(y));
+    const long x0 = floor_to_long(x), y0 = floor_to_long(y);
     const double fx = x - static_cast<double>(x0), fy = y - static_cast<double>(y0);
     auto at = [&](const std::vector<float>& p, long xi, long yi) {
       xi = ((xi % width) + width) % width;

@@ -35,16 +35,28 @@ struct PlanarGeometry {
   }
 };
 
-/// Reads the planar geometry of a ray from its state (spherical chart, either time direction).
-/// `e` is the spherical basis at the ray's start, spherical_basis(y[2], y[3]) (a frame's pixels share one).
+/// The static frame at radius r: A(r) = g_tt and the length sqrt(B(r)) = sqrt(-g_rr) of a unit of dr (the static
+/// observer's radial component of k is sqrt(B) k^r). Shared by all the pixels of a frame (they start at the camera).
+struct StaticRadialFrame {
+  double lapse_squared;  ///< A(r)
+  double radial_length;  ///< sqrt(B(r)) (1 / sqrt(A(r)) for f(r) metrics)
+};
+
 template <StaticSphericalMetric M>
-PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y, const SphericalBasis& e) {
-  const double r = y[1];
+StaticRadialFrame static_radial_frame(const M& metric, double r) {
   const double a = metric.lapse_squared(r);
+  if constexpr (HasRadialScale<M>) return {a, std::sqrt(metric.radial_scale_squared(r))};
+  else return {a, 1.0 / std::sqrt(a)};
+}
+
+/// Reads the planar geometry of a ray from its state (spherical chart, either time direction).
+/// `e` is the spherical basis at the ray's start, spherical_basis(y[2], y[3]), and `f` the static frame at its
+/// radius, static_radial_frame(metric, y[1]) (a frame's pixels share both).
+inline PlanarGeometry planar_geometry(const GeodesicState& y, const SphericalBasis& e, const StaticRadialFrame& f) {
+  const double r = y[1];
+  const double a = f.lapse_squared;
   const Vec3 tangential = embedded_tangential_velocity(y, e);  // orthonormal-frame tangential part of dx/dl
-  double k_radial;                                              // orthonormal radial part
-  if constexpr (HasRadialScale<M>) k_radial = std::sqrt(metric.radial_scale_squared(r)) * y[5];
-  else k_radial = y[5] / std::sqrt(a);
+  const double k_radial = f.radial_length * y[5];                // orthonormal radial part
   const double t_norm = tangential.norm();
   PlanarGeometry g;
   g.radial = e.r;
@@ -53,6 +65,11 @@ PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y, const Sp
   g.impact = std::abs(r * t_norm / (a * y[4]));
   g.angular_momentum = r * t_norm;
   return g;
+}
+
+template <StaticSphericalMetric M>
+PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y, const SphericalBasis& e) {
+  return planar_geometry(y, e, static_radial_frame(metric, y[1]));
 }
 
 template <StaticSphericalMetric M>

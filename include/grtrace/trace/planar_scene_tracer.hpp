@@ -19,6 +19,7 @@
 // crossing to look up) are traced by the general tracer instead: exact, just slower; fallback_rays() counts them.
 #pragma once
 
+#include "grtrace/core/rounding.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/scene/scene.hpp"
@@ -106,19 +107,24 @@ class PlanarSceneTracer {
     // A scene without objects reads only each ray's end: the table keeps no paths (planar_path_table.hpp).
     table_.emplace(metric, camera.position()[1], settings, lo, hi, nodes_per_side, controller,
                    /*keep_paths=*/SceneT::object_count > 0);
+    camera_r_ = camera.position()[1];
     camera_theta_ = camera.position()[2];
     camera_phi_ = camera.position()[3];
     camera_basis_ = spherical_basis(camera_theta_, camera_phi_);
+    camera_frame_ = static_radial_frame(metric, camera_r_);
+    sky_lapse_ = std::sqrt(metric.lapse_squared(table_->sky_radius()));
+    guard_lapse_ = std::sqrt(metric.lapse_squared(table_->guard_radius()));
   }
 
   RayOutcome trace(const GeodesicState& y0) const {
-    // Every pixel of the frame starts where the camera is: its basis is computed once (two sincos per pixel saved).
-    const bool at_camera = y0[2] == camera_theta_ && y0[3] == camera_phi_;
-    const PlanarGeometry g =
-        planar_geometry(metric_, y0, at_camera ? camera_basis_ : spherical_basis(y0[2], y0[3]));
+    // Every pixel of the frame starts where the camera is: its spherical basis and static frame are computed once
+    // (two sincos, a division and a square root per pixel saved).
+    const bool at_camera = y0[1] == camera_r_ && y0[2] == camera_theta_ && y0[3] == camera_phi_;
+    const StaticRadialFrame frame = at_camera ? camera_frame_ : static_radial_frame(metric_, y0[1]);
+    const PlanarGeometry g = planar_geometry(y0, at_camera ? camera_basis_ : spherical_basis(y0[2], y0[3]), frame);
     const auto look = table_->at(g.delta);
     if (look.status != RayStatus::escaped && look.status != RayStatus::captured) return fall_back(y0);
-    const double energy = metric_.lapse_squared(y0[1]) * y0[4];  // conserved E = g_tt k^t (< 0: past-directed)
+    const double energy = frame.lapse_squared * y0[4];  // conserved E = g_tt k^t (< 0: past-directed)
 
     if constexpr (SceneT::object_count > 0) {
       // The plane meets the equator where z(psi) = n_z cos psi + t_z sin psi = R cos(psi - alpha) vanishes.
@@ -127,7 +133,7 @@ class PlanarSceneTracer {
       constexpr double pi = std::numbers::pi;
       const double alpha = std::atan2(tz, nz);
       double psi = alpha + 0.5 * pi;
-      psi -= pi * std::floor(psi / pi);  // first zero in [0, pi)
+      psi -= pi * static_cast<double>(floor_to_long(psi / pi));  // first zero in [0, pi)
       if (psi <= 0.0) psi += pi;         // the start itself is not a crossing
       // cos and sin of the crossings: psi advances by pi, so both only change sign.
       const SinCos first = sin_cos(psi);
@@ -157,7 +163,8 @@ class PlanarSceneTracer {
     out.steps = look.steps;
     const double r_end = look.status == RayStatus::escaped ? table_->sky_radius() : table_->guard_radius();
     out.radius = r_end;
-    out.redshift = -std::sqrt(metric_.lapse_squared(r_end)) / energy;  // static emitter: u = d_t / sqrt(g_tt)
+    // A static emitter there: u = d_t / sqrt(g_tt), so f_obs / f_src = -sqrt(g_tt(r_end)) / E.
+    out.redshift = -(look.status == RayStatus::escaped ? sky_lapse_ : guard_lapse_) / energy;
     if (look.status == RayStatus::captured) {
       out.object = kHorizonObject;
       out.where = rotate_in_plane(g, look.sweep_end);
@@ -218,8 +225,10 @@ class PlanarSceneTracer {
   }
 
   Metric metric_;
-  double camera_theta_ = 0.0, camera_phi_ = 0.0;
+  double camera_r_ = 0.0, camera_theta_ = 0.0, camera_phi_ = 0.0;
   SphericalBasis camera_basis_{};
+  StaticRadialFrame camera_frame_{};
+  double sky_lapse_ = 0.0, guard_lapse_ = 0.0;  ///< sqrt(g_tt) at the sky sphere and at the horizon guard
   AngleCorrection correction_;
   GeneralSceneTracer<Metric, T, C, SceneT> fallback_;
   std::optional<PlanarPathTable<Metric, T, C>> table_;

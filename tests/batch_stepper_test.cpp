@@ -1,0 +1,148 @@
+// tests/batch_stepper_test.cpp
+// integrate/batch_stepper.hpp: W problems stepped at once must give, lane by lane, exactly the numbers of the scalar
+// stepper on each problem alone (the planar table's nodes rely on it: trace_node and the batched build must agree
+// bit for bit); and ControlledIntegrator::judge_trial, fed a lane's trial, must take the steps advance() takes.
+// Also core/rounding.hpp (inline floor and round) and azimuth_in_range (core/sky_direction.hpp).
+#include "grtrace/core/rounding.hpp"
+#include "grtrace/core/sky_direction.hpp"
+#include "grtrace/integrate/batch_stepper.hpp"
+#include "grtrace/integrate/controlled_integrator.hpp"
+#include "grtrace/tableau/all_tableaux.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+
+namespace {
+
+using namespace grtrace;
+
+// A small nonlinear system with a state of 3 (a rigid body's Euler equations, plus a nonlinear coupling), so each
+// stage's numbers depend on all components.
+Vector<3> euler_rhs(const Vector<3>& y) {
+  return {y[1] * y[2] - 0.3 * y[0] * y[0], -2.0 * y[0] * y[2], 0.7 * y[0] * y[1] + std::sin(y[2])};
+}
+
+template <int W>
+void batch_rhs(const Batch<3, W>& y, Batch<3, W>& dy) {
+  for (int l = 0; l < W; ++l) set_lane(dy, l, euler_rhs(lane_of(y, l)));
+}
+
+TEST(BatchStepper, EveryLaneIsTheScalarStepBitForBit) {
+  constexpr int W = 3;
+  for_each_tableau([](auto tag) {
+    using T = typename decltype(tag)::type;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.5, 1.5);
+    RungeKuttaBatchStepper<T, 3, W> batch;
+    Batch<3, W> y{}, f{}, y_new{}, err{};
+    std::array<double, W> h{};
+    std::array<Vector<3>, W> ys;
+    for (int l = 0; l < W; ++l) {
+      ys[static_cast<std::size_t>(l)] = Vector<3>(u(rng), u(rng), u(rng));
+      set_lane(y, l, ys[static_cast<std::size_t>(l)]);
+      set_lane(f, l, euler_rhs(ys[static_cast<std::size_t>(l)]));
+      h[static_cast<std::size_t>(l)] = 0.05 * (l + 1) + 0.01 * u(rng);  // a different step in every lane
+    }
+    batch.step(batch_rhs<W>, y, f, h, y_new, err);
+    for (int l = 0; l < W; ++l) {
+      RungeKuttaStepper<T, 3> scalar;
+      Vector<3> s_new, s_err = Vector<3>::Zero();
+      const Vector<3>& y0 = ys[static_cast<std::size_t>(l)];
+      scalar.step(euler_rhs, y0, euler_rhs(y0), h[static_cast<std::size_t>(l)], s_new, s_err);
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(lane_of(y_new, l)[i], s_new[i]) << T::name << " lane " << l << " component " << i;
+        if constexpr (has_embedded_pair<T>) {
+          EXPECT_EQ(lane_of(err, l)[i], s_err[i]) << T::name << " lane " << l;
+        }
+      }
+      for (std::size_t s = 0; s < T::stages; ++s) EXPECT_EQ(lane_of(batch.stage(s), l), scalar.stage(s)) << T::name;
+    }
+  });
+}
+
+// A lane driven by batched trials and judge_trial takes advance()'s accepted and rejected steps exactly, for an
+// FSAL pair (Tsitouras 5(4), PI) and a pair whose last stage is not f(y_new) (Fehlberg 7(8), I).
+template <class T, class C>
+void expect_judged_lanes_follow_advance() {
+  constexpr int W = 2;
+  const IntegratorSettings settings{Tolerance{1e-10, 1e-12}};
+  const std::array<Vector<3>, W> starts = {Vector<3>(1.0, 0.2, -0.4), Vector<3>(-0.3, 1.1, 0.9)};
+  std::array<ControlledIntegrator<T, C, 3>, W> lanes{ControlledIntegrator<T, C, 3>(settings),
+                                                     ControlledIntegrator<T, C, 3>(settings)};
+  // A first step far too long: the first trials are rejected, so the comparison covers rejections too.
+  constexpr double first_step = 2.0;
+  for (int l = 0; l < W; ++l)
+    lanes[static_cast<std::size_t>(l)].start(euler_rhs, starts[static_cast<std::size_t>(l)], first_step);
+  RungeKuttaBatchStepper<T, 3, W> batch;
+  Batch<3, W> y{}, f{}, y_new{}, err{};
+  std::array<double, W> h{};
+  std::array<int, W> accepted{};
+  while (accepted[0] < 200 || accepted[1] < 200) {
+    for (int l = 0; l < W; ++l) {
+      auto& lane = lanes[static_cast<std::size_t>(l)];
+      h[static_cast<std::size_t>(l)] = *lane.trial_step();
+      set_lane(y, l, lane.state());
+      set_lane(f, l, lane.derivative());
+    }
+    batch.step(batch_rhs<W>, y, f, h, y_new, err);
+    for (int l = 0; l < W; ++l)
+      if (lanes[static_cast<std::size_t>(l)].judge_trial(euler_rhs, h[static_cast<std::size_t>(l)], lane_of(y_new, l),
+                                                         lane_of(err, l), lane_of(batch.stage(T::stages - 1), l)))
+        ++accepted[static_cast<std::size_t>(l)];
+  }
+  for (int l = 0; l < W; ++l) {
+    ControlledIntegrator<T, C, 3> alone(settings);
+    alone.start(euler_rhs, starts[static_cast<std::size_t>(l)], first_step);
+    const auto& lane = lanes[static_cast<std::size_t>(l)];
+    while (alone.accepted() < lane.accepted()) ASSERT_EQ(alone.advance(euler_rhs), StepOutcome::ok);
+    EXPECT_EQ(alone.state(), lane.state()) << T::name << " lane " << l;
+    EXPECT_EQ(alone.lambda(), lane.lambda()) << T::name << " lane " << l;
+    EXPECT_EQ(alone.rejected(), lane.rejected()) << T::name << " lane " << l;
+    EXPECT_EQ(alone.rhs_evals(), lane.rhs_evals()) << T::name << " lane " << l;
+    EXPECT_EQ(alone.next_step(), lane.next_step()) << T::name << " lane " << l;
+    EXPECT_GT(lane.rejected(), 0) << "the comparison should include rejected trials";
+  }
+}
+
+TEST(BatchStepper, JudgedLanesTakeTheStepsAdvanceTakes) {
+  expect_judged_lanes_follow_advance<Tsitouras54, PIController>();
+  expect_judged_lanes_follow_advance<Fehlberg78, IController>();
+}
+
+TEST(Rounding, FloorAndRoundAgreeWithTheStandardLibrary) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> wide(-1e6, 1e6), unit(0.0, 1.0);
+  std::vector<double> xs = {0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 1.5, 2.5, -2.5, 1e-300, -1e-300, 4503599627370495.5,
+                            -4503599627370495.5, 9007199254740993.0, std::nextafter(1.0, 0.0), std::nextafter(-1.0, 0.0)};
+  for (int i = 0; i < 100000; ++i) xs.push_back(i % 2 ? wide(rng) : unit(rng) * 7.0 - 3.0);
+  for (const double x : xs) {
+    EXPECT_EQ(floor_to_long(x), static_cast<long>(std::floor(x))) << x;
+    if (x >= 0.0) {
+      EXPECT_EQ(round_nonnegative_to_long(x), std::lround(x)) << x;
+    }
+  }
+}
+
+TEST(AzimuthInRange, BringsAnyAngleIntoMinusPiPi) {
+  constexpr double pi = std::numbers::pi;
+  EXPECT_EQ(azimuth_in_range(-pi), pi);
+  EXPECT_EQ(azimuth_in_range(pi), pi);
+  EXPECT_EQ(azimuth_in_range(0.25), 0.25);
+  EXPECT_EQ(azimuth_in_range(-3.0 * pi), pi);
+  for (const double phi : {0.3, -2.9, 3.1, 1.5 * pi, -1.7 * pi, 40.0, -40.0, 7.5 * pi, 1e6}) {
+    const double a = azimuth_in_range(phi);
+    EXPECT_GT(a, -pi) << phi;
+    EXPECT_LE(a, pi) << phi;
+    EXPECT_NEAR(std::remainder(a - phi, 2.0 * pi), 0.0, 1e-12 * std::max(1.0, std::abs(phi))) << phi;
+  }
+  // Within one turn of the range the result is the exact difference (Sterbenz): the same as std::remainder.
+  for (const double phi : {1.5 * pi, -1.5 * pi, 2.9 * pi, -2.9 * pi})
+    EXPECT_EQ(azimuth_in_range(phi), std::remainder(phi, 2.0 * pi)) << phi;
+}
+
+}  // namespace

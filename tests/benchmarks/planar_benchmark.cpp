@@ -5,10 +5,16 @@
 //   build/ci/tests/benchmarks/planar_benchmark --benchmark_filter='disk/(planar|general)/256'
 //   build/ci/tests/benchmarks/planar_benchmark --benchmark_filter='disk/planar/1024'
 //   OMP_NUM_THREADS=1 build/ci/tests/benchmarks/planar_benchmark --benchmark_filter='pixel/'
+//   build/ci/tests/benchmarks/planar_benchmark --benchmark_filter='main/'
+// main/planar/1024 is grtrace-render's default frame (r = 200 M, fov 90, checkerboard sky, rkf78 + I at 1e-9, sky
+// sphere at 400 M, 2048 table rays per side: a table of ends, a quarter of the pixels traced): table_ms (its
+// build) and pixels_ms (render_frame: the image's nine channels and every pixel), repeated in one process, so
+// without a fresh process's first-touch and thread start-up costs (docs/benchmarks.md).
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
+#include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
 #include "grtrace/trace/planar_scene_tracer.hpp"
 
@@ -83,6 +89,36 @@ void disk_general(benchmark::State& state, int n) {
   state.counters["steps_per_ray"] = static_cast<double>(steps) / (static_cast<double>(n) * n);
 }
 
+void main_frame(benchmark::State& state) {
+  const SchwarzschildMetric metric{1.0};
+  CameraSpec cs;
+  cs.position = Vec4(0.0, 200.0, std::numbers::pi / 2, 0.0);
+  cs.width = cs.height = 1024;
+  cs.fov_degrees = 90.0;
+  const Camera cam = make_camera(metric, cs);
+  TraceSettings settings;
+  settings.integrator.tolerance = {1e-9, 1e-11};
+  settings.escape_radius = 400.0;
+  const BackgroundScene scene = background_scene(StandardSceneSpec{});
+  double table_s = 0.0, total_s = 0.0;
+  long traced = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const PlanarSceneTracer<SchwarzschildMetric, Fehlberg78, IController, BackgroundScene> tracer(
+        metric, settings, cam, AngleCorrection::exact, scene, 2048);
+    const auto t1 = std::chrono::steady_clock::now();
+    const Frame f = render_frame(cam, tracer, quiet());
+    traced = f.stats.traced_rays;
+    const auto t2 = std::chrono::steady_clock::now();
+    table_s += std::chrono::duration<double>(t1 - t0).count();
+    total_s += std::chrono::duration<double>(t2 - t0).count();
+  }
+  const double it = static_cast<double>(state.iterations());
+  state.counters["table_ms"] = table_s / it * 1e3;
+  state.counters["pixels_ms"] = (total_s - table_s) / it * 1e3;
+  state.counters["traced_rays"] = static_cast<double>(traced);
+}
+
 // Where a pixel's time goes (one thread: run with OMP_NUM_THREADS=1 for the same numbers as the docs): the camera ray,
 // then cumulatively the planar geometry, the table look-up, the sky direction, the whole trace (disk crossings
 // included) and its shading; ns per pixel of a 512x512 frame at r = 100, inclination 80 degrees, fov 60 (the seed
@@ -131,6 +167,7 @@ const bool registered = [] {
     benchmark::RegisterBenchmark((std::string("pixel/") + std::to_string(stage) + "_" + parts[stage]).c_str(),
                                  [=](benchmark::State& s) { pixel_parts(s, stage); })
         ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("main/planar/1024", main_frame)->Unit(benchmark::kMillisecond)->UseRealTime();
   for (const int n : {256, 1024}) {
     benchmark::RegisterBenchmark(("disk/planar/" + std::to_string(n)).c_str(),
                                  [=](benchmark::State& s) { disk_planar(s, n, 2048); })

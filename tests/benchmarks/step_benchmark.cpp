@@ -10,6 +10,12 @@
 //                         ns_per_step (wall time / accepted steps), steps, rejected, rhs_evals, error (rad,
 //                         against exact::asymptotic_direction at the camera, continued from the sky-sphere
 //                         crossing) and error_node (continued from the last accepted node)
+//   lanes/<method>/<W>    the geodesic equation's integration alone (no events), W rays of the seed frame side by
+//                         side: trial steps by the batched stepper (integrate/batch_stepper.hpp), each judged by
+//                         its ray's own integrator (judge_trial), as the planar table integrates its rays; W = 1
+//                         is the same code one ray at a time, advance/<method> the integrator's own loop. Counter
+//                         ns_per_step: wall time per accepted step of one ray. What batching rays would buy the
+//                         general tracer (issue 11), measured before building it.
 //   ad/<piece>/<metric>   automatic differentiation (metric/auto_metric.hpp) against the closed form, for
 //                         Schwarzschild: acceleration() alone, one dopri5 step, and one whole ray (tsit5, I
 //                         controller, rtol 2e-9: the render default) with counter ns_per_step per accepted step;
@@ -19,6 +25,7 @@
 // Run: build-*/tests/benchmarks/step_benchmark --benchmark_min_time=0.2
 //      build-*/tests/benchmarks/step_benchmark --benchmark_filter='^ad/' --benchmark_min_time=0.5
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
 #include "grtrace/metric/examples/schwarzschild_components.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -27,6 +34,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -181,6 +189,80 @@ void register_ray(const std::string& name, double rtol) {
   })->Unit(benchmark::kMicrosecond);
 }
 
+// ---- rays side by side (integration only) -------------------------------------------------------------------
+
+/// Ray i of a fixed set of seed-frame pixels, 40 steps each (a typical ray takes 30 to 130), then the next.
+constexpr int lane_steps = 40;
+GeodesicState lane_start(int i) { return seed_frame_pixel(300 + 37 * (i % 16), 200 + 41 * (i / 16 % 16)); }
+
+IntegratorSettings lane_settings(double rtol) { return IntegratorSettings{Tolerance{rtol, 1e-2 * rtol}}; }
+
+template <class T, class C, int W>
+void lanes(benchmark::State& state, double rtol) {
+  const SchwarzschildMetric metric{1.0};
+  const GeodesicEquation<SchwarzschildMetric> f{&metric};
+  using Integrator = ControlledIntegrator<T, C, 8>;
+  std::array<std::optional<Integrator>, static_cast<std::size_t>(W)> lane;
+  int next = 0;
+  long accepted = 0;
+  auto restart = [&](int l) {
+    lane[static_cast<std::size_t>(l)].emplace(lane_settings(rtol));
+    lane[static_cast<std::size_t>(l)]->start(f, lane_start(next++), 0.0);
+  };
+  for (int l = 0; l < W; ++l) restart(l);
+  RungeKuttaBatchStepper<T, 8, W> batch;
+  Batch<8, W> y{}, fy{}, y_new{}, err{};
+  std::array<double, static_cast<std::size_t>(W)> h{};
+  const auto rhs = [&](const Batch<8, W>& z, Batch<8, W>& dz) {
+    for (int l = 0; l < W; ++l) set_lane(dz, l, f(lane_of(z, l)));
+  };
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    for (int l = 0; l < W; ++l) {
+      const Integrator& integ = *lane[static_cast<std::size_t>(l)];
+      h[static_cast<std::size_t>(l)] = *integ.trial_step();
+      set_lane(y, l, integ.state());
+      set_lane(fy, l, integ.derivative());
+    }
+    batch.step(rhs, y, fy, h, y_new, err);
+    for (int l = 0; l < W; ++l) {
+      Integrator& integ = *lane[static_cast<std::size_t>(l)];
+      if (integ.judge_trial(f, h[static_cast<std::size_t>(l)], lane_of(y_new, l), lane_of(err, l),
+                            lane_of(batch.stage(T::stages - 1), l))) {
+        ++accepted;
+        if (integ.accepted() == lane_steps) restart(l);
+      }
+    }
+  }
+  state.counters["ns_per_step"] = timer.ns_per(static_cast<double>(accepted) / static_cast<double>(state.iterations()),
+                                               state.iterations());
+}
+
+template <class T, class C>
+void advance_rays(benchmark::State& state, double rtol) {
+  const SchwarzschildMetric metric{1.0};
+  const GeodesicEquation<SchwarzschildMetric> f{&metric};
+  ControlledIntegrator<T, C, 8> integ(lane_settings(rtol));
+  int next = 0;
+  integ.start(f, lane_start(next++), 0.0);
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(integ.advance(f));
+    if (integ.accepted() == lane_steps) integ.start(f, lane_start(next++), 0.0);
+  }
+  state.counters["ns_per_step"] = timer.ns_per(1.0, state.iterations());
+}
+
+template <class T, class C>
+void register_lanes(const std::string& name, double rtol) {
+  benchmark::RegisterBenchmark(("advance/" + name).c_str(),
+                               [rtol](benchmark::State& s) { advance_rays<T, C>(s, rtol); });
+  benchmark::RegisterBenchmark(("lanes/" + name + "/1").c_str(), [rtol](benchmark::State& s) { lanes<T, C, 1>(s, rtol); });
+  benchmark::RegisterBenchmark(("lanes/" + name + "/2").c_str(), [rtol](benchmark::State& s) { lanes<T, C, 2>(s, rtol); });
+  benchmark::RegisterBenchmark(("lanes/" + name + "/4").c_str(), [rtol](benchmark::State& s) { lanes<T, C, 4>(s, rtol); });
+  benchmark::RegisterBenchmark(("lanes/" + name + "/8").c_str(), [rtol](benchmark::State& s) { lanes<T, C, 8>(s, rtol); });
+}
+
 // ---- automatic differentiation against the closed form (issue 13) ----------------------------------------
 
 /// SchwarzschildComponents without depends_on: acceleration() differentiates along all four coordinates (Dual<4>).
@@ -275,6 +357,8 @@ const bool registered = [] {
   register_ray<DormandPrince54, PIController>("dopri5/pi/1e-10", 1e-10);
   register_ray<Fehlberg78, IController>("rkf78/i/1e-9", 1e-9);
   register_ray<ClassicRK4, StepDoubling>("rk4/doubling/1e-8", 1e-8);
+  register_lanes<Fehlberg78, IController>("rkf78/i/1e-9", 1e-9);
+  register_lanes<Tsitouras54, IController>("tsit5/i/2e-9", 2e-9);
   return true;
 }();
 

@@ -26,6 +26,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -33,7 +34,33 @@
 #include <utility>
 #include <vector>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace grtrace {
+
+namespace detail {
+
+/// Before the first touch of a large buffer of n floats: reserves it with 2 MB of slack and asks Linux to back it
+/// with transparent huge pages (madvise MADV_HUGEPAGE; with the kernel's default "madvise" mode only advised memory
+/// gets them), so that zeroing it costs a few 2 MB page faults instead of a thousand 4 kB ones (the main frame's nine
+/// channels: ~6 ms less of a fresh process's ~10 ms, docs/benchmarks.md). A hint only: small buffers, other systems
+/// and a refusal (no huge pages free) leave the buffer as it is. The slack lets every 2 MB-aligned block that holds
+/// data lie inside the advised range; it is virtual memory, never touched.
+inline void advise_huge_pages([[maybe_unused]] std::vector<float>& v, [[maybe_unused]] std::size_t n) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::size_t huge = std::size_t{1} << 21, page = std::size_t{1} << 12;
+  if (n * sizeof(float) < 2 * huge || !v.empty()) return;
+  v.reserve(n + huge / sizeof(float));
+  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
+  const std::uintptr_t first = (begin + page - 1) & ~(page - 1);
+  const std::uintptr_t last = (begin + v.capacity() * sizeof(float)) & ~(page - 1);
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#endif
+}
+
+}  // namespace detail
 
 struct PixelSample {
   static constexpr float nan = std::numeric_limits<float>::quiet_NaN();
@@ -58,8 +85,9 @@ class Image {
     check_memory(image_bytes(width, height, kStandardChannels.size()),
                  "a " + std::to_string(width) + " x " + std::to_string(height) + " image with " +
                      std::to_string(kStandardChannels.size()) + " channels");
-    // The nine channels are zeroed on several threads where OpenMP is on: the first touch of a 1024 x 1024 frame's
-    // 36 MB (page faults and zeroing) took 13 ms on one thread, a tenth of the main frame (docs/benchmarks.md).
+    // The first touch of a 1024 x 1024 frame's 36 MB (a page fault per 4 kB page, and zeroing) took 13 ms on one
+    // thread, a tenth of the main frame (docs/benchmarks.md). So the nine channels are zeroed on several threads
+    // where OpenMP is on, and large channels ask Linux for 2 MB pages first (detail::advise_huge_pages).
     std::array<std::vector<float>*, kStandardChannels.size()> planes{};
     for (std::size_t c = 0; c < kStandardChannels.size(); ++c) {
       planes[c] = &channels_[kStandardChannels[c]];
@@ -70,7 +98,11 @@ class Image {
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) if (large)
 #endif
-    for (int c = 0; c < count; ++c) planes[static_cast<std::size_t>(c)]->assign(pixel_count(), 0.0f);
+    for (int c = 0; c < count; ++c) {
+      std::vector<float>& plane = *planes[static_cast<std::size_t>(c)];
+      detail::advise_huge_pages(plane, pixel_count());
+      plane.assign(pixel_count(), 0.0f);
+    }
   }
 
   /// An image with exactly the named channels, in that order (duplicates ignored), each filled with `fill`.

@@ -5,10 +5,12 @@
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
+#include "grtrace/core/rounding.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/integrate/dense_output.hpp"
 #include "grtrace/integrate/error_norm.hpp"

@@ -149,7 +149,7 @@ TEST(PlanarTable, StoredPathsKeepTheFirstIntegral) {
 
 // Every table ray's stored path reaches the farthest end (sky sphere or guard) among the rays that share a pixel
 // stencil with it (three on each side), so no pixel reads past a neighbour's path; the rays continued only by one
-// step past their own end that fell short were traced again (build()), and a captured ray may stop deep inside.
+// step past their own end that fell short were traced again (reach_neighbours_ends()), and a captured ray may stop deep inside.
 TEST(PlanarTable, EveryPathReachesItsNeighboursEnds) {
   const SchwarzschildMetric metric{1.0};
   using Table = PlanarPathTable<SchwarzschildMetric, Tsitouras54, IController>;
@@ -248,7 +248,7 @@ void expect_nodes_are_trace_nodes(double camera_r, int nodes_per_side, bool keep
   for (int side : {+1, -1})
     for (std::size_t i = 0; i < table.nodes(side).size(); ++i) {
       const auto& node = table.nodes(side)[i];
-      // A node traced again to reach its neighbours' ends (build()) was integrated farther than trace_node(delta)
+      // A node traced again to reach its neighbours' ends (reach_neighbours_ends()) was integrated farther than trace_node(delta)
       // goes: the same up to its end, but a longer path.
       const auto alone = table.trace_node(node.delta);
       const bool retraced = keep_paths && alone.path.size() != node.path.size();

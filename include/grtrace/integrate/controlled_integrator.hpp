@@ -112,13 +112,15 @@ class ControlledIntegrator {
     return h;
   }
 
-  /// The verdict on a trial step of size h = *trial_step() from the current state that a
-  /// batched stepper took on this integrator's behalf (integrate/batch_stepper.hpp): its result y_new, its embedded
-  /// error estimate err, and its last stage (read only for FSAL tableaux). Exactly what advance() does after its
-  /// own trial step, so a lane driven this way follows advance()'s steps bit for bit.
+  /// The verdict on a trial step of size h = *trial_step() from the current state that a batched stepper took on
+  /// this integrator's behalf (integrate/batch_stepper.hpp): its result y_new, its embedded error estimate err, and
+  /// its last stage (read only for FSAL tableaux). Exactly what advance() does after its own trial step, so a lane
+  /// driven this way follows advance()'s steps bit for bit.
   /// Returns: true when the step was accepted (the state moved on: state(), lambda(), ...), false when it was
   /// rejected (next_step() is the step to try instead). Counts the trial's right-hand-side evaluations.
-  /// Only for controllers on an embedded estimate (I, PI).
+  /// Assumes: a controller on an embedded estimate (I, PI). The stages of a judged step stay in the batched
+  /// stepper, so after it dense() reads a tableau's own interpolant from stale stages: use step_from_previous()
+  /// (or a tableau without one: cubic Hermite from the kept states) where the step's interior is needed.
   template <class Rhs>
   [[gnu::flatten]] bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err,
                                     const State& last_stage)

@@ -106,6 +106,8 @@ class PlanarPathTable {
     const double rh = metric.horizon_radius();
     guard_r_ = (1.0 + settings.horizon_epsilon) * rh;
     sky_r_ = settings.escape_radius;
+    u_sky_ = 1.0 / sky_r_;
+    u_guard_ = 1.0 / guard_r_;
     if (!(rh > 0.0)) throw std::invalid_argument("PlanarPathTable: the metric has no horizon (use another tracer)");
     if (!(camera_r > guard_r_ && camera_r < sky_r_))
       throw std::invalid_argument("PlanarPathTable: need horizon guard < camera radius < sky radius");
@@ -141,7 +143,7 @@ class PlanarPathTable {
   long table_steps() const { return total_steps_; }
   /// False for a table of ends only (see the top of this file).
   bool keeps_paths() const { return keep_paths_; }
-  /// Table rays traced a second time to reach farther for their neighbours' pixels (see build()).
+  /// Table rays traced a second time to reach farther for their neighbours' pixels (see reach_neighbours_ends()).
   long retraced_rays() const { return retraced_; }
   int table_rays() const { return static_cast<int>(escaped_.nodes.size() + captured_.nodes.size()); }
 
@@ -187,9 +189,9 @@ class PlanarPathTable {
 
   /// One table ray at angle delta (also what tests compare against the general tracer). Its path is continued past
   /// its own end (u = 0 for escaped rays, the horizon guard for captured ones) by one maximal step, and at least
-  /// to swept angle `reach` (build() asks for more where a neighbour's pixels need it). A table of ends only
-  /// stops at the end and stores no path. The table's own nodes are these, bit for bit (build() integrates
-  /// several side by side: trace_nodes_batched).
+  /// to swept angle `reach` (reach_neighbours_ends() asks for more where a neighbour's pixels need it). A table of
+  /// ends only stops at the end and stores no path. The table's own nodes are these, bit for bit (integrate_nodes()
+  /// integrates several side by side: trace_nodes_batched).
   Node trace_node(double delta, double reach = 0.0) const {
     thread_local std::vector<Accepted> accepted;  // one buffer per thread, reused from node to node
     NodeRun run = begin_node(delta, reach, accepted);
@@ -283,7 +285,7 @@ class PlanarPathTable {
     // Where the continuation past the end stops: beyond infinity by a margin in psi (escaped), beyond the guard
     // (captured), or well inside the guard (u blows up at the central singularity).
     constexpr double margin = max_step;
-    const double u_sky = 1.0 / sky_r_, u_guard = 1.0 / guard_r_, u_stop_inside = 4.0 * u_guard;
+    const double u_sky = u_sky_, u_guard = u_guard_, u_stop_inside = 4.0 * u_guard;
     record(run, integ.lambda(), integ.state());
     const double u = integ.state()[0], psi = integ.lambda();
     if (!run.ended) {
@@ -325,7 +327,7 @@ class PlanarPathTable {
   // Table rays nodes[i].delta, i in [begin, end), integrated batch_lanes at a time: each lane one ray, its trial
   // steps taken together by the batched stepper and judged by the ray's own integrator (judge_trial), so each ray
   // takes the steps trace_node takes, bit for bit; a lane whose ray ends takes the next one. Only for controllers
-  // on an embedded estimate (build() uses trace_node otherwise).
+  // on an embedded estimate (integrate_nodes() uses trace_node otherwise).
   void trace_nodes_batched(std::vector<Node>& nodes, int begin, int end) const {
     constexpr int W = batch_lanes;
     using Stepper = RungeKuttaBatchStepper<T, 2, W>;
@@ -522,6 +524,7 @@ class PlanarPathTable {
   TraceSettings settings_;
   C controller_;
   double camera_r_, guard_r_ = 0.0, sky_r_ = 0.0;
+  double u_sky_ = 0.0, u_guard_ = 0.0;  ///< 1 / sky_r_ and 1 / guard_r_: where table rays end
   bool keep_paths_ = true;
   double delta_c_ = 0.0;
   Side escaped_, captured_;

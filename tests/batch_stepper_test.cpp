@@ -2,9 +2,6 @@
 // integrate/batch_stepper.hpp: W problems stepped at once must give, lane by lane, exactly the numbers of the scalar
 // stepper on each problem alone (the planar table's nodes rely on it: trace_node and the batched build must agree
 // bit for bit); and ControlledIntegrator::judge_trial, fed a lane's trial, must take the steps advance() takes.
-// Also core/rounding.hpp (inline floor and round) and azimuth_in_range (core/sky_direction.hpp).
-#include "grtrace/core/rounding.hpp"
-#include "grtrace/core/sky_direction.hpp"
 #include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
@@ -13,8 +10,6 @@
 
 #include <array>
 #include <cmath>
-#include <limits>
-#include <numbers>
 #include <random>
 
 namespace {
@@ -112,37 +107,6 @@ void expect_judged_lanes_follow_advance() {
 TEST(BatchStepper, JudgedLanesTakeTheStepsAdvanceTakes) {
   expect_judged_lanes_follow_advance<Tsitouras54, PIController>();
   expect_judged_lanes_follow_advance<Fehlberg78, IController>();
-}
-
-TEST(Rounding, FloorAndRoundAgreeWithTheStandardLibrary) {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> wide(-1e6, 1e6), unit(0.0, 1.0);
-  std::vector<double> xs = {0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 1.5, 2.5, -2.5, 1e-300, -1e-300, 4503599627370495.5,
-                            -4503599627370495.5, 9007199254740993.0, std::nextafter(1.0, 0.0), std::nextafter(-1.0, 0.0)};
-  for (int i = 0; i < 100000; ++i) xs.push_back(i % 2 ? wide(rng) : unit(rng) * 7.0 - 3.0);
-  for (const double x : xs) {
-    EXPECT_EQ(floor_to_long(x), static_cast<long>(std::floor(x))) << x;
-    if (x >= 0.0) {
-      EXPECT_EQ(round_nonnegative_to_long(x), std::lround(x)) << x;
-    }
-  }
-}
-
-TEST(AzimuthInRange, BringsAnyAngleIntoMinusPiPi) {
-  constexpr double pi = std::numbers::pi;
-  EXPECT_EQ(azimuth_in_range(-pi), pi);
-  EXPECT_EQ(azimuth_in_range(pi), pi);
-  EXPECT_EQ(azimuth_in_range(0.25), 0.25);
-  EXPECT_EQ(azimuth_in_range(-3.0 * pi), pi);
-  for (const double phi : {0.3, -2.9, 3.1, 1.5 * pi, -1.7 * pi, 40.0, -40.0, 7.5 * pi, 1e6}) {
-    const double a = azimuth_in_range(phi);
-    EXPECT_GT(a, -pi) << phi;
-    EXPECT_LE(a, pi) << phi;
-    EXPECT_NEAR(std::remainder(a - phi, 2.0 * pi), 0.0, 1e-12 * std::max(1.0, std::abs(phi))) << phi;
-  }
-  // Within one turn of the range the result is the exact difference (Sterbenz): the same as std::remainder.
-  for (const double phi : {1.5 * pi, -1.5 * pi, 2.9 * pi, -2.9 * pi})
-    EXPECT_EQ(azimuth_in_range(phi), std::remainder(phi, 2.0 * pi)) << phi;
 }
 
 }  // namespace

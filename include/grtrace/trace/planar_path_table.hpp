@@ -241,14 +241,15 @@ class PlanarPathTable {
     run.y0 = Vector<2>(1.0 / r, -std::cos(d) / (std::sin(d) * r * std::sqrt(bscale)));
     accepted.clear();
     run.accepted = &accepted;
-    record(run, 0.0, run.y0);
+    record(run, 0.0, run.y0, run.eq.curvature(run.y0[0]));
     return run;
   }
 
-  void record(NodeRun& run, double psi, const Vector<2>& y) const {
+  // Keeps (psi, (u, u', u'')); u'' = G(u) is passed in: after an accepted step it is the integrator's own f(y)[1].
+  void record(NodeRun& run, double psi, const Vector<2>& y, double curvature) const {
     std::vector<Accepted>& accepted = *run.accepted;
     if (!keep_paths_ && accepted.size() == 2) accepted.erase(accepted.begin());  // ends only: crossing() reads two
-    accepted.push_back({psi, {y[0], y[1], run.eq.curvature(y[0])}});
+    accepted.push_back({psi, {y[0], y[1], curvature}});
   }
 
   // psi where u crosses `level` inside the last accepted interval, on its quintic Hermite: Newton (the derivative
@@ -286,7 +287,9 @@ class PlanarPathTable {
     // (captured), or well inside the guard (u blows up at the central singularity).
     constexpr double margin = max_step;
     const double u_sky = u_sky_, u_guard = u_guard_, u_stop_inside = 4.0 * u_guard;
-    record(run, integ.lambda(), integ.state());
+    // The integrator already holds G(u) of the new state (f of it, or the FSAL last stage, which is f of the same
+    // bits): no second evaluation per step.
+    record(run, integ.lambda(), integ.state(), integ.derivative()[1]);
     const double u = integ.state()[0], psi = integ.lambda();
     if (!run.ended) {
       if (run.iterations + 1 > settings_.max_steps) {

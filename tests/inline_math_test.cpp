@@ -1,6 +1,8 @@
 // tests/inline_math_test.cpp
 // The library's inline replacements for libm calls on the per-pixel path, against the standard library: floor and
-// round (core/rounding.hpp) exactly; and azimuth_in_range (core/sky_direction.hpp).
+// round (core/rounding.hpp) exactly; azimuth_in_range (core/sky_direction.hpp); and mul_add (core/mul_add.hpp), which
+// must round once exactly when the build says it has the fused instruction, and exactly as a * b + c otherwise.
+#include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/rounding.hpp"
 #include "grtrace/core/sky_direction.hpp"
 
@@ -28,6 +30,32 @@ TEST(Rounding, FloorAndRoundAgreeWithTheStandardLibrary) {
       EXPECT_EQ(round_nonnegative_to_long(x), std::lround(x)) << x;
     }
   }
+}
+
+TEST(MulAdd, RoundsOnceWhereTheBuildFusesAndLikeTheExpressionElsewhere) {
+  // (1 + 2^-30)(1 - 2^-30) - 1 = -2^-60 exactly; the product alone rounds to 1, so a * b + c gives 0.
+  const double eps = std::ldexp(1.0, -30);
+  volatile double a = 1.0 + eps, b = 1.0 - eps, c = -1.0;  // volatile: no folding at compile time
+  const double fused = mul_add(a, b, c);
+  if (fused_mul_add) {
+    EXPECT_EQ(fused, -std::ldexp(1.0, -60));
+  } else {
+    EXPECT_EQ(fused, 0.0);
+  }
+  // Either way, as accurate as the two-rounding expression on ordinary arguments, and the same on exact ones.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-10.0, 10.0);
+  for (int i = 0; i < 10000; ++i) {
+    const double x = u(rng), y = u(rng), z = u(rng);
+    const long double exact = static_cast<long double>(x) * y + z;
+    const double plain = x * y + z;
+    // "exact" is itself rounded to long double's 64 bits: allow 1e-18 of the terms' size for that.
+    const long double slack = 1e-18L * (std::abs(static_cast<long double>(x) * y) + std::abs(z));
+    EXPECT_LE(std::abs(static_cast<long double>(mul_add(x, y, z)) - exact),
+              std::abs(static_cast<long double>(plain) - exact) + slack)
+        << x << " " << y << " " << z;
+  }
+  EXPECT_EQ(mul_add(3.0, 4.0, 5.0), 17.0);
 }
 
 TEST(AzimuthInRange, BringsAnyAngleIntoMinusPiPi) {

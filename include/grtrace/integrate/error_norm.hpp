@@ -4,6 +4,7 @@
 // a step is acceptable when the norm is <= 1.
 #pragma once
 
+#include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/types.hpp"
 
 #include <algorithm>
@@ -24,7 +25,7 @@ struct RmsNorm {
     for (int i = 0; i < N; ++i) {
       const double sc = tol.atol + tol.rtol * std::max(std::abs(y[i]), std::abs(y_new[i]));
       const double e = err[i] / sc;
-      sum += e * e;
+      sum = mul_add(e, e, sum);
     }
     return std::sqrt(sum / N);
   }

@@ -9,6 +9,7 @@
 // Stages are kept after the step so that dense output (dense_output.hpp) can reuse them.
 #pragma once
 
+#include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/tableau/butcher_tableau.hpp"
 
@@ -62,6 +63,10 @@ struct StageSums {
     return acc;
   }
 
+  // A product and a sum, not a mul_add (core/mul_add.hpp): the products of the earlier stages are ready long before
+  // the sum needs them and overlap, and a chain of fused operations is longer (4 cycles a link against 3 for an
+  // addition). Measured in frames (docs/benchmarks.md): fusing the terms made the 5-variable Kerr system's step up
+  // to 1.1x slower; fusing only y + h sum (below) made every system tried faster.
   template <double Coefficient, class K, class J>
   static double term(double acc, const K& k, J j) {
     if constexpr (Coefficient != 0.0) return acc + Coefficient * k(j);
@@ -116,9 +121,10 @@ class RungeKuttaStepper {
 
   // The stage sums are written per component, with the coefficients as compile-time constants (StageSums): one
   // pass over the N components per sum, no Eigen temporaries or out-of-line expression calls (which the profile
-  // showed as 15-25 % of a step). The arithmetic is the same, term by term and in the same order, as
-  // acc = 0; acc += c_0 k_0; acc += c_1 k_1; ...; y + h acc, so the results are bit for bit those of the Eigen
-  // expressions they replace.
+  // showed as 15-25 % of a step). The arithmetic is acc = 0; acc += c_0 k_0; acc += c_1 k_1; ...; y + h acc, term by
+  // term and in that order, the last "y + h acc" a mul_add (core/mul_add.hpp): rounded once where the processor
+  // fuses it (one link less in the chain from a stage to the next), else exactly the Eigen expressions these sums
+  // replaced.
   template <class Rhs, std::size_t... I>
   void compute_stages([[maybe_unused]] const Rhs& f, [[maybe_unused]] const State& y, [[maybe_unused]] double h,
                       std::index_sequence<I...>) {
@@ -128,7 +134,7 @@ class RungeKuttaStepper {
   template <std::size_t I, class Rhs>
   void compute_stage(const Rhs& f, const State& y, double h) {
     State y_stage;
-    for (int i = 0; i < N; ++i) y_stage[i] = y[i] + h * Sums::template row<I>(component(i));
+    for (int i = 0; i < N; ++i) y_stage[i] = mul_add(h, Sums::template row<I>(component(i)), y[i]);
     k_[I] = f(y_stage);
   }
 
@@ -140,7 +146,7 @@ class RungeKuttaStepper {
   /// out = base + h sum_j w_j k_j (base given) or h sum_j w_j k_j (no base), component by component.
   template <Weights W>
   void weighted_update(const State& base, double h, State& out) const {
-    for (int i = 0; i < N; ++i) out[i] = base[i] + h * Sums::template weighted<W>(component(i));
+    for (int i = 0; i < N; ++i) out[i] = mul_add(h, Sums::template weighted<W>(component(i)), base[i]);
   }
   template <Weights W>
   void weighted_scaled(double h, State& out) const {

@@ -27,6 +27,8 @@
 // of metric().
 #pragma once
 
+#include "grtrace/core/mul_add.hpp"
+#include "grtrace/core/sin_cos.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 
@@ -180,41 +182,45 @@ struct KerrMetric {
   /// p_t = k^t - h T and p_phi = -(r^2 + a^2) sin^2 k^phi + h a sin^2 T; the only division by sin^2 is the one
   /// the chart needs (g^phiphi).
   Vec4 acceleration(const Vec4& x, const Vec4& k) const {
-    // libm's sin and cos: core/sin_cos.hpp's inline sincos measured 2-4 % slower here (it is 7 % faster in
-    // SchwarzschildMetric::acceleration; tests/benchmarks/frame_benchmark.cpp frame/metric/*).
-    const double m = mass, a = spin, r = x[1], s = std::sin(x[2]), c = std::cos(x[2]);
+    // The inline sincos (core/sin_cos.hpp) where the build has fused multiply-add: 0.87-0.9 of the step time in a
+    // frame (tsit5, rkf78; frame_benchmark frame/metric/kerr_bl). Without it, libm's: the inline kernels measured
+    // 2-4 % slower here then (docs/benchmarks.md).
+    const SinCos sin_cos_theta = fused_mul_add ? sin_cos(x[2]) : SinCos{std::sin(x[2]), std::cos(x[2])};
+    const double m = mass, a = spin, r = x[1], s = sin_cos_theta.sin, c = sin_cos_theta.cos;
     const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];
     const double r2 = r * r, a2 = a * a, s2 = s * s, sc = s * c, ra2 = r2 + a2;
-    const double sigma = r2 + a2 * c * c, delta = ra2 - 2.0 * m * r;
+    const double sigma = mul_add(a2 * c, c, r2), delta = ra2 - 2.0 * m * r;
     // 1/sin^2 is taken here, off the critical path (dividing at the end put a division's latency on every
     // right-hand side).
     const double inv_sigma = 1.0 / sigma, inv_delta = 1.0 / delta, inv_s2 = 1.0 / s2;
     const double h = 2.0 * m * r * inv_sigma;
-    const double t_comb = kt - a * s2 * kph;  // T
+    const double t_comb = mul_add(-a * s2, kph, kt);  // T
     // d_r h and d_th h; D = k^r d_r + k^th d_th applied to h and (at fixed k) to T.
     const double dh_r = -2.0 * m * (r2 - a2 * c * c) * inv_sigma * inv_sigma;
     const double dh_th = 2.0 * h * a2 * sc * inv_sigma;
-    const double d_h = kr * dh_r + kth * dh_th;
+    const double d_h = mul_add(kth, dh_th, kr * dh_r);
     const double d_t = -2.0 * a * sc * kth * kph;
     // Sigma / Delta = -g_rr and its derivatives.
     const double dq_r = 2.0 * (r * delta - (r - m) * sigma) * inv_delta * inv_delta;
     const double dq_th = -2.0 * a2 * sc * inv_delta;
     // F_nu = 1/2 d_nu g(k, k) - D(g_{nu b}) k^b = -D(p_nu) for nu = t, phi (Killing directions).
-    const double f_t = d_h * t_comb + h * d_t;
+    // Sums of products below are chains of mul_add (core/mul_add.hpp), in the formula's order of additions.
+    const double f_t = mul_add(h, d_t, d_h * t_comb);
     const double f_ph = 2.0 * (r * kr * s2 + ra2 * sc * kth) * kph -
                         a * (d_h * s2 * t_comb + 2.0 * h * sc * kth * t_comb + h * s2 * d_t);
-    const double f_r =
-        -r * (s2 * kph * kph + kth * kth) - 0.5 * dh_r * t_comb * t_comb + 0.5 * dq_r * kr * kr + dq_th * kr * kth;
-    const double f_th =
-        sc * (-ra2 * kph * kph + a2 * inv_delta * kr * kr - a2 * kth * kth + 2.0 * h * a * t_comb * kph) -
-        0.5 * dh_th * t_comb * t_comb + 2.0 * r * kr * kth;
+    const double f_r = mul_add(dq_th * kr, kth,
+                               mul_add(0.5 * dq_r * kr, kr,
+                                       mul_add(-0.5 * dh_r * t_comb, t_comb, -r * mul_add(s2 * kph, kph, kth * kth))));
+    const double f_th_sc = mul_add(2.0 * h * a * t_comb, kph,
+                                   mul_add(-a2 * kth, kth, mul_add(a2 * inv_delta * kr, kr, -ra2 * kph * kph)));
+    const double f_th = mul_add(2.0 * r * kr, kth, mul_add(-0.5 * dh_th * t_comb, t_comb, sc * f_th_sc));
     // g^tt = (r^2 + a^2 + h a^2 sin^2) / Delta, g^tphi = h a / Delta, g^phiphi = -(1 - h) / (Delta sin^2),
     // g^rr = -Delta / Sigma, g^thth = -1 / Sigma.
     Vec4 acc;
-    acc[0] = ((ra2 + h * a2 * s2) * f_t + h * a * f_ph) * inv_delta;
+    acc[0] = mul_add(mul_add(h * a2, s2, ra2), f_t, h * a * f_ph) * inv_delta;
     acc[1] = -f_r * delta * inv_sigma;
     acc[2] = -f_th * inv_sigma;
-    acc[3] = (h * a * f_t - (1.0 - h) * f_ph * inv_s2) * inv_delta;
+    acc[3] = mul_add(h * a, f_t, -(1.0 - h) * f_ph * inv_s2) * inv_delta;
     return acc;
   }
 

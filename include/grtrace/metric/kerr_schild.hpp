@@ -42,6 +42,7 @@
 // W = r^4 + a^2 z^2.
 #pragma once
 
+#include "grtrace/core/mul_add.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
@@ -74,8 +75,8 @@ struct KerrSchildTerms {
   /// r^2 alone: the positive root of r^4 - b r^2 - c = 0 (b = R^2 - a^2, c = a^2 z^2), in the form without
   /// cancellation for either sign of b. radius() needs only this (the events test it every step).
   static double radius_squared(double a, double x, double y, double z) {
-    const double a2 = a * a, b = x * x + y * y + z * z - a2, c = a2 * z * z;
-    const double root = std::sqrt(b * b + 4.0 * c);
+    const double a2 = a * a, b = mul_add(z, z, mul_add(y, y, x * x)) - a2, c = a2 * z * z;
+    const double root = std::sqrt(mul_add(b, b, 4.0 * c));
     return b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
   }
 
@@ -174,32 +175,38 @@ struct KerrSchildMetric {
     const double a = spin, e = orientation(), x = x4[1], y = x4[2], z = x4[3];
     const double a2 = a * a, c = a2 * z * z;
     const double r2 = KerrSchildTerms::radius_squared(a, x, y, z), r = std::sqrt(r2), r3 = r2 * r;
-    const double p = r2 + a2, w = r2 * r2 + c, inv_pwr = 1.0 / (p * w * r);
+    const double p = r2 + a2, w = mul_add(r2, r2, c), inv_pwr = 1.0 / (p * w * r);
     const double inv_p = w * r * inv_pwr, inv_w = p * r * inv_pwr, inv_r = p * w * inv_pwr;
     const double f = 2.0 * mass * r3 * inv_w;
-    const double lx = (e * r * x + a * y) * inv_p, ly = (e * r * y - a * x) * inv_p, lz = e * z * inv_r;
+    const double lx = mul_add(e * r, x, a * y) * inv_p, ly = mul_add(e * r, y, -a * x) * inv_p, lz = e * z * inv_r;
     const double drx = x * r3 * inv_w, dry = y * r3 * inv_w, drz = z * r * p * inv_w;
-    const double fkf = f * (3.0 * inv_r - 4.0 * r3 * inv_w);
-    const double dfx = fkf * drx, dfy = fkf * dry, dfz = fkf * drz - f * 2.0 * a2 * z * inv_w;
-    const double cx = (e * x - 2.0 * r * lx) * inv_p, cy = (e * y - 2.0 * r * ly) * inv_p, cz = -e * z * inv_r * inv_r;
+    const double fkf = f * mul_add(-4.0 * r3, inv_w, 3.0 * inv_r);
+    const double dfx = fkf * drx, dfy = fkf * dry, dfz = mul_add(fkf, drz, -f * 2.0 * a2 * z * inv_w);
+    const double cx = mul_add(-2.0 * r, lx, e * x) * inv_p, cy = mul_add(-2.0 * r, ly, e * y) * inv_p;
+    const double cz = -e * z * inv_r * inv_r;
     const double erp = e * r * inv_p, ap = a * inv_p, er = e * inv_r;
     const double kt = k[0], kx = k[1], ky = k[2], kz = k[3];
-    const double s = kt + lx * kx + ly * ky + lz * kz;  // l_t = 1
-    const double dr_k = drx * kx + dry * ky + drz * kz, c_k = cx * kx + cy * ky + cz * kz;
-    const double jkx = drx * c_k + (erp * kx - ap * ky), jky = dry * c_k + (ap * kx + erp * ky),
-                 jkz = drz * c_k + er * kz;  // J k
-    const double dlkx = cx * dr_k + (erp * kx + ap * ky), dlky = cy * dr_k + (erp * ky - ap * kx),
-                 dlkz = cz * dr_k + er * kz;  // J^T k
-    const double df_k = dfx * kx + dfy * ky + dfz * kz, ds = kx * jkx + ky * jky + kz * jkz;
-    // F = (s Df + f Ds) l + (-1/2 s^2 df - f s J k + f s J^T k) on the spatial components.
-    const double fl = s * df_k + f * ds, hs2 = 0.5 * s * s, fs = f * s;
+    // Sums of products are chains of mul_add (core/mul_add.hpp): one rounding each where the processor fuses them.
+    const auto dot3 = [](double u0, double v0, double u1, double v1, double u2, double v2) {
+      return mul_add(u2, v2, mul_add(u1, v1, u0 * v0));
+    };
+    const double s = mul_add(lz, kz, mul_add(ly, ky, mul_add(lx, kx, kt)));  // l_t = 1
+    const double dr_k = dot3(drx, kx, dry, ky, drz, kz), c_k = dot3(cx, kx, cy, ky, cz, kz);
+    const double jkx = mul_add(drx, c_k, mul_add(erp, kx, -ap * ky)), jky = mul_add(dry, c_k, mul_add(ap, kx, erp * ky)),
+                 jkz = mul_add(drz, c_k, er * kz);  // J k
+    const double dlkx = mul_add(cx, dr_k, mul_add(erp, kx, ap * ky)), dlky = mul_add(cy, dr_k, mul_add(erp, ky, -ap * kx)),
+                 dlkz = mul_add(cz, dr_k, er * kz);  // J^T k
+    const double df_k = dot3(dfx, kx, dfy, ky, dfz, kz), ds = dot3(kx, jkx, ky, jky, kz, jkz);
+    // F = (s Df + f Ds) l + (-1/2 s^2 df - f s J k + f s J^T k) on the spatial components: F_i = fl l_i +
+    // (-1/2 s^2) df_i + f s (J^T k - J k)_i.
+    const double fl = mul_add(f, ds, s * df_k), hs2 = 0.5 * s * s, fs = f * s;
     const double f0 = fl;
-    const double f1 = fl * lx + (-hs2 * dfx - fs * jkx + fs * dlkx);
-    const double f2 = fl * ly + (-hs2 * dfy - fs * jky + fs * dlky);
-    const double f3 = fl * lz + (-hs2 * dfz - fs * jkz + fs * dlkz);
+    const double f1 = mul_add(fl, lx, mul_add(fs, dlkx - jkx, -hs2 * dfx));
+    const double f2 = mul_add(fl, ly, mul_add(fs, dlky - jky, -hs2 * dfy));
+    const double f3 = mul_add(fl, lz, mul_add(fs, dlkz - jkz, -hs2 * dfz));
     // g^{-1} F = eta F + f L (L . F), L = eta l = (1, -l_x, -l_y, -l_z).
-    const double f_lf = f * (f0 - lx * f1 - ly * f2 - lz * f3);
-    return Vec4(f0 + f_lf, -f1 - f_lf * lx, -f2 - f_lf * ly, -f3 - f_lf * lz);
+    const double f_lf = f * mul_add(-lz, f3, mul_add(-ly, f2, mul_add(-lx, f1, f0)));
+    return Vec4(f0 + f_lf, mul_add(-f_lf, lx, -f1), mul_add(-f_lf, ly, -f2), mul_add(-f_lf, lz, -f3));
   }
 
   /// The same acceleration from KerrSchildTerms with Eigen's 3-vectors and 3x3 J (the form acceleration() was

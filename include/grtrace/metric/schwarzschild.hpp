@@ -6,6 +6,7 @@
 // With mass 0 this is flat space in spherical coordinates (MinkowskiSpherical).
 #pragma once
 
+#include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/sin_cos.hpp"
 #include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
@@ -55,11 +56,13 @@ struct SchwarzschildMetric {
     const double r2m = r - 2.0 * m;
     const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];
     const double a_trt = m / (r * r2m);  // Gamma^t_rt = -Gamma^r_rr
+    // Each "p + q" of the formula is a mul_add (core/mul_add.hpp): one rounding where the processor fuses them.
     Vec4 a;
     a[0] = -2.0 * a_trt * kt * kr;
-    a[1] = -m * r2m * inv_r * inv_r * inv_r * kt * kt + a_trt * kr * kr + r2m * (kth * kth + st * st * kph * kph);
-    a[2] = -2.0 * inv_r * kr * kth + st * ct * kph * kph;
-    a[3] = -2.0 * inv_r * kr * kph - 2.0 * (ct / st) * kth * kph;
+    a[1] = mul_add(r2m, mul_add(st * st * kph, kph, kth * kth),
+                   mul_add(a_trt * kr, kr, -m * r2m * inv_r * inv_r * inv_r * kt * kt));
+    a[2] = mul_add(st * ct * kph, kph, -2.0 * inv_r * kr * kth);
+    a[3] = mul_add(-2.0 * (ct / st) * kth, kph, -2.0 * inv_r * kr * kph);
     return a;
   }
 

@@ -30,6 +30,7 @@
 //          inside the polar turning point is answered with NaN, so that the step is shrunk (operator()).
 #pragma once
 
+#include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/sin_cos.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/kerr.hpp"
@@ -77,12 +78,13 @@ struct KerrMinoSystem {
     // Deep beyond the polar turning point (see forbidden_): no state of the ray, a trial stage of a step too long
     // for the pass by the axis. NaN makes the integrator shrink the step (controlled_integrator.hpp).
     if (l2_ * inv_s2 > forbidden_) return State::Constant(std::numeric_limits<double>::quiet_NaN());
-    const double p = energy + big_a_ * u2, delta = 1.0 - 2.0 * m * u + a2_ * u2;
+    // Sums of products as mul_add (core/mul_add.hpp), in the formula's order of additions.
+    const double p = mul_add(big_a_, u2, energy), delta = mul_add(a2_, u2, 1.0 - 2.0 * m * u);
     State dz;
     dz[0] = z[3];
     dz[1] = z[4];
-    dz[2] = metric.spin * (p / delta - energy) + angular_momentum * inv_s2;
-    dz[3] = u * (2.0 * big_a_ * p - k_ + u * k_ * (3.0 * m - 2.0 * a2_ * u));
+    dz[2] = mul_add(angular_momentum, inv_s2, metric.spin * (p / delta - energy));
+    dz[3] = u * mul_add(u * k_, mul_add(-2.0 * a2_, u, 3.0 * m), 2.0 * big_a_ * p - k_);
     dz[4] = sc.cos * sc.sin * (l2_ * inv_s2 * inv_s2 - a2e2_);
     return dz;
   }

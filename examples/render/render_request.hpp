@@ -49,7 +49,7 @@ struct Request {
   AngleCorrection correction = AngleCorrection::exact;
   std::optional<Camera> camera;
   int threads = 0;
-  int table_nodes = 2048;
+  int table_nodes = grtrace::default_table_rays;
   bool error_map = false;
   bool mirror_symmetry = true;  ///< false: --no-mirrors (trace every pixel of a mirror-symmetric frame)
   FlightRequest flight;

@@ -148,7 +148,7 @@ TEST(PlanarTable, StoredPathsKeepTheFirstIntegral) {
 }
 
 // Every table ray's stored path reaches the farthest end (sky sphere or guard) among the rays that share a pixel
-// stencil with it (three on each side), so no pixel reads past a neighbour's path; the rays continued only by one
+// stencil with it (CriticalAngleGrid::stencil_size - 1 on each side), so no pixel reads past a neighbour's path; the rays continued only by one
 // step past their own end that fell short were traced again (reach_neighbours_ends()), and a captured ray may stop deep inside.
 TEST(PlanarTable, EveryPathReachesItsNeighboursEnds) {
   const SchwarzschildMetric metric{1.0};
@@ -166,7 +166,8 @@ TEST(PlanarTable, EveryPathReachesItsNeighboursEnds) {
         if (std::sin(node.delta) < 1e-6) continue;  // radial: the continuation past u = 0 blows up at once
         if (node.status != RayStatus::escaped && node.status != RayStatus::captured) continue;  // its pixels fall back
         double farthest = 0.0;
-        for (int j = std::max(0, i - 3); j <= std::min(n - 1, i + 3); ++j) {
+        constexpr int sharing = CriticalAngleGrid::stencil_size - 1;
+        for (int j = std::max(0, i - sharing); j <= std::min(n - 1, i + sharing); ++j) {
           const auto& o = nodes[static_cast<std::size_t>(j)];
           farthest = std::max(farthest, side > 0 ? o.sweep_sky : o.sweep_guard);
         }

@@ -6,7 +6,13 @@
 // diverges like -ln g, g = |delta - delta_c|; far from it, it is a smooth function of delta. So the nodes are
 // uniform in s = ln g + g / kappa over the range of gaps [g_min, g_max] a frame needs: logarithmic spacing close
 // to delta_c, even spacing in delta far from it (kappa = g_max / ln(g_max / g_min) puts about half of the nodes in
-// each regime). A value at g is the four-point Lagrange (cubic) interpolant in s of the nodes around it.
+// each regime). A value at g is the six-point Lagrange (quintic) interpolant in s of the nodes around it.
+//
+// Why six points: the interpolation across delta, not the integration of the table rays, set the accuracy of a
+// table-read frame. With four points (cubic, error ~ ds^4) the seed's main frame needed 2048 rays per side for
+// 1.8e-9 rad at its worst pixel (1024: 3.1e-8, 512: 5.0e-7); with six (error ~ ds^6) 512 rays give 2.7e-9 and 1024
+// give 4.5e-10, the error of the rays themselves (2048 give the same), for two more products per weight
+// (docs/benchmarks.md, "Six-point interpolation across the table"). Hence default_table_rays = 1024.
 #pragma once
 
 #include "grtrace/core/rounding.hpp"
@@ -17,23 +23,30 @@
 
 namespace grtrace {
 
+/// Table rays on each side of the critical angle where the caller names no number (the planar and symmetric
+/// tracers, grtrace-render's --table-rays, grtrace-view): see the top of this file for why 1024.
+inline constexpr int default_table_rays = 1024;
+
 struct CriticalAngleGrid {
+  /// Nodes a value is interpolated from (fewer only for a one-node grid).
+  static constexpr int stencil_size = 6;
+
   double s0 = 0.0, ds = 1.0;  ///< node i sits at s = s0 + i ds
   double kappa = 1.0;         ///< s(g) = ln g + g / kappa
   int nodes = 0;
   // 1 / kappa and 1 / ds: a pixel's look-up multiplies instead of dividing (two divisions off its critical path).
   double inverse_kappa = 1.0, inverse_ds = 1.0;
 
-  /// The four (or fewer) nodes around a gap and their Lagrange weights.
+  /// The six (or, for a one-node grid, one) nodes around a gap and their Lagrange weights.
   struct Stencil {
     int first = 0, count = 0;  ///< nodes first .. first + count - 1
     int nearest = 0;           ///< the node closest to the gap (for per-node counts such as steps)
-    std::array<double, 4> weight{};
+    std::array<double, stencil_size> weight{};
   };
 
   /// `nodes` nodes covering gaps [gap_min, gap_max] (one node when the range is a point).
   CriticalAngleGrid(double gap_min, double gap_max, int requested_nodes) {
-    nodes = gap_max > gap_min * (1.0 + 1e-12) ? std::max(requested_nodes, 4) : 1;
+    nodes = gap_max > gap_min * (1.0 + 1e-12) ? std::max(requested_nodes, stencil_size) : 1;
     kappa = gap_max / std::max(1.0, std::log(gap_max / gap_min));
     inverse_kappa = 1.0 / kappa;
     s0 = coordinate(gap_min);
@@ -67,20 +80,23 @@ struct CriticalAngleGrid {
     }
     const double x =
         std::clamp((coordinate(std::max(gap, 1e-300)) - s0) * inverse_ds, 0.0, static_cast<double>(nodes - 1));
-    st.count = std::min(4, nodes);
-    st.first = std::clamp(static_cast<int>(floor_to_long(x)) - 1, 0, nodes - st.count);
+    st.count = stencil_size;  // nodes >= stencil_size (constructor)
+    st.first = std::clamp(static_cast<int>(floor_to_long(x)) - (stencil_size / 2 - 1), 0, nodes - stencil_size);
     st.nearest = std::clamp(static_cast<int>(round_nonnegative_to_long(x)), 0, nodes - 1);
-    if (st.count == 4) {  // the cubic's weights in closed form (denominators -6, 2, -2, 6): one per pixel
-      const double t = x - st.first, t1 = t - 1.0, t2 = t - 2.0, t3 = t - 3.0;
-      st.weight = {-t1 * t2 * t3 / 6.0, t * t2 * t3 / 2.0, -t * t1 * t3 / 2.0, t * t1 * t2 / 6.0};
-      return st;
-    }
-    for (int j = 0; j < st.count; ++j) {
-      double w = 1.0;
-      for (int l = 0; l < st.count; ++l)
-        if (l != j) w *= (x - (st.first + l)) / static_cast<double>(j - l);
-      st.weight[static_cast<std::size_t>(j)] = w;
-    }
+    // Lagrange weights on the equispaced nodes 0..5 at t: w_j = prod_{l != j} (t - l) / prod_{l != j} (j - l), the
+    // numerator as (product of the factors before j) (product of those after j), the denominators
+    // (-1)^(5 - j) j! (5 - j)! = -120, 24, -12, 12, -24, 120 applied as their reciprocals (multiplications off the
+    // pixel's critical path; one rounding more, far below the interpolation's error).
+    const double t = x - st.first;
+    std::array<double, stencil_size> d{}, before{}, after{};
+    for (int l = 0; l < stencil_size; ++l) d[static_cast<std::size_t>(l)] = t - l;
+    before[0] = 1.0;
+    after[stencil_size - 1] = 1.0;
+    for (std::size_t l = 1; l < stencil_size; ++l) before[l] = before[l - 1] * d[l - 1];
+    for (std::size_t l = stencil_size - 1; l > 0; --l) after[l - 1] = after[l] * d[l];
+    constexpr std::array<double, stencil_size> inverse_denominator{-1.0 / 120.0, 1.0 / 24.0, -1.0 / 12.0,
+                                                                   1.0 / 12.0,   -1.0 / 24.0, 1.0 / 120.0};
+    for (std::size_t j = 0; j < stencil_size; ++j) st.weight[j] = before[j] * after[j] * inverse_denominator[j];
     return st;
   }
 };

@@ -13,8 +13,8 @@
 //
 // Accuracy: each table ray is integrated to the trace settings' tolerance with steps no longer than max_step, and
 // its accepted states (u, u', u'' = G(u)) are interpolated by quintic Hermite polynomials (error ~ h^6 |u^(6)| /
-// 46080 per step) onto the grid of spacing grid_step; the grid is read back the same way. Across delta, the four nodes
-// around the pixel's angle are combined by cubic Lagrange weights in the coordinate of trace/critical_angle_grid.hpp
+// 46080 per step) onto the grid of spacing grid_step; the grid is read back the same way. Across delta, the six nodes
+// around the pixel's angle are combined by quintic Lagrange weights in the coordinate of trace/critical_angle_grid.hpp
 // (logarithmic near the critical angle delta_c, where u(delta, psi) - u_photon ~ |delta - delta_c| e^psi).
 // Each table ray is integrated past its end (beyond u = 0 for escaped rays, inside the horizon guard for captured
 // ones) so that neighbours of a pixel have the values the pixel needs; where one does not, the pixel is told so
@@ -408,7 +408,7 @@ class PlanarPathTable {
     }
   }
 
-  // What at() reads of a node, packed (24 bytes, where a Node is 152): a pixel reads four neighbours.
+  // What at() reads of a node, packed (24 bytes, where a Node is 152): a pixel reads CriticalAngleGrid::stencil_size neighbours.
   struct NodeEnd {
     double sweep_end;  ///< sweep_sky (escaped side) or sweep_guard (captured side)
     double sweep_infinity;
@@ -488,8 +488,8 @@ class PlanarPathTable {
   }
 
   // A pixel reads its stencil's paths up to its own end, interpolated from the stencil's ends (path_at): so each
-  // node must reach the farthest end among the nodes that share a stencil with it (three on each side). The few
-  // nodes that stop short are traced again with that reach (both sides in one parallel loop).
+  // node must reach the farthest end among the nodes that share a stencil with it (stencil_size - 1 on each side).
+  // The few nodes that stop short are traced again with that reach (both sides in one parallel loop).
   void reach_neighbours_ends() {
     std::vector<std::pair<Node*, double>> short_nodes;  // the node and the swept angle it must reach
     for (const int sign : {+1, -1}) {
@@ -497,7 +497,8 @@ class PlanarPathTable {
       const int n = static_cast<int>(nodes.size());
       for (int i = 0; i < n; ++i) {
         double farthest = 0.0;
-        for (int j = std::max(0, i - 3); j <= std::min(n - 1, i + 3); ++j) {
+        constexpr int sharing = CriticalAngleGrid::stencil_size - 1;  // nodes on each side sharing a stencil
+        for (int j = std::max(0, i - sharing); j <= std::min(n - 1, i + sharing); ++j) {
           const Node& o = nodes[static_cast<std::size_t>(j)];
           const double end = sign > 0 ? o.sweep_sky : o.sweep_guard;
           if (std::isfinite(end)) farthest = std::max(farthest, end);

@@ -100,7 +100,7 @@ class PlanarSceneTracer {
 
   /// Builds the table for the camera's pixels. Assumes (checked by the table) horizon guard < camera radius < sky.
   PlanarSceneTracer(Metric metric, const TraceSettings& settings, const Camera& camera, AngleCorrection correction,
-                    SceneT scene, int nodes_per_side = 2048, C controller = {})
+                    SceneT scene, int nodes_per_side = default_table_rays, C controller = {})
       : metric_(metric), correction_(correction),
         fallback_(metric, settings, controller, correction, std::move(scene)) {
     const auto [lo, hi] = planar_angle_range(metric, camera);

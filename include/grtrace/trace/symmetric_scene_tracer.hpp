@@ -33,7 +33,7 @@ class SymmetricSceneTracer {
 
   /// Builds the table for the camera's pixels. Assumes horizon guard < camera radius < sky radius.
   SymmetricSceneTracer(SchwarzschildMetric metric, const TraceSettings& settings, const Camera& camera,
-                       AngleCorrection correction, SceneT scene, int nodes_per_side = 1024)
+                       AngleCorrection correction, SceneT scene, int nodes_per_side = default_table_rays)
       : metric_(metric), correction_(correction), scene_(std::move(scene)), sky_r_(settings.escape_radius),
         guard_r_((1.0 + settings.horizon_epsilon) * metric.horizon_radius()) {
     double lo = 3.2, hi = 0.0;  // delta range over the frame, from the pixel centres

@@ -12,7 +12,7 @@
 // -ln g, g = |delta - delta_c|, so each side of delta_c is tabulated uniformly in s = ln g + g / kappa over
 // the range of angles the frame needs: logarithmic spacing close to delta_c, where sweep is a smooth
 // function of ln g (it tends to a linear one), and even spacing in delta far from it (kappa puts about half
-// the nodes in each regime). Values are read with four-point Lagrange (cubic) interpolation. Escaped rays also get the exact bending beyond the sky
+// the nodes in each regime). Values are read with six-point Lagrange (quintic) interpolation (trace/critical_angle_grid.hpp). Escaped rays also get the exact bending beyond the sky
 // sphere (exact/schwarzschild_exact.hpp) folded into a second tabulated value, so the asymptotic direction
 // costs no elliptic integral per pixel. tests/symmetric_sky_test.cpp proves it equal to the general tracer.
 //
@@ -55,7 +55,7 @@ class SymmetricSkyTable {
   /// delta the frame needs [delta_min, delta_max] and the number of table rays on each side of delta_c.
   /// Assumes 2M (1 + eps) < camera_r < sky_r.
   SymmetricSkyTable(SchwarzschildMetric metric, double camera_r, double sky_r, TraceSettings settings,
-                    double delta_min, double delta_max, int nodes_per_side = 1024)
+                    double delta_min, double delta_max, int nodes_per_side = default_table_rays)
       : metric_(metric), camera_r_(camera_r), sky_r_(sky_r) {
     const double guard = (1.0 + settings.horizon_epsilon) * metric.horizon_radius();
     if (!(camera_r > guard && camera_r < sky_r))

@@ -85,7 +85,8 @@ CommandLine make_command_line() {
                                 "integrated (any metric). auto picks kerr-mino for --metric kerr --chart bl with an "
                                 "adaptive --control: every pixel on Kerr's separated equations in Mino time, 3x "
                                 "cheaper per ray than general")
-      .option("table-rays", std::to_string(grtrace::default_table_rays), "planar and symmetric tracers: table rays on each side of the critical angle")
+      .option("table-rays", std::to_string(grtrace::default_table_rays),
+              "planar and symmetric tracers: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
       .option("checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)")
       .option("disk-inner", "6", tools::disk_inner_help())

@@ -26,7 +26,8 @@ Image render_frame(const Request& q) {
       auto draw = [&](const auto& tracer) { frame.emplace(grtrace::render_frame(camera, tracer, options)); };
       with_metric(q, [&](const auto& metric) {
         if constexpr (scene_fits_metric<std::remove_cvref_t<decltype(metric)>, Scene>)
-          with_auto_tracer<T, C>(metric, q.rays.settings, camera, q.correction, scene, grtrace::default_table_rays, draw);
+          with_auto_tracer<T, C>(metric, q.rays.settings, camera, q.correction, scene, grtrace::default_table_rays,
+                                 draw);
         else
           throw std::logic_error("grtrace-view: a disk scene in a chart that cannot hold it was not refused");
       });

@@ -408,7 +408,8 @@ class PlanarPathTable {
     }
   }
 
-  // What at() reads of a node, packed (24 bytes, where a Node is 152): a pixel reads CriticalAngleGrid::stencil_size neighbours.
+  // What at() reads of a node, packed (24 bytes, where a Node is 152): a pixel reads CriticalAngleGrid::stencil_size
+  // neighbours.
   struct NodeEnd {
     double sweep_end;  ///< sweep_sky (escaped side) or sweep_guard (captured side)
     double sweep_infinity;

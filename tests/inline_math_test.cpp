@@ -1,7 +1,10 @@
 // tests/inline_math_test.cpp
 // The library's inline replacements for libm calls on the per-pixel path, against the standard library: floor and
-// round (core/rounding.hpp) exactly; azimuth_in_range (core/sky_direction.hpp); and mul_add (core/mul_add.hpp), which
-// must round once exactly when the build says it has the fused instruction, and exactly as a * b + c otherwise.
+// round (core/rounding.hpp) exactly; azimuth_in_range (core/sky_direction.hpp); mul_add (core/mul_add.hpp), which
+// must round once exactly when the build says it has the fused instruction, and exactly as a * b + c otherwise; and
+// the step controllers' inverse_root (core/inverse_root.hpp) within 4 ulp of long double, std::pow's answer off its
+// domain.
+#include "grtrace/core/inverse_root.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/rounding.hpp"
 #include "grtrace/core/sky_direction.hpp"
@@ -10,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -73,6 +77,55 @@ TEST(AzimuthInRange, BringsAnyAngleIntoMinusPiPi) {
   // Within one turn of the range the result is the exact difference (Sterbenz): the same as std::remainder.
   for (const double phi : {1.5 * pi, -1.5 * pi, 2.9 * pi, -2.9 * pi})
     EXPECT_EQ(azimuth_in_range(phi), std::remainder(phi, 2.0 * pi)) << phi;
+}
+
+/// x^(-1/K) for every K the controllers can ask for, on a million positive normal x spread over the exponent range
+/// (each residue of the exponent modulo K and every mantissa table cell are met), against long double's powl.
+template <int K>
+double worst_inverse_root_ulps() {
+  std::mt19937_64 rng(K);
+  std::uniform_real_distribution<double> exponent(-1000.0, 1000.0), mantissa(1.0, 2.0);
+  double worst = 0.0;
+  for (int i = 0; i < 1000000 / 16; ++i) {
+    const double x = std::ldexp(mantissa(rng), static_cast<int>(exponent(rng)));
+    const long double exact = std::pow(static_cast<long double>(x), -1.0L / K);
+    const double nearest = static_cast<double>(exact);
+    const double ulp = std::nextafter(nearest, std::numeric_limits<double>::infinity()) - nearest;
+    worst = std::max(worst, static_cast<double>(std::abs(inverse_root<K>(x) - exact) / ulp));
+  }
+  return worst;
+}
+
+TEST(InverseRoot, WithinFourUlpOfLongDoubleForEveryExponent) {
+  const double worst[] = {worst_inverse_root_ulps<2>(),  worst_inverse_root_ulps<3>(),  worst_inverse_root_ulps<4>(),
+                          worst_inverse_root_ulps<5>(),  worst_inverse_root_ulps<6>(),  worst_inverse_root_ulps<7>(),
+                          worst_inverse_root_ulps<8>(),  worst_inverse_root_ulps<9>(),  worst_inverse_root_ulps<10>(),
+                          worst_inverse_root_ulps<11>(), worst_inverse_root_ulps<12>(), worst_inverse_root_ulps<13>(),
+                          worst_inverse_root_ulps<14>(), worst_inverse_root_ulps<15>(), worst_inverse_root_ulps<16>()};
+  for (int k = 2; k <= 16; ++k) EXPECT_LT(worst[k - 2], 4.0) << "k = " << k;
+  // The extremes of the domain and exact powers: 2^-10 -> 2^2 (k = 5), 2^16 -> 2^-2 (k = 8).
+  EXPECT_NEAR(inverse_root<5>(std::ldexp(1.0, -10)), 4.0, 4 * std::numeric_limits<double>::epsilon() * 4.0);
+  EXPECT_NEAR(inverse_root<8>(65536.0), 0.25, 4 * std::numeric_limits<double>::epsilon() * 0.25);
+  const double smallest = std::numeric_limits<double>::min(), largest = std::numeric_limits<double>::max();
+  EXPECT_NEAR(inverse_root<5>(smallest), std::pow(smallest, -0.2), 1e-14 * std::pow(smallest, -0.2));
+  EXPECT_NEAR(inverse_root<9>(largest), std::pow(largest, -1.0 / 9), 1e-14 * std::pow(largest, -1.0 / 9));
+}
+
+TEST(InverseRoot, OffItsDomainItIsStdPow) {
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double x : {0.0, -0.0, 1e-310, inf, -1.0}) {
+    const double expected = std::pow(x, -1.0 / 5);
+    const double got = inverse_root<5>(x);
+    if (std::isnan(expected)) {
+      EXPECT_TRUE(std::isnan(got)) << x;
+    } else {
+      EXPECT_EQ(got, expected) << x;
+    }
+  }
+  EXPECT_TRUE(std::isnan(inverse_root<5>(std::numeric_limits<double>::quiet_NaN())));
+  // The run-time form: the compile-time root for k = 2..16, std::pow beyond.
+  EXPECT_EQ(inverse_root(0.3, 8), inverse_root<8>(0.3));
+  EXPECT_EQ(inverse_root(0.3, 17), std::pow(0.3, -1.0 / 17));
 }
 
 }  // namespace

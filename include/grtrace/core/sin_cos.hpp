@@ -34,11 +34,19 @@ inline std::uint32_t high_word(double x) {
   return static_cast<std::uint32_t>(std::bit_cast<std::uint64_t>(x) >> 32) & 0x7fffffffU;
 }
 
+/// fdlibm's minimax coefficients: sin x = x + x z (S1 + S2 z + ... + S6 z^5), cos x = 1 - z / 2 + z^2 (C1 + C2 z + ...
+/// + C6 z^5), z = x^2, |x| <= pi/4.
+constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03,
+                 S3 = -1.98412698298579493134e-04, S4 = 2.75573137070700676789e-06,
+                 S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
+constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
+                 C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
+                 C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
+/// pi/2 in two parts (Cody-Waite): pio2_1 has 33 significant bits, so n pio2_1 is exact for the n sin_cos meets.
+constexpr double pio2_1 = 1.57079632673412561417e+00, pio2_1t = 6.07710050650619224932e-11;
+
 /// fdlibm __kernel_sin(x, y, 1): sin(x + y) for |x| <= pi/4, |y| <= ulp(x) / 2.
 inline double kernel_sin(double x, double y) {
-  constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03,
-                   S3 = -1.98412698298579493134e-04, S4 = 2.75573137070700676789e-06,
-                   S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
   const double z = x * x, v = z * x;
   const double r = mul_add(z, mul_add(z, mul_add(z, mul_add(z, S6, S5), S4), S3), S2);
   return x - ((z * (0.5 * y - v * r) - y) - v * S1);
@@ -46,9 +54,6 @@ inline double kernel_sin(double x, double y) {
 
 /// fdlibm __kernel_cos(x, y): cos(x + y) for |x| <= pi/4, |y| <= ulp(x) / 2.
 inline double kernel_cos(double x, double y) {
-  constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
-                   C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
-                   C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
   const double z = x * x;
   const double r = z * mul_add(z, mul_add(z, mul_add(z, mul_add(z, mul_add(z, C6, C5), C4), C3), C2), C1);
   const std::uint32_t ix = high_word(x);
@@ -90,7 +95,6 @@ inline double kernel_cos(double x, double y) {
   if (ix > 0x413921fbU) return sin_cos_libm(x);                             // |x| ~> 2^19 pi/2; NaN, inf
   // fdlibm __ieee754_rem_pio2, medium range: n = nearest integer to x 2/pi, x - n pi/2 in three parts.
   constexpr double invpio2 = 6.36619772367581382433e-01;
-  constexpr double pio2_1 = 1.57079632673412561417e+00, pio2_1t = 6.07710050650619224932e-11;
   constexpr double round_magic = 6755399441055744.0;  // 1.5 * 2^52: (v + it) - it rounds v to an integer, inline
   const double fn = (x * invpio2 + round_magic) - round_magic;
   const int n = static_cast<int>(fn);
@@ -107,6 +111,33 @@ inline double kernel_cos(double x, double y) {
     case 2: return {-s, -c};
     default: return {-c, s};
   }
+}
+
+/// sin and cos of a polar angle, for the metrics' right-hand sides (Schwarzschild, Kerr): sin_cos with a shorter
+/// path for theta in [pi/4, 3pi/4], where a ray spends most of its steps.
+/// Why: the sine and cosine of theta are the longest link of the right-hand side's chain, and a step is six or more
+/// right-hand sides in a row. sin_cos reduces theta by the nearest multiple of pi/2 (a rounding, two products) and
+/// its kernels carry the reduction's tail through a sequence of dependent corrections (fdlibm's order, for < 1 ulp).
+/// Here the multiple is known (pi/2), p = theta - pi/2 is one exact subtraction and one rounded one (pi/2 in two
+/// parts, Cody-Waite), and sin theta = cos p, cos theta = -sin p come from fdlibm's minimax polynomials evaluated by
+/// Estrin's scheme (powers of z = p^2 alongside pairs of coefficients), without the tail: 10 against 19 ns of latency
+/// on the machine of docs/benchmarks.md.
+/// Takes:   any double theta.
+/// Returns: {sin theta, cos theta}, within 2 ulp for theta in [pi/4, 3pi/4] (tests/sin_cos_test.cpp), except within
+///          2^-16 of pi/2, where p = theta - pi/2 cancels too many bits of the two-part pi/2: there, and outside
+///          [pi/4, 3pi/4], sin_cos(theta) (below 1 ulp).
+[[gnu::always_inline]] inline SinCos polar_sin_cos(double theta) {
+  using namespace sin_cos_detail;
+  if (theta >= 0.78539816339744828 && theta <= 2.3561944901923448) {
+    const double p = (theta - pio2_1) - pio2_1t;  // the first subtraction is exact (Sterbenz)
+    if (high_word(p) >= 0x3ef00000U) {             // |p| >= 2^-16
+      const double z = p * p, z2 = z * z, z4 = z2 * z2;
+      const double s = mul_add(mul_add(S6, z, S5), z4, mul_add(mul_add(S4, z, S3), z2, mul_add(S2, z, S1)));
+      const double c = mul_add(mul_add(C6, z, C5), z4, mul_add(mul_add(C4, z, C3), z2, mul_add(C2, z, C1)));
+      return {mul_add(z2, c, mul_add(-0.5, z, 1.0)), -mul_add(p * z, s, p)};
+    }
+  }
+  return sin_cos(theta);
 }
 
 }  // namespace grtrace

@@ -45,7 +45,7 @@ class RungeKuttaBatchStepper {
     compute_stages(f, y, h, std::make_index_sequence<S - 1>{});
     for (int i = 0; i < N; ++i)
       for (int l = 0; l < W; ++l)
-        y_new[idx(i)][idx(l)] = mul_add(h[idx(l)], Sums::template weighted<Weights::b>(at(i, l)), y[idx(i)][idx(l)]);
+        y_new[idx(i)][idx(l)] = Sums::template update<Weights::b>(at(i, l), h[idx(l)], y[idx(i)][idx(l)]);
   }
 
   template <class Rhs>
@@ -54,7 +54,7 @@ class RungeKuttaBatchStepper {
     if constexpr (has_embedded_pair<T>)
       for (int i = 0; i < N; ++i)
         for (int l = 0; l < W; ++l)
-          err[idx(i)][idx(l)] = h[idx(l)] * Sums::template weighted<Weights::difference>(at(i, l));
+          err[idx(i)][idx(l)] = Sums::template scaled<Weights::difference>(at(i, l), h[idx(l)]);
   }
 
   /// k_i of the last step, all lanes (k_0 = f0; for FSAL tableaux k_{S-1} = f(y_new)).
@@ -76,7 +76,7 @@ class RungeKuttaBatchStepper {
     State y_stage;
     for (int i = 0; i < N; ++i)
       for (int l = 0; l < W; ++l)
-        y_stage[idx(i)][idx(l)] = mul_add(h[idx(l)], Sums::template row<I>(at(i, l)), y[idx(i)][idx(l)]);
+        y_stage[idx(i)][idx(l)] = Sums::template input<I>(at(i, l), h[idx(l)], y[idx(i)][idx(l)]);
     f(y_stage, k_[I]);
   }
 

@@ -20,25 +20,38 @@
 
 namespace grtrace {
 
-/// The sums a Runge-Kutta step is made of, for one component (of one ray): sum_j a_Ij k_j, sum_j b_j k_j and
-/// sum_j (b_j - b_hat_j) k_j, with the coefficients as compile-time constants and zero terms left out. `k(J)` gives
-/// stage J's value of that component (J a std::integral_constant). Shared by the scalar stepper below and the
-/// batched one (integrate/batch_stepper.hpp), so both do the same operations in the same order: the batched
-/// stepper's lanes are bit for bit the scalar stepper's rays.
+/// The sums a Runge-Kutta step is made of, for one component (of one ray): a stage's input y + h sum_j a_Ij k_j, the
+/// new state y + h sum_j b_j k_j and the embedded error h sum_j (b_j - b_hat_j) k_j, with the coefficients as
+/// compile-time constants and zero terms left out. `k(J)` gives stage J's value of that component (J a
+/// std::integral_constant). Shared by the scalar stepper below and the batched one (integrate/batch_stepper.hpp), so
+/// both do the same operations in the same order: the batched stepper's lanes are bit for bit the scalar stepper's
+/// rays.
+///
+/// Each is formed as (what the earlier stages give) + (h c_L) k_L, with k_L the last stage the sum reads, in one
+/// multiply-add: a step is one chain of dependent operations (a stage's input waits for the stage before it), and
+/// k_L is the link that arrives last. Everything else is ready before it: the earlier stages' sum (additions of
+/// products, in the order of j), y + h times that sum, and h c_L. So the chain from k_L to the next stage's input
+/// is one multiply-add, where y + h (sum + c_L k_L) made it a product, a sum and a multiply-add (docs/benchmarks.md).
 template <ExplicitTableau T>
 struct StageSums {
   enum class Weights { b, difference };
 
-  /// sum_{J < I} a_IJ k_J, accumulated from 0 in the order of J.
+  /// y + h sum_{J < I} a_IJ k_J: stage I's input.
   template <std::size_t I, class K>
-  static double row(const K& k) {
-    return sum<Row<I>>(k, std::make_index_sequence<I>{});
+  static double input(const K& k, double h, double y) {
+    return split<Row<I>, I>(k, h, y);
   }
 
-  /// sum_J w_J k_J over all stages, w = b or b - b_hat.
+  /// y + h sum_J w_J k_J over all stages, w = b or b - b_hat.
   template <Weights W, class K>
-  static double weighted(const K& k) {
-    return sum<Weight<W>>(k, std::make_index_sequence<T::stages>{});
+  static double update(const K& k, double h, double y) {
+    return split<Weight<W>, T::stages>(k, h, y);
+  }
+
+  /// h sum_J w_J k_J over all stages (the embedded error estimate for w = b - b_hat).
+  template <Weights W, class K>
+  static double scaled(const K& k, double h) {
+    return split<Weight<W>, T::stages, false>(k, h, 0.0);
   }
 
  private:
@@ -56,8 +69,36 @@ struct StageSums {
     }
   };
 
+  /// The last J < Count with a nonzero coefficient (Count when there is none).
+  template <class Coefficients, std::size_t Count>
+  static consteval std::size_t last_term() {
+    std::size_t last = Count;
+    [&]<std::size_t... J>(std::index_sequence<J...>) {
+      ((last = Coefficients::template of<J>() != 0.0 ? J : last), ...);
+    }(std::make_index_sequence<Count>{});
+    return last;
+  }
+
+  /// base + h sum_{J < Count} c_J k_J as (base + h sum_{J < L} c_J k_J) + (h c_L) k_L, L = last_term; with
+  /// WithBase false, h sum_{J < L} c_J k_J + (h c_L) k_L.
+  template <class Coefficients, std::size_t Count, bool WithBase = true, class K>
+  static double split(const K& k, double h, double base) {
+    constexpr std::size_t L = last_term<Coefficients, Count>();
+    if constexpr (L == Count) {
+      return WithBase ? base : 0.0;
+    } else {
+      constexpr double c_last = Coefficients::template of<L>();
+      double earlier = base;
+      if constexpr (L > 0) {
+        const double sum = sum_of<Coefficients>(k, std::make_index_sequence<L>{});
+        earlier = WithBase ? mul_add(h, sum, base) : h * sum;
+      }
+      return mul_add(h * c_last, k(std::integral_constant<std::size_t, L>{}), earlier);
+    }
+  }
+
   template <class Coefficients, class K, std::size_t... J>
-  static double sum(const K& k, std::index_sequence<J...>) {
+  static double sum_of(const K& k, std::index_sequence<J...>) {
     double acc = 0.0;
     ((acc = term<Coefficients::template of<J>()>(acc, k, std::integral_constant<std::size_t, J>{})), ...);
     return acc;
@@ -65,8 +106,8 @@ struct StageSums {
 
   // A product and a sum, not a mul_add (core/mul_add.hpp): the products of the earlier stages are ready long before
   // the sum needs them and overlap, and a chain of fused operations is longer (4 cycles a link against 3 for an
-  // addition). Measured in frames (docs/benchmarks.md): fusing the terms made the 5-variable Kerr system's step up
-  // to 1.1x slower; fusing only y + h sum (below) made every system tried faster.
+  // addition). Measured in frames (docs/benchmarks.md): fusing these terms made the 5-variable Kerr system's step
+  // up to 1.1x slower.
   template <double Coefficient, class K, class J>
   static double term(double acc, const K& k, J j) {
     if constexpr (Coefficient != 0.0) return acc + Coefficient * k(j);
@@ -121,10 +162,8 @@ class RungeKuttaStepper {
 
   // The stage sums are written per component, with the coefficients as compile-time constants (StageSums): one
   // pass over the N components per sum, no Eigen temporaries or out-of-line expression calls (which the profile
-  // showed as 15-25 % of a step). The arithmetic is acc = 0; acc += c_0 k_0; acc += c_1 k_1; ...; y + h acc, term by
-  // term and in that order, the last "y + h acc" a mul_add (core/mul_add.hpp): rounded once where the processor
-  // fuses it (one link less in the chain from a stage to the next), else exactly the Eigen expressions these sums
-  // replaced.
+  // showed as 15-25 % of a step). The order of the operations is StageSums': the newest stage enters last, in
+  // one mul_add (core/mul_add.hpp).
   template <class Rhs, std::size_t... I>
   void compute_stages([[maybe_unused]] const Rhs& f, [[maybe_unused]] const State& y, [[maybe_unused]] double h,
                       std::index_sequence<I...>) {
@@ -134,7 +173,7 @@ class RungeKuttaStepper {
   template <std::size_t I, class Rhs>
   void compute_stage(const Rhs& f, const State& y, double h) {
     State y_stage;
-    for (int i = 0; i < N; ++i) y_stage[i] = mul_add(h, Sums::template row<I>(component(i)), y[i]);
+    for (int i = 0; i < N; ++i) y_stage[i] = Sums::template input<I>(component(i), h, y[i]);
     k_[I] = f(y_stage);
   }
 
@@ -146,11 +185,11 @@ class RungeKuttaStepper {
   /// out = base + h sum_j w_j k_j (base given) or h sum_j w_j k_j (no base), component by component.
   template <Weights W>
   void weighted_update(const State& base, double h, State& out) const {
-    for (int i = 0; i < N; ++i) out[i] = mul_add(h, Sums::template weighted<W>(component(i)), base[i]);
+    for (int i = 0; i < N; ++i) out[i] = Sums::template update<W>(component(i), h, base[i]);
   }
   template <Weights W>
   void weighted_scaled(double h, State& out) const {
-    for (int i = 0; i < N; ++i) out[i] = h * Sums::template weighted<W>(component(i));
+    for (int i = 0; i < N; ++i) out[i] = Sums::template scaled<W>(component(i), h);
   }
 
   std::array<State, S> k_;

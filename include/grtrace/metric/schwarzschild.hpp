@@ -51,7 +51,7 @@ struct SchwarzschildMetric {
 
   /// -Gamma^mu_{ab} k^a k^b, written out (14 multiplies, one division by r, one by sin theta, one inline sincos).
   Vec4 acceleration(const Vec4& x, const Vec4& k) const {
-    const SinCos sc = sin_cos(x[2]);  // inline (core/sin_cos.hpp): libm's call was a quarter of a step
+    const SinCos sc = polar_sin_cos(x[2]);  // inline (core/sin_cos.hpp): libm's call was a quarter of a step
     const double r = x[1], m = mass, inv_r = 1.0 / r, st = sc.sin, ct = sc.cos;
     const double r2m = r - 2.0 * m;
     const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];

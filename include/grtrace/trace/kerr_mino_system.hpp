@@ -73,7 +73,7 @@ struct KerrMinoSystem {
   /// dz/dlambda_M. Forced inline: a call costs as much as the polynomials (the stepper calls it once per stage).
   [[gnu::always_inline]] State operator()(const State& z) const {
     const double u = z[0], u2 = u * u, m = metric.mass;
-    const SinCos sc = sin_cos(z[1]);
+    const SinCos sc = polar_sin_cos(z[1]);
     const double s2 = sc.sin * sc.sin, inv_s2 = 1.0 / s2;
     // Deep beyond the polar turning point (see forbidden_): no state of the ray, a trial stage of a step too long
     // for the pass by the axis. NaN makes the integrator shrink the step (controlled_integrator.hpp).

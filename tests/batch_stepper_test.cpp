@@ -1,7 +1,9 @@
 // tests/batch_stepper_test.cpp
 // integrate/batch_stepper.hpp: W problems stepped at once must give, lane by lane, exactly the numbers of the scalar
 // stepper on each problem alone (the planar table's nodes rely on it: trace_node and the batched build must agree
-// bit for bit); and ControlledIntegrator::judge_trial, fed a lane's trial, must take the steps advance() takes.
+// bit for bit); ControlledIntegrator::judge_trial, fed a lane's trial, must take the steps advance() takes; and so
+// must every lane of a BatchedIntegrator (integrate/batch_integrator.hpp), also across unload / resume_at / load.
+#include "grtrace/integrate/batch_integrator.hpp"
 #include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
@@ -107,6 +109,64 @@ void expect_judged_lanes_follow_advance() {
 TEST(BatchStepper, JudgedLanesTakeTheStepsAdvanceTakes) {
   expect_judged_lanes_follow_advance<Tsitouras54, PIController>();
   expect_judged_lanes_follow_advance<Fehlberg78, IController>();
+}
+
+// Every lane of a BatchedIntegrator takes advance()'s steps bit for bit (accepted and rejected, the counts, the next
+// step), for W = 4 (the lane norm in vector registers) and W = 3 (lane by lane), an FSAL pair with PI and a pair
+// without with I; halfway, each ray leaves its lane for a ControlledIntegrator (unload, resume_at), takes one step
+// there and comes back (load), as the batched tracer hands rays over.
+template <class T, class C, int W>
+void expect_batched_lanes_follow_advance() {
+  const IntegratorSettings settings{Tolerance{1e-10, 1e-12}};
+  constexpr double first_step = 2.0;  // far too long: the first trials are rejected
+  const auto start_of = [](int l) { return Vector<3>(1.0 - 0.3 * l, 0.2 + 0.4 * l, -0.4 + 0.5 * l); };
+  BatchedIntegrator<T, C, 3, W> batch(settings);
+  for (int l = 0; l < W; ++l) {
+    ControlledIntegrator<T, C, 3> starter(settings);
+    starter.start(euler_rhs, start_of(l), first_step);
+    batch.load(l, starter);
+  }
+  std::array<bool, static_cast<std::size_t>(W)> visited{};
+  bool all_done = false;
+  while (!all_done) {
+    const auto verdict = batch.trial(batch_rhs<W>);
+    all_done = true;
+    for (int l = 0; l < W; ++l) {
+      const auto s = static_cast<std::size_t>(l);
+      ASSERT_NE(verdict[s], TrialVerdict::not_taken);
+      if (verdict[s] == TrialVerdict::accepted) batch.commit(l);
+      if (batch.counters(l).accepted == 100 && !visited[s]) {  // a step outside the lane, then back
+        visited[s] = true;
+        ControlledIntegrator<T, C, 3> outside(settings);
+        batch.unload(l, outside);
+        ASSERT_EQ(outside.advance(euler_rhs), StepOutcome::ok);
+        batch.load(l, outside);
+      }
+      all_done = all_done && batch.counters(l).accepted >= 200;
+    }
+  }
+  for (int l = 0; l < W; ++l) {
+    ControlledIntegrator<T, C, 3> alone(settings);
+    alone.start(euler_rhs, start_of(l), first_step);
+    const auto& lane = batch.counters(l);
+    while (alone.accepted() < lane.accepted) ASSERT_EQ(alone.advance(euler_rhs), StepOutcome::ok);
+    ControlledIntegrator<T, C, 3> lane_state(settings);
+    batch.unload(l, lane_state);
+    EXPECT_EQ(alone.state(), lane_state.state()) << T::name << " lane " << l;
+    EXPECT_EQ(alone.derivative(), lane_state.derivative()) << T::name << " lane " << l;
+    EXPECT_EQ(alone.lambda(), lane.lambda) << T::name << " lane " << l;
+    EXPECT_EQ(alone.rejected(), lane.rejected) << T::name << " lane " << l;
+    EXPECT_EQ(alone.rhs_evals(), lane.rhs_evals) << T::name << " lane " << l;
+    EXPECT_EQ(alone.next_step(), lane.h_next) << T::name << " lane " << l;
+    EXPECT_GT(lane.rejected, 0) << "the comparison should include rejected trials";
+  }
+}
+
+TEST(BatchedIntegrator, LanesTakeTheStepsAdvanceTakes) {
+  expect_batched_lanes_follow_advance<Tsitouras54, PIController, 4>();
+  expect_batched_lanes_follow_advance<Tsitouras54, PIController, 3>();
+  expect_batched_lanes_follow_advance<Fehlberg78, IController, 4>();
+  expect_batched_lanes_follow_advance<DormandPrince54, IController, 3>();
 }
 
 }  // namespace

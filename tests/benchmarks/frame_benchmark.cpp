@@ -35,6 +35,7 @@
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/observer/static_frame.hpp"
 #include "grtrace/observer/tetrad.hpp"
+#include "grtrace/render/frame.hpp"
 #include "grtrace/render/image.hpp"
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
@@ -135,10 +136,11 @@ void report(benchmark::State& state, const Camera& cam, const FrameAnswers& answ
 
 template <class Tracer>
 RenderStats render_answers(const Tracer& tracer, const Camera& cam, Image& image, FrameAnswers& answers) {
+  // As render_frame traces (a tracer that traces groups of rays gets each tile at once: TileOutcomes).
   return render_image(
-      image,
-      [&](int col, int row) {
-        const RayOutcome o = tracer.trace(cam.pixel_state(col, row));
+      image, [&] { return TileOutcomes<Tracer>(cam, tracer); },
+      [&](int col, int row, TileOutcomes<Tracer>& tile) {
+        const RayOutcome o = tile.at(col, row);
         answers.store(image.index(col, row), o);
         return tracer.scene().shade(o);
       },
@@ -247,10 +249,11 @@ struct MetricAnswers {
 
 template <class Tracer>
 RenderStats render_metric_answers(const Tracer& tracer, const Camera& cam, Image& image, MetricAnswers& answers) {
+  // As render_frame traces (a tracer that traces groups of rays gets each tile at once: TileOutcomes).
   return render_image(
-      image,
-      [&](int col, int row) {
-        const RayOutcome o = tracer.trace(cam.pixel_state(col, row));
+      image, [&] { return TileOutcomes<Tracer>(cam, tracer); },
+      [&](int col, int row, TileOutcomes<Tracer>& tile) {
+        const RayOutcome o = tile.at(col, row);
         answers.store(image.index(col, row), o);
         return tracer.scene().shade(o);
       },

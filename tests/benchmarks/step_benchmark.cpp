@@ -2,6 +2,9 @@
 // The cost of the pieces of a ray, smallest first, so they can be compared with GPU codes' ~1 ns per photon
 // per step:
 //   rhs/acceleration      SchwarzschildMetric::acceleration (-Gamma k k in closed form)
+//   rhs/acceleration_lanes/<W>  SchwarzschildMetric::acceleration_lanes<W>: W rays' accelerations at once in SIMD
+//                         registers (core/lanes.hpp; W = 2, 4, 8), each lane acceleration()'s bits; counter
+//                         ns_per_eval per ray (wall time / W), to compare with rhs/acceleration's
 //   rhs/geodesic          the whole right-hand side d(x, k)/dlambda = (k, -Gamma k k)
 //   step/<tableau>        one explicit Runge-Kutta step of every tableau (with the embedded error where there is
 //                         one), state size 8; counters ns_per_step and ns_per_eval
@@ -11,11 +14,11 @@
 //                         against exact::asymptotic_direction at the camera, continued from the sky-sphere
 //                         crossing) and error_node (continued from the last accepted node)
 //   lanes/<method>/<W>    the geodesic equation's integration alone (no events), W rays of the seed frame side by
-//                         side: trial steps by the batched stepper (integrate/batch_stepper.hpp), each judged by
-//                         its ray's own integrator (judge_trial), as the planar table integrates its rays; W = 1
-//                         is the same code one ray at a time, advance/<method> the integrator's own loop. Counter
-//                         ns_per_step: wall time per accepted step of one ray. What batching rays would buy the
-//                         general tracer (issue 11), measured before building it.
+//                         side in a BatchedIntegrator (integrate/batch_integrator.hpp: states lane-innermost, the
+//                         right-hand side on all lanes at once with SchwarzschildMetric::acceleration_lanes), as
+//                         the general tracer's frames integrate (trace/batched_trace.hpp); advance/<method> is
+//                         one ray's ControlledIntegrator::advance. Counter ns_per_step: wall time per accepted
+//                         step of one ray.
 //   ad/<piece>/<metric>   automatic differentiation (metric/auto_metric.hpp) against the closed form, for
 //                         Schwarzschild: acceleration() alone, one dopri5 step, and one whole ray (tsit5, I
 //                         controller, rtol 2e-9: the render default) with counter ns_per_step per accepted step;
@@ -24,7 +27,9 @@
 //                         depends_on: Dual<4>)
 // Run: build-*/tests/benchmarks/step_benchmark --benchmark_min_time=0.2
 //      build-*/tests/benchmarks/step_benchmark --benchmark_filter='^ad/' --benchmark_min_time=0.5
+#include "grtrace/core/lanes.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/integrate/batch_integrator.hpp"
 #include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
 #include "grtrace/metric/examples/schwarzschild_components.hpp"
@@ -37,6 +42,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -83,6 +90,38 @@ void rhs_acceleration(benchmark::State& state) {
   state.counters["ns_per_eval"] = timer.ns_per(1.0, state.iterations());
 }
 BENCHMARK(rhs_acceleration);
+
+/// W photons near strong_field_state's (r = 10 M + l / 4, theta = 1.1 + l / 100: every lane on polar_sin_cos's
+/// short path, as rhs_acceleration's), through the same loop as rhs_acceleration.
+template <int W>
+void rhs_acceleration_lanes(benchmark::State& state) {
+  const SchwarzschildMetric metric{1.0};
+  std::array<Lanes<W>, 4> x{}, k{};
+  for (std::size_t mu = 0; mu < 4; ++mu) {
+    std::array<double, static_cast<std::size_t>(W)> xr{}, kr{};
+    for (std::size_t l = 0; l < static_cast<std::size_t>(W); ++l) {
+      const double r = 10.0 + 0.25 * static_cast<double>(l), f = 1.0 - 2.0 / r;
+      const std::array<double, 4> xl = {0.0, r, 1.1 + 0.01 * static_cast<double>(l), 0.3};
+      const std::array<double, 4> kl = {1.0 / f, -0.6, 0.03, 0.05};
+      xr[l] = xl[mu];
+      kr[l] = kl[mu];
+    }
+    x[mu] = load_lanes(xr);
+    k[mu] = load_lanes(kr);
+  }
+  const PerUnitTimer timer;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(k);
+    std::array<Lanes<W>, 4> a = metric.acceleration_lanes<W>(x, k);
+    benchmark::DoNotOptimize(a);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * W);
+  state.counters["ns_per_eval"] = timer.ns_per(W, state.iterations());
+}
+BENCHMARK(rhs_acceleration_lanes<2>)->Name("rhs/acceleration_lanes/2");
+BENCHMARK(rhs_acceleration_lanes<4>)->Name("rhs/acceleration_lanes/4");
+BENCHMARK(rhs_acceleration_lanes<8>)->Name("rhs/acceleration_lanes/8");
 
 void rhs_geodesic(benchmark::State& state) {
   const SchwarzschildMetric metric{1.0};
@@ -200,38 +239,24 @@ IntegratorSettings lane_settings(double rtol) { return IntegratorSettings{Tolera
 template <class T, class C, int W>
 void lanes(benchmark::State& state, double rtol) {
   const SchwarzschildMetric metric{1.0};
-  const GeodesicEquation<SchwarzschildMetric> f{&metric};
-  using Integrator = ControlledIntegrator<T, C, 8>;
-  std::array<std::optional<Integrator>, static_cast<std::size_t>(W)> lane;
+  const MetricGeodesicSystem<SchwarzschildMetric> system(metric, lane_start(0));  // its right-hand side: the metric's
+  BatchedIntegrator<T, C, 8, W> batch(lane_settings(rtol));
+  ControlledIntegrator<T, C, 8> starter(lane_settings(rtol));
   int next = 0;
   long accepted = 0;
   auto restart = [&](int l) {
-    lane[static_cast<std::size_t>(l)].emplace(lane_settings(rtol));
-    lane[static_cast<std::size_t>(l)]->start(f, lane_start(next++), 0.0);
+    starter.start(system, lane_start(next++), 0.0);
+    batch.load(l, starter);
   };
   for (int l = 0; l < W; ++l) restart(l);
-  RungeKuttaBatchStepper<T, 8, W> batch;
-  Batch<8, W> y{}, fy{}, y_new{}, err{};
-  std::array<double, static_cast<std::size_t>(W)> h{};
-  const auto rhs = [&](const Batch<8, W>& z, Batch<8, W>& dz) {
-    for (int l = 0; l < W; ++l) set_lane(dz, l, f(lane_of(z, l)));
-  };
   const PerUnitTimer timer;
   for (auto _ : state) {
+    const auto verdict = batch.trial(system);
     for (int l = 0; l < W; ++l) {
-      const Integrator& integ = *lane[static_cast<std::size_t>(l)];
-      h[static_cast<std::size_t>(l)] = *integ.trial_step();
-      set_lane(y, l, integ.state());
-      set_lane(fy, l, integ.derivative());
-    }
-    batch.step(rhs, y, fy, h, y_new, err);
-    for (int l = 0; l < W; ++l) {
-      Integrator& integ = *lane[static_cast<std::size_t>(l)];
-      if (integ.judge_trial(f, h[static_cast<std::size_t>(l)], lane_of(y_new, l), lane_of(err, l),
-                            lane_of(batch.stage(T::stages - 1), l))) {
-        ++accepted;
-        if (integ.accepted() == lane_steps) restart(l);
-      }
+      if (verdict[static_cast<std::size_t>(l)] != TrialVerdict::accepted) continue;
+      batch.commit(l);
+      ++accepted;
+      if (batch.counters(l).accepted == lane_steps) restart(l);
     }
   }
   state.counters["ns_per_step"] = timer.ns_per(static_cast<double>(accepted) / static_cast<double>(state.iterations()),

@@ -11,9 +11,12 @@
 //          The kernels' Horner polynomials use mul_add (core/mul_add.hpp): fused where the processor has the
 //          instruction (a shorter dependency chain, and no less accurate), fdlibm's own operations elsewhere.
 //          Elsewhere, and for NaN and infinities, std::sin and std::cos.
+//          polar_sin_cos(theta) (below) has a shorter path for polar angles, also for W angles at once in a
+//          Lanes<W> (core/lanes.hpp), each lane the scalar polar_sin_cos's bits.
 // Assumes: round-to-nearest, no -ffast-math reassociation (the kernels' order of operations matters).
 #pragma once
 
+#include "grtrace/core/lanes.hpp"
 #include "grtrace/core/mul_add.hpp"
 
 #include <bit>
@@ -25,6 +28,13 @@ namespace grtrace {
 struct SinCos {
   double sin;
   double cos;
+};
+
+/// sin and cos of W angles (lane l: angle l), from the lane polar_sin_cos.
+template <int W>
+struct LaneSinCos {
+  Lanes<W> sin;
+  Lanes<W> cos;
 };
 
 namespace sin_cos_detail {
@@ -63,6 +73,48 @@ inline double kernel_cos(double x, double y) {
   const double hz = (0.5 * z - qx), a = 1.0 - qx;
   return a - (hz - (z * r - x * y));
 }
+
+/// fdlibm's polynomials without the tail, by Estrin's scheme (powers of z = u^2 alongside pairs of coefficients):
+/// sin u and cos u for |u| <= pi/4 (a hair beyond at polar_sin_cos's range ends). Written once for double and
+/// Lanes<W>, so that a lane of the lane polar_sin_cos cannot differ from the scalar one.
+template <class S>
+[[gnu::always_inline]] inline void polar_polynomials(const S& u, S& sin_u, S& cos_u) {
+  // The coefficients as S: mul_add's operands are of one type (for Lanes<W>, every lane the same constant).
+  const S s1 = broadcast<S>(S1), s2 = broadcast<S>(S2), s3 = broadcast<S>(S3), s4 = broadcast<S>(S4),
+          s5 = broadcast<S>(S5), s6 = broadcast<S>(S6);
+  const S c1 = broadcast<S>(C1), c2 = broadcast<S>(C2), c3 = broadcast<S>(C3), c4 = broadcast<S>(C4),
+          c5 = broadcast<S>(C5), c6 = broadcast<S>(C6);
+  const S minus_half = broadcast<S>(-0.5), one = broadcast<S>(1.0);
+  const S z = u * u, z2 = z * z, z4 = z2 * z2;
+  const S s = mul_add(mul_add(s6, z, s5), z4, mul_add(mul_add(s4, z, s3), z2, mul_add(s2, z, s1)));
+  const S c = mul_add(mul_add(c6, z, c5), z4, mul_add(mul_add(c4, z, c3), z2, mul_add(c2, z, c1)));
+  sin_u = mul_add(u * z, s, u);
+  cos_u = mul_add(z2, c, mul_add(minus_half, z, one));
+}
+
+/// polar_sin_cos's reduced arguments, written once for double and Lanes<W> (the same roundings in every lane):
+/// u = theta - pi/2 (the middle range) and u = pi - theta (the high range), with pi/2 = pio2_1 + pio2_1t and
+/// pi = 2 pio2_1 + 2 pio2_1t (doubling is exact). The first operation is exact in both (Sterbenz: theta within a
+/// factor 2 of pio2_1, resp. of 2 pio2_1), the second rounds once. pio2_1t is pi/2 - pio2_1 to 53 bits: the
+/// two-part pi/2 is off by 3.5e-27 (2^-87.9), pi by twice that; relative to |u| >= 2^-16, below 2^-70.
+template <class S>
+[[gnu::always_inline]] inline S polar_middle_u(const S& theta) {
+  return (theta - pio2_1) - pio2_1t;
+}
+template <class S>
+[[gnu::always_inline]] inline S polar_high_u(const S& theta) {
+  constexpr double pi_1 = 2.0 * pio2_1, pi_1t = 2.0 * pio2_1t;
+  return (pi_1 - theta) + pi_1t;
+}
+
+/// The ends of polar_sin_cos's middle range, [pi/4, 3pi/4] rounded inwards: below polar_low theta is the reduced
+/// argument itself, above polar_high pi - theta.
+constexpr double polar_low = 0.78539816339744828, polar_high = 2.3561944901923448;
+/// polar_sin_cos's hand-overs to sin_cos, as bounds on theta (tested alongside the reduction, not after it):
+/// theta strictly between polar_gap_low and polar_gap_high (|u| < 2^-16 in the middle range, to an ulp of theta) or
+/// above polar_max (u < 2^-16 in the high range, and beyond pi). pi/2 and pi are the doubles nearest them.
+constexpr double polar_gap_low = 1.5707963267948966 - 0x1p-16, polar_gap_high = 1.5707963267948966 + 0x1p-16;
+constexpr double polar_max = 3.141592653589793 - 0x1p-16;
 
 /// The reduction's second and third iterations (x within ~2^-16 of a multiple of pi/2: rare, kept out of line).
 /// Takes r = x - fn pio2_1 and w = fn pio2_1t with y0 = r - w; updates r, w and y0 (fdlibm __ieee754_rem_pio2).
@@ -114,30 +166,119 @@ inline double kernel_cos(double x, double y) {
 }
 
 /// sin and cos of a polar angle, for the metrics' right-hand sides (Schwarzschild, Kerr): sin_cos with a shorter
-/// path for theta in [pi/4, 3pi/4], where a ray spends most of its steps.
+/// path for theta in [0, pi], every polar angle a ray meets, except near pi/2 and pi.
 /// Why: the sine and cosine of theta are the longest link of the right-hand side's chain, and a step is six or more
 /// right-hand sides in a row. sin_cos reduces theta by the nearest multiple of pi/2 (a rounding, two products) and
 /// its kernels carry the reduction's tail through a sequence of dependent corrections (fdlibm's order, for < 1 ulp).
-/// Here the multiple is known (pi/2), p = theta - pi/2 is one exact subtraction and one rounded one (pi/2 in two
-/// parts, Cody-Waite), and sin theta = cos p, cos theta = -sin p come from fdlibm's minimax polynomials evaluated by
-/// Estrin's scheme (powers of z = p^2 alongside pairs of coefficients), without the tail: 10 against 19 ns of latency
-/// on the machine of docs/benchmarks.md.
+/// Here the multiple is known from three ranges of theta, and the reduced argument u (|u| <= pi/4) is at most one
+/// exact subtraction and one rounded one (pi/2 in two parts, Cody-Waite; polar_middle_u, polar_high_u):
+///   [0, pi/4):     u = theta,         sin theta = sin u, cos theta =  cos u;
+///   [pi/4, 3pi/4]: u = theta - pi/2,  sin theta = cos u, cos theta = -sin u;
+///   (3pi/4, pi]:   u = pi - theta,    sin theta = sin u, cos theta = -cos u.
+/// sin u and cos u are fdlibm's minimax polynomials by Estrin's scheme, without the tail (polar_polynomials): 10
+/// against 19 ns of latency on the machine of docs/benchmarks.md. The lane version computes both polynomials on
+/// every lane and selects (rays over a pole share a vector with rays that are not): the ranges are for the lanes
+/// the same arithmetic as here.
 /// Takes:   any double theta.
-/// Returns: {sin theta, cos theta}, within 2 ulp for theta in [pi/4, 3pi/4] (tests/sin_cos_test.cpp), except within
-///          2^-16 of pi/2, where p = theta - pi/2 cancels too many bits of the two-part pi/2: there, and outside
-///          [pi/4, 3pi/4], sin_cos(theta) (below 1 ulp).
+/// Returns: {sin theta, cos theta}, within 2 ulp for theta in [0, pi] (tests/sin_cos_test.cpp), sin 0 = 0 and
+///          cos 0 = 1 exactly, except near pi/2 and pi, where u goes to 0 and the two-part pi/2's error (2^-88)
+///          grows relative to it (at pi itself u would be 1.2e-16): |theta - pi/2| < 2^-16 and pi - theta < 2^-16
+///          (fdlibm's margin; polar_gap_low, polar_gap_high, polar_max: bounds on theta, so that the test needs no
+///          u). There, for theta outside [0, pi] (-0.0 included), NaN and infinities: sin_cos(theta) (below 1 ulp).
+///          No hand-over near 0: there u = theta exactly.
 [[gnu::always_inline]] inline SinCos polar_sin_cos(double theta) {
   using namespace sin_cos_detail;
-  if (theta >= 0.78539816339744828 && theta <= 2.3561944901923448) {
-    const double p = (theta - pio2_1) - pio2_1t;  // the first subtraction is exact (Sterbenz)
-    if (high_word(p) >= 0x3ef00000U) {             // |p| >= 2^-16
-      const double z = p * p, z2 = z * z, z4 = z2 * z2;
-      const double s = mul_add(mul_add(S6, z, S5), z4, mul_add(mul_add(S4, z, S3), z2, mul_add(S2, z, S1)));
-      const double c = mul_add(mul_add(C6, z, C5), z4, mul_add(mul_add(C4, z, C3), z2, mul_add(C2, z, C1)));
-      return {mul_add(z2, c, mul_add(-0.5, z, 1.0)), -mul_add(p * z, s, p)};
+  // The short path: theta in [+0, polar_max] (false for NaN) and not in the gap around pi/2.
+  if (!std::signbit(theta) && theta <= polar_max && (theta <= polar_gap_low || theta >= polar_gap_high)) {
+    double sin_u, cos_u;
+    if (theta < polar_low) {
+      polar_polynomials(theta, sin_u, cos_u);
+      return {sin_u, cos_u};
     }
+    if (theta <= polar_high) {
+      polar_polynomials(polar_middle_u(theta), sin_u, cos_u);
+      return {cos_u, -sin_u};
+    }
+    polar_polynomials(polar_high_u(theta), sin_u, cos_u);
+    return {sin_u, -cos_u};
   }
   return sin_cos(theta);
+}
+
+namespace sin_cos_detail {
+
+/// Per lane, whether the scalar polar_sin_cos takes its short path (its test, on theta alone: NaN compares false;
+/// -0.0 and negative theta by the sign bit).
+template <int W>
+[[gnu::always_inline]] inline LaneMask<W> polar_lanes_fast(const Lanes<W>& theta) {
+  const LaneMask<W> positive = std::bit_cast<LaneMask<W>>(theta) > -1;  // the sign bit clear
+  return positive & (theta <= polar_max) & ((theta <= polar_gap_low) | (theta >= polar_gap_high));
+}
+
+/// The lane polar_sin_cos's short path on every lane, branch-free: the three ranges' reduced arguments selected per
+/// lane, both polynomials on it, and the results selected and signed per lane (a sign flip by xor is the scalar's
+/// negation); each lane the scalar polar_sin_cos's arithmetic for its range.
+template <int W>
+[[gnu::always_inline]] inline LaneSinCos<W> polar_lanes_short(const Lanes<W>& theta) {
+  const LaneMask<W> low = theta < polar_low, high = theta > polar_high, outer = low | high;
+  const LaneMask<W> flip = ~low & std::bit_cast<LaneMask<W>>(splat<W>(-0.0));  // cos theta = -(...) but in low
+  const Lanes<W> u = low ? theta : high ? polar_high_u(theta) : polar_middle_u(theta);
+  Lanes<W> sin_u, cos_u;
+  polar_polynomials(u, sin_u, cos_u);
+  LaneSinCos<W> sc;
+  sc.sin = outer ? sin_u : cos_u;
+  sc.cos = std::bit_cast<Lanes<W>>(std::bit_cast<LaneMask<W>>(outer ? cos_u : sin_u) ^ flip);
+  return sc;
+}
+
+/// polar_sin_cos of a batch with a lane off the short path: the short path on all lanes, then the lanes off it
+/// replaced by sin_cos. Out of line: such batches are rare (a ray within 2^-16 of pi/2 or of the pole at pi), and
+/// sin_cos inlined W times would crowd the caller's loop. It returns the whole result, so that the common path's
+/// values stay in registers (results patched through a reference were kept in memory on both paths).
+template <int W>
+[[gnu::noinline]] inline LaneSinCos<W> polar_lanes_mixed(const Lanes<W>& theta) {
+  const LaneMask<W> fast = polar_lanes_fast<W>(theta);
+  LaneSinCos<W> sc = polar_lanes_short<W>(theta);
+  for (int l = 0; l < W; ++l) {
+    if (fast[l] == 0) {
+      const SinCos one = sin_cos(theta[l]);
+      sc.sin[l] = one.sin;
+      sc.cos[l] = one.cos;
+    }
+  }
+  return sc;
+}
+
+}  // namespace sin_cos_detail
+
+/// polar_sin_cos of W angles at once: lane l is exactly polar_sin_cos(theta[l]) (tests/lanes_test.cpp).
+/// When every lane is in the middle range (the common case: rays spend most steps between 45 and 135 degrees) only
+/// its arithmetic; else every lane by the short path's arithmetic for its range (polar_lanes_short: no branch
+/// between the ranges); when a lane is off the short path (within 2^-16 of pi/2 or of pi, outside [0, pi], NaN),
+/// those lanes by sin_cos, one at a time. Measured in the batched integrator (step_benchmark lanes/<method>/4):
+/// the middle-range branch makes rkf78 200-212 ns a step against 219-237 without it, tsit5 92-93 against 98-102. Vectors wider than the target's registers as two halves (core/lanes.hpp, native_lanes: GCC compares
+/// and selects on them one lane at a time).
+template <LaneVector V>
+[[gnu::always_inline]] inline LaneSinCos<lanes_of<V>> polar_sin_cos(const V& theta) {
+  using namespace sin_cos_detail;
+  constexpr int W = lanes_of<V>;
+  if constexpr (W > native_lanes) {
+    const auto t = halves<W>(theta);
+    const auto lo = polar_sin_cos(t[0]), hi = polar_sin_cos(t[1]);
+    return {joined<W / 2>(lo.sin, hi.sin), joined<W / 2>(lo.cos, hi.cos)};
+  } else {
+    const LaneMask<W> fast = polar_lanes_fast<W>(theta);
+    if (all_of<W>(fast & (theta >= polar_low) & (theta <= polar_high))) [[likely]] {
+      LaneSinCos<W> sc;
+      Lanes<W> sin_u, cos_u;
+      polar_polynomials(polar_middle_u(theta), sin_u, cos_u);
+      sc.sin = cos_u;
+      sc.cos = -sin_u;
+      return sc;
+    }
+    if (!all_of<W>(fast)) [[unlikely]] return polar_lanes_mixed<W>(theta);
+    return polar_lanes_short<W>(theta);
+  }
 }
 
 }  // namespace grtrace

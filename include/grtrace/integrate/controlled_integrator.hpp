@@ -32,6 +32,19 @@ struct IntegratorSettings {
 
 enum class StepOutcome { ok, step_underflow, non_finite };
 
+/// Where an integration stands besides its state (x, f(x)): the parameter, the step to try next, the counts and the
+/// controller's own state. With the state it is all advance() goes on from: what a batched lane keeps of each ray
+/// (integrate/batch_integrator.hpp) and hands back with ControlledIntegrator::resume_at.
+template <StepController Controller>
+struct IntegrationCounters {
+  double lambda = 0.0;
+  double h_next = 0.0;
+  int accepted = 0;
+  int rejected = 0;
+  long rhs_evals = 0;
+  Controller controller{};
+};
+
 /// v.allFinite() as one branch-free pass (Eigen's allFinite is an out-of-line unrolled compare in the hot loop).
 template <int N>
 inline bool all_finite(const Vector<N>& v) {
@@ -142,6 +155,27 @@ class ControlledIntegrator {
     y_prev_ = y_;
     f_prev_ = f_;
     h_last_ = 0.0;
+  }
+
+  /// Everything but the state that advance() goes on from (see IntegrationCounters).
+  IntegrationCounters<Controller> counters() const {
+    return {lambda_, h_, accepted_, rejected_, rhs_evals_, controller_};
+  }
+
+  /// Puts the integrator at a point of an integration carried on elsewhere with the same settings (a lane of a
+  /// batched integrator): the state y, its derivative f = f(y) and the counters there. advance() then goes on
+  /// exactly, bit for bit, as the integration it was taken from would have. There is no dense output until the
+  /// next accepted step (previous_state() is y, last_step() 0).
+  void resume_at(const State& y, const State& f, const IntegrationCounters<Controller>& c) {
+    y_ = y_prev_ = y;
+    f_ = f_prev_ = f;
+    lambda_ = c.lambda;
+    h_ = c.h_next;
+    h_last_ = 0.0;
+    accepted_ = c.accepted;
+    rejected_ = c.rejected;
+    rhs_evals_ = c.rhs_evals;
+    controller_ = c.controller;
   }
 
   /// State at lambda_prev + theta * h on the last accepted step, theta in [0, 1].

@@ -36,6 +36,12 @@
 //   static constexpr bool flat = true;
 //       The metric is flat everywhere: light moves on straight lines, so trace/straight_line.hpp follows rays
 //       without integrating (MinkowskiMetric, MinkowskiSpherical). Default: false.
+//   template <int W> std::array<Lanes<W>, 4> acceleration_lanes(const std::array<Lanes<W>, 4>& x,
+//                                                                 const std::array<Lanes<W>, 4>& k) const;
+//       acceleration(x, k) of W rays at once in SIMD registers (core/lanes.hpp; lane l of each argument is ray l),
+//       every lane acceleration()'s bits for its ray, for the batched geodesic right-hand side
+//       (SchwarzschildMetric). Detected by HasLaneAcceleration<M, W>. No generic answer: without it a caller
+//       evaluates acceleration() ray by ray.
 //
 // Generic answers computed from the required members (no metric has to write these):
 //   embedded_velocity_of(m, y)   dx/dlambda in the chart's Euclidean embedding (spherical or Cartesian charts)
@@ -44,6 +50,7 @@
 // Observers and emitters "at rest" (static, ZAMO) are in observer/observers.hpp.
 #pragma once
 
+#include "grtrace/core/lanes.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
@@ -51,6 +58,7 @@
 
 #include <array>
 #include <cmath>
+#include <concepts>
 #include <numbers>
 #include <optional>
 #include <type_traits>
@@ -68,6 +76,12 @@ enum class AngleCorrection {
 template <class M>
 concept HasExactContinuation = requires(const M m, const GeodesicState y) {
   { m.asymptotic_direction(y) } -> std::convertible_to<std::optional<SkyDirection>>;
+};
+
+/// True when the metric evaluates acceleration() for W rays at once, bit for bit per lane (see the top of this file).
+template <class M, int W>
+concept HasLaneAcceleration = requires(const M m, const std::array<Lanes<W>, 4> x) {
+  { m.template acceleration_lanes<W>(x, x) } -> std::same_as<std::array<Lanes<W>, 4>>;
 };
 
 /// True for metrics that declare themselves flat everywhere (the straight-line tracer's precondition).

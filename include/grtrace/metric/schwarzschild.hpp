@@ -6,6 +6,7 @@
 // With mass 0 this is flat space in spherical coordinates (MinkowskiSpherical).
 #pragma once
 
+#include "grtrace/core/lanes.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/sin_cos.hpp"
 #include "grtrace/metric/schwarzschild_lapse.hpp"
@@ -13,6 +14,7 @@
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -51,13 +53,38 @@ struct SchwarzschildMetric {
 
   /// -Gamma^mu_{ab} k^a k^b, written out (14 multiplies, one division by r, one by sin theta, one inline sincos).
   Vec4 acceleration(const Vec4& x, const Vec4& k) const {
-    const SinCos sc = polar_sin_cos(x[2]);  // inline (core/sin_cos.hpp): libm's call was a quarter of a step
-    const double r = x[1], m = mass, inv_r = 1.0 / r, st = sc.sin, ct = sc.cos;
-    const double r2m = r - 2.0 * m;
-    const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];
-    const double a_trt = m / (r * r2m);  // Gamma^t_rt = -Gamma^r_rr
+    const std::array<double, 4> a = acceleration_of<double>(x[1], x[2], k);
+    return Vec4(a[0], a[1], a[2], a[3]);
+  }
+
+  /// Optional trait (metric/metric_traits.hpp): acceleration() of W rays at once, lane l of each argument ray l;
+  /// every lane is acceleration()'s bits for that ray (the same formula, acceleration_of, on Lanes<W>).
+  template <int W>
+  std::array<Lanes<W>, 4> acceleration_lanes(const std::array<Lanes<W>, 4>& x,
+                                             const std::array<Lanes<W>, 4>& k) const {
+    if constexpr (W > native_lanes) {  // e.g. 8 under AVX2: as two of 4 (core/lanes.hpp, in_halves)
+      const auto half = [&metric = *this](const auto& xh, const auto& kh) {
+        return metric.template acceleration_lanes<W / 2>(xh, kh);
+      };
+      return in_halves<W>(x, k, half);
+    } else {
+      return acceleration_of<Lanes<W>>(x[1], x[2], k);
+    }
+  }
+
+  /// The formula of acceleration(), once for both scalar types S (double, Lanes<W>): the same operations in the
+  /// same order, so a lane cannot round differently from the scalar (constants are broadcast to every lane).
+  /// k: the four components k[0..3] of type S (a Vec4 or a std::array of lanes).
+  template <class S, class K>
+  [[gnu::always_inline]] std::array<S, 4> acceleration_of(const S& r, const S& theta, const K& k) const {
+    const auto sc = polar_sin_cos(theta);  // inline (core/sin_cos.hpp): libm's call was a quarter of a step
+    const double m = mass;
+    const S inv_r = 1.0 / r, st = sc.sin, ct = sc.cos;
+    const S r2m = r - 2.0 * m;
+    const S kt = k[0], kr = k[1], kth = k[2], kph = k[3];
+    const S a_trt = m / (r * r2m);  // Gamma^t_rt = -Gamma^r_rr
     // Each "p + q" of the formula is a mul_add (core/mul_add.hpp): one rounding where the processor fuses them.
-    Vec4 a;
+    std::array<S, 4> a;
     a[0] = -2.0 * a_trt * kt * kr;
     a[1] = mul_add(r2m, mul_add(st * st * kph, kph, kth * kth),
                    mul_add(a_trt * kr, kr, -m * r2m * inv_r * inv_r * inv_r * kt * kt));

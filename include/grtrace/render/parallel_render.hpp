@@ -151,9 +151,11 @@ inline int max_threads() {
 /// The loop of render_image over a traced grid of traced_width x traced_height pixels (the image's top-left part),
 /// where each call orbit(x, y, scratch, emit) delivers the samples of every image pixel that grid point stands for
 /// by calling emit(col, row, PixelSample) once per pixel: itself and, in a mirror-symmetric frame, its mirror
-/// images (render/frame.hpp). Every image pixel must be emitted exactly once over the whole grid; emit applies the
-/// colour and status rules, counts the sample and advances the progress by one pixel. Same guarantees and errors
-/// as render_image (of which it is the general form); RenderStats::traced_rays is the traced grid's size.
+/// images (render/frame.hpp). A scratch object with begin_tile(x0, y0, x1, y1) is told each tile (the traced
+/// grid's pixels x0 <= x < x1, y0 <= y < y1) before its pixels. Every image pixel must be emitted exactly once over
+/// the whole grid; emit applies the colour and status rules, counts the sample and advances the progress by one
+/// pixel. Same guarantees and errors as render_image (of which it is the general form); RenderStats::traced_rays is
+/// the traced grid's size.
 template <class ScratchFactory, class OrbitFn>
 requires std::invocable<ScratchFactory&>
 RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_height, ScratchFactory&& make_scratch,
@@ -217,6 +219,9 @@ RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_he
         const int y0 = static_cast<int>(tile / tiles_x) * tile_h;
         const int x1 = std::min(x0 + tile_w, width);
         const int y1 = std::min(y0 + tile_h, height);
+        // Optional scratch trait: begin_tile(x0, y0, x1, y1) before the tile's pixels (render/frame.hpp traces a
+        // tile's rays together with it, TileOutcomes).
+        if constexpr (requires { scratch.begin_tile(x0, y0, x1, y1); }) scratch.begin_tile(x0, y0, x1, y1);
         long emitted = 0;
         const auto emit = [&](int col, int row, PixelSample s) {
           detail::sanitize_and_count(s, options, tally);

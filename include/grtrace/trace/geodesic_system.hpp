@@ -27,7 +27,9 @@
 #pragma once
 
 #include "grtrace/core/types.hpp"
+#include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/metric_traits.hpp"
 
 #include <cmath>
 #include <concepts>
@@ -92,6 +94,39 @@ struct MetricGeodesicSystem {
 
   /// Forced inline: the stepper calls it once per stage, and it is no more than the metric's acceleration.
   [[gnu::always_inline]] State operator()(const State& y) const { return GeodesicEquation<Metric>{metric}(y); }
+  /// The same on W states at once, lane-innermost (a Batch<8, W>, integrate/batch_stepper.hpp): lane l is
+  /// operator() of lane l bit for bit, so a batched lane stays its ray alone.
+  template <std::size_t W>
+  [[gnu::always_inline]] void operator()(const std::array<std::array<double, W>, 8>& y,
+                                         std::array<std::array<double, W>, 8>& dy) const {
+    for (std::size_t i = 0; i < 4; ++i) dy[i] = y[i + 4];
+    if constexpr (lane_acceleration<W>()) {
+      // All lanes per instruction (metric/metric_traits.hpp); else the scalar acceleration lane by lane.
+      std::array<Lanes<static_cast<int>(W)>, 4> x, k;
+      for (std::size_t i = 0; i < 4; ++i) {
+        x[i] = load_lanes(y[i]);
+        k[i] = load_lanes(y[i + 4]);
+      }
+      const auto a = metric->template acceleration_lanes<static_cast<int>(W)>(x, k);
+      for (std::size_t i = 0; i < 4; ++i) store_lanes(a[i], dy[i + 4]);
+      return;
+    }
+    for (std::size_t l = 0; l < W; ++l) {
+      Vec4 x, k;
+      for (std::size_t i = 0; i < 4; ++i) {
+        x[static_cast<int>(i)] = y[i][l];
+        k[static_cast<int>(i)] = y[i + 4][l];
+      }
+      const Vec4 a = metric->acceleration(x, k);
+      for (std::size_t i = 0; i < 4; ++i) dy[i + 4][l] = a[static_cast<int>(i)];
+    }
+  }
+  // True when the metric evaluates W lanes at once (Lanes<W> exists for W = 2, 4, 8: core/lanes.hpp).
+  template <std::size_t W>
+  static constexpr bool lane_acceleration() {
+    if constexpr (W == 2 || W == 4 || W == 8) return HasLaneAcceleration<Metric, static_cast<int>(W)>;
+    else return false;
+  }
   double radius(const State& y) const { return metric->radius(y.head<4>()); }
   double radial_coordinate(const State& y) const { return radius(y); }
   static double radial_coordinate_at(double r) { return r; }

@@ -30,7 +30,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 
 namespace grtrace {
@@ -113,10 +115,9 @@ void for_each_event(const Tuple& events, F&& f) {
   }(std::make_index_sequence<std::tuple_size_v<Tuple>>{});
 }
 
-inline RayStatus status_of(std::size_t event_index, TraceResult& result) {
+inline RayStatus status_of(std::size_t event_index) {
   if (event_index == 0) return RayStatus::captured;
   if (event_index == 1) return RayStatus::escaped;
-  result.hit_event = static_cast<int>(event_index) - 2;
   return RayStatus::hit;
 }
 
@@ -159,6 +160,220 @@ std::pair<double, typename System::State> refine_located(Integrator& integ, cons
 }
 }  // namespace detail
 
+/// What the tracing loop carries from one accepted step to the next besides the integrator: each surface's value at
+/// the last accepted point, whether the horizon guard is armed, the steps since the last constraint check, and the
+/// counts TraceResult reports (chart wraps, right-hand sides spent refining crossings).
+template <std::size_t K>
+struct TraceProgress {
+  std::array<double, K> g_prev{};
+  bool guard_armed = true;
+  int steps_since_check = 0;
+  int chart_wraps = 0;
+  long refinement_evals = 0;
+};
+
+/// The tracing loop of one ray through a geodesic system (trace/geodesic_system.hpp), split into its start, its
+/// steps from any accepted point, and the test a batched lane needs (trace/batched_trace.hpp): whether an accepted
+/// step leaves the loop anything to do. trace_geodesic_system below is begin() then run().
+/// Slots 0 and 1 of the event list are the horizon guard and the sky sphere, both read off the system's radial
+/// coordinate rho(r) (increasing in r); the others are the user's events on geodesic_state(z).
+/// Holds references to the settings and the events: they must outlive it (one trace call).
+template <ExplicitTableau Tableau, StepController Controller, GeodesicSystem System, class... Events>
+class TraceLoop {
+  struct RadiusSlot {};  // placeholder in the event list for the two radial surfaces
+
+ public:
+  using Integrator = ControlledIntegrator<Tableau, Controller, System::dimension>;
+  using State = typename System::State;
+  static constexpr std::size_t K = 2 + sizeof...(Events);
+  using Progress = TraceProgress<K>;
+
+  /// Takes the system built for this ray, the settings, the capture radius r_cap of the ray (<= 0: no horizon,
+  /// e.g. flat space or a wormhole) and the events.
+  TraceLoop(const System& system, const TraceSettings& settings, double r_capture, const Events&... events)
+      : system_(system),
+        settings_(settings),
+        all_(RadiusSlot{}, RadiusSlot{}, events...),
+        has_horizon_(r_capture > 0.0),
+        rho_guard_(system.radial_coordinate_at((1.0 + settings.horizon_epsilon) * r_capture)),
+        rho_escape_(system.radial_coordinate_at(settings.escape_radius)) {}
+
+  const System& system() const { return system_; }
+
+  /// Prepares the progress for a ray starting at z0 and starts the integrator there. A ray that starts inside the
+  /// guard and comes out (leaves_interior: a camera inside the hole, in a chart that penetrates the horizon) is
+  /// not captured there: its guard is armed once it is outside (a ray that then falls back in is captured as any
+  /// other). Returns the result when the ray ends at its start (non-finite, or on the wrong side of a surface).
+  std::optional<TraceResult> begin(const State& z0, bool leaves_interior, Progress& p, Integrator& integ) const {
+    p = Progress{};
+    p.guard_armed = !(has_horizon_ && !(system_.radial_coordinate(z0) > rho_guard_) && leaves_interior);
+    detail::for_each_event(all_, [&](std::size_t i, const auto& e) { p.g_prev[i] = on_state(i, e, z0, p); });
+    if (!all_finite(z0)) return finish(RayStatus::non_finite, z0, 0.0, integ, p);
+    for (std::size_t i = 0; i < K; ++i)
+      if (!two_sided[i] && !(p.g_prev[i] > 0.0)) return finish(detail::status_of(i), z0, 0.0, integ, p, i);
+    integ.start(system_, z0, settings_.initial_step);
+    return std::nullopt;
+  }
+
+  /// Integrates from the integrator's current (accepted) point until a surface, a failure or max_steps ends the
+  /// ray; the step count goes on from integ.accepted(). The observer sees every accepted step.
+  template <class Observer>
+  TraceResult run(Integrator& integ, Progress& p, Observer&& observer) const {
+    while (integ.accepted() < settings_.max_steps)
+      if (auto ended = step(integ, p, observer)) return *ended;
+    return out_of_steps(integ, p);
+  }
+
+  /// One accepted step of run() and what follows it (surfaces, guards, the chart): the result when it ends the
+  /// ray, nothing when the ray goes on (a caller that stops at integ.accepted() == max_steps ends it with
+  /// out_of_steps).
+  template <class Observer>
+  std::optional<TraceResult> step(Integrator& integ, Progress& p, Observer&& observer) const {
+    const int check_interval = std::max(1, settings_.constraint_check_interval);
+    const StepOutcome outcome = integ.advance(system_);
+    if (outcome != StepOutcome::ok) {
+      // An underflow where the right-hand side itself is not finite (e.g. a start on the polar axis of a
+      // spherical chart, where cot(theta) diverges) is a non-finite ray, not a step-size problem.
+      // A state that fails the constraint guard (not checked since the last interval) is non_finite too.
+      const bool rhs_finite = outcome == StepOutcome::step_underflow && all_finite(system_(integ.state())) &&
+                              !(p.steps_since_check > 0 && violated(integ.state()));
+      return finish(rhs_finite ? RayStatus::step_underflow : RayStatus::non_finite, integ.state(), integ.lambda(),
+                    integ, p);
+    }
+    // The earliest surface crossed inside this step ends the ray.
+    double theta_first = std::numeric_limits<double>::infinity();
+    State z_first = State::Zero();
+    std::size_t first = K;
+    // The horizon and the sky sphere test the same radial coordinate: computed once per step (a square root or
+    // two for Kerr-Schild).
+    const double rho_now = system_.radial_coordinate(integ.state());
+    detail::for_each_event(all_, [&](std::size_t i, const auto& e) {
+      const double g1 = i < 2 ? radial_event(i, rho_now, p) : on_state(i, e, integ.state(), p);
+      // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
+      const double side = two_sided[i] && p.g_prev[i] < 0.0 ? -1.0 : 1.0;
+      if (!needs_location(i, p.g_prev[i], g1)) {
+        p.g_prev[i] = g1;
+        return;
+      }
+      auto g_state = [&](const State& z) { return side * on_state(i, e, z, p); };
+      auto g_of_theta = [&](double t) { return g_state(integ.dense(t)); };
+      // Bracketed on the dense output (cheap), then refined on the step map (a few steps); a crossing the
+      // dense output puts after an already accepted one is not refined: it cannot end the ray.
+      if (auto c = locate_first_crossing(g_of_theta, side * p.g_prev[i], side * g1, samples[i]);
+          c && c->theta < theta_first) {
+        const long evals_before = integ.rhs_evals();
+        const bool refine = settings_.refine_events && (i != 1 || settings_.refine_escape);  // 1: the sky sphere
+        const auto [theta_hit, z_hit] = detail::refine_located(integ, system_, g_of_theta, g_state, *c, refine);
+        p.refinement_evals += integ.rhs_evals() - evals_before;
+        if (theta_hit < theta_first && event_accepts(e, system_.geodesic_state(z_hit))) {
+          theta_first = theta_hit;
+          z_first = z_hit;
+          first = i;
+        }
+      }
+      p.g_prev[i] = g1;
+    });
+    if (first < K) {
+      observer(integ, theta_first);
+      const double lambda_hit = integ.previous_lambda() + theta_first * integ.last_step();
+      if (violated(z_first)) return finish(RayStatus::non_finite, z_first, lambda_hit, integ, p);
+      return finish(detail::status_of(first), z_first, lambda_hit, integ, p, first);
+    }
+    if (!p.guard_armed && rho_now > rho_guard_) {  // out of the hole: from here on a fall back inside is a capture
+      p.guard_armed = true;
+      p.g_prev[0] = rho_now - rho_guard_;
+    }
+    if (++p.steps_since_check >= check_interval) {
+      p.steps_since_check = 0;
+      if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ, p);
+    }
+    observer(integ, 1.0);
+    if (State z = integ.state(); system_.wrap_chart(z)) {
+      ++p.chart_wraps;
+      integ.reseat(system_, z);
+      detail::for_each_event(all_, [&](std::size_t i, const auto& e) { p.g_prev[i] = on_state(i, e, z, p); });
+    }
+    return std::nullopt;
+  }
+
+  /// The end of a ray that used its max_steps steps (a last constraint check, then max_steps).
+  TraceResult out_of_steps(const Integrator& integ, const Progress& p) const {
+    if (p.steps_since_check > 0 && violated(integ.state()))
+      return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ, p);
+    return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ, p);
+  }
+
+  /// For a step taken outside run() (a batched lane) from an accepted point with progress p to the accepted point
+  /// z: true when run() would do nothing after it but go on (no surface to locate, no constraint check that fails,
+  /// no change of the guard or the chart); p then moves on to z exactly as run() would move it. False leaves p
+  /// as it was: the step must be taken again by run() from its start, which then does what is due.
+  bool uneventful(const State& z, Progress& p) const {
+    if (!p.guard_armed) return false;
+    std::array<double, K> g{};
+    bool quiet = true;
+    const double rho = system_.radial_coordinate(z);
+    detail::for_each_event(all_, [&](std::size_t i, const auto& e) {
+      g[i] = i < 2 ? radial_event(i, rho, p) : on_state(i, e, z, p);
+      quiet = quiet && !needs_location(i, p.g_prev[i], g[i]);
+    });
+    if (!quiet) return false;
+    const bool check_due = p.steps_since_check + 1 >= std::max(1, settings_.constraint_check_interval);
+    if (check_due && violated(z)) return false;
+    if (State wrapped = z; system_.wrap_chart(wrapped)) return false;
+    p.g_prev = g;
+    p.steps_since_check = check_due ? 0 : p.steps_since_check + 1;
+    return true;
+  }
+
+ private:
+  static constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};
+  static constexpr std::array<bool, K> two_sided = {false, false, event_is_two_sided<Events>()...};
+
+  // True when the step from g_prev to g1 may cross surface i (a sign change, or interior samples to look at).
+  static bool needs_location(std::size_t i, double g_prev, double g1) {
+    const double side = two_sided[i] && g_prev < 0.0 ? -1.0 : 1.0;
+    return !((two_sided[i] && g_prev == 0.0) || (side * g1 > 0.0 && samples[i] == 0));
+  }
+  // The horizon (slot 0) and the sky sphere (slot 1) at the radial coordinate rho.
+  double radial_event(std::size_t i, double rho, const Progress& p) const {
+    if (i == 0) return has_horizon_ && p.guard_armed ? rho - rho_guard_ : 1.0;
+    return rho_escape_ - rho;
+  }
+  // Every event on the integrated state: the two radial ones on its rho, the others on its (x, k).
+  template <class E>
+  double on_state(std::size_t i, const E& e, const State& z, const Progress& p) const {
+    if constexpr (std::is_same_v<E, RadiusSlot>) return radial_event(i, system_.radial_coordinate(z), p);
+    else return e(system_.geodesic_state(z));
+  }
+  bool violated(const State& z) const {
+    const double guard = settings_.constraint_tolerance;
+    return guard > 0.0 && system_.constraint_violation(z) > guard;
+  }
+  // The result of a ray that ends at z (event: the surface that ended it, for status hit).
+  TraceResult finish(RayStatus status, const State& z, double lambda, const Integrator& integ, const Progress& p,
+                     std::size_t event = 0) const {
+    TraceResult result;
+    result.status = status;
+    if (status == RayStatus::hit) result.hit_event = static_cast<int>(event) - 2;
+    result.chart_wraps = p.chart_wraps;
+    result.refinement_evals = p.refinement_evals;
+    result.final_state = system_.geodesic_state(z);
+    result.step_end_state = integ.accepted() > 0 ? system_.geodesic_state(integ.state()) : result.final_state;
+    result.lambda = lambda;
+    result.accepted = integ.accepted();
+    result.rejected = integ.rejected();
+    result.rhs_evals = integ.rhs_evals();
+    result.constraint_drift = system_.constraint_drift(z);
+    return result;
+  }
+
+  System system_;
+  const TraceSettings& settings_;
+  std::tuple<RadiusSlot, RadiusSlot, const Events&...> all_;
+  bool has_horizon_;
+  double rho_guard_, rho_escape_;
+};
+
 /// The tracing loop, for any geodesic system (trace/geodesic_system.hpp): integrates z0 until the horizon guard,
 /// the sky sphere or one of the events ends it (see the top of this file for the statuses and the guard).
 /// Takes:   the system built for this ray, the settings, a controller, z0, the capture radius r_cap of the ray
@@ -171,128 +386,12 @@ template <ExplicitTableau Tableau, StepController Controller, GeodesicSystem Sys
 TraceResult trace_geodesic_system(const System system, const TraceSettings& settings, const Controller& controller,
                                   const typename System::State& z0, double r_capture, bool leaves_interior,
                                   Observer&& observer, const Events&... events) {
-  using Integrator = ControlledIntegrator<Tableau, Controller, System::dimension>;
-  using State = typename System::State;
-  // Metrics without a horizon (flat space, wormholes: horizon_radius() == 0) get no capture surface at all.
-  // The guard and the sky sphere are located on the system's radial coordinate rho(r) (increasing in r).
-  const bool has_horizon = r_capture > 0.0;
-  const double rho_guard = system.radial_coordinate_at((1.0 + settings.horizon_epsilon) * r_capture);
-  const double rho_escape = system.radial_coordinate_at(settings.escape_radius);
-  // A ray that starts inside the guard and comes out (a camera inside the hole, in a chart that penetrates the
-  // horizon) is not captured there: its guard is armed once it is outside it (a ray that then falls back in is
-  // captured as any other).
-  bool guard_armed = !(has_horizon && !(system.radial_coordinate(z0) > rho_guard) && leaves_interior);
-  // Slots 0 and 1 of the event list are the horizon guard and the sky sphere, both read off the radial coordinate
-  // (radial_event); their callables are only placeholders.
-  const auto radius_surface = [](const GeodesicState&) { return 1.0; };
-  constexpr std::size_t K = 2 + sizeof...(Events);
-  constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};
-  constexpr std::array<bool, K> two_sided = {false, false, event_is_two_sided<Events>()...};
-  // The horizon (slot 0) and the sky sphere (slot 1) at the radial coordinate rho; every event on the integrated
-  // state: those two on its rho, the others on its (x, k).
-  auto radial_event = [&](std::size_t i, double rho) -> double {
-    if (i == 0) return has_horizon && guard_armed ? rho - rho_guard : 1.0;
-    return rho_escape - rho;
-  };
-  auto on_state = [&](std::size_t i, const auto& e, const State& z) -> double {
-    return i < 2 ? radial_event(i, system.radial_coordinate(z)) : e(system.geodesic_state(z));
-  };
-  const auto all = std::tie(radius_surface, radius_surface, events...);
-
-  TraceResult result;
-  auto finish = [&](RayStatus status, const State& z, double lambda, const Integrator& integ) {
-    result.status = status;
-    result.final_state = system.geodesic_state(z);
-    result.step_end_state = integ.accepted() > 0 ? system.geodesic_state(integ.state()) : result.final_state;
-    result.lambda = lambda;
-    result.accepted = integ.accepted();
-    result.rejected = integ.rejected();
-    result.rhs_evals = integ.rhs_evals();
-    result.constraint_drift = system.constraint_drift(z);
-    return result;
-  };
-  const double guard = settings.constraint_tolerance;
-  auto violated = [&](const State& z) { return guard > 0.0 && system.constraint_violation(z) > guard; };
-  const int check_interval = std::max(1, settings.constraint_check_interval);
-  int steps_since_check = 0;
-
-  std::array<double, K> g_prev{};
-  detail::for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = on_state(i, e, z0); });
-
-  Integrator integ(settings.integrator, controller);
-  if (!all_finite(z0)) return finish(RayStatus::non_finite, z0, 0.0, integ);
-  for (std::size_t i = 0; i < K; ++i)
-    if (!two_sided[i] && !(g_prev[i] > 0.0)) return finish(detail::status_of(i, result), z0, 0.0, integ);
-
-  integ.start(system, z0, settings.initial_step);
-  for (int step = 0; step < settings.max_steps; ++step) {
-    const StepOutcome outcome = integ.advance(system);
-    if (outcome != StepOutcome::ok) {
-      // An underflow where the right-hand side itself is not finite (e.g. a start on the polar axis of a
-      // spherical chart, where cot(theta) diverges) is a non-finite ray, not a step-size problem.
-      // A state that fails the constraint guard (not checked since the last interval) is non_finite too.
-      const bool rhs_finite = outcome == StepOutcome::step_underflow && all_finite(system(integ.state())) &&
-                              !(steps_since_check > 0 && violated(integ.state()));
-      return finish(rhs_finite ? RayStatus::step_underflow : RayStatus::non_finite, integ.state(), integ.lambda(),
-                    integ);
-    }
-    // The earliest surface crossed inside this step ends the ray.
-    double theta_first = std::numeric_limits<double>::infinity();
-    State z_first = State::Zero();
-    std::size_t first = K;
-    // The horizon and the sky sphere test the same radial coordinate: computed once per step (a square root or
-    // two for Kerr-Schild).
-    const double rho_now = system.radial_coordinate(integ.state());
-    detail::for_each_event(all, [&](std::size_t i, const auto& e) {
-      const double g1 = i < 2 ? radial_event(i, rho_now) : on_state(i, e, integ.state());
-      // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
-      const double side = two_sided[i] && g_prev[i] < 0.0 ? -1.0 : 1.0;
-      if ((two_sided[i] && g_prev[i] == 0.0) || (side * g1 > 0.0 && samples[i] == 0)) {
-        g_prev[i] = g1;
-        return;
-      }
-      auto g_state = [&](const State& z) { return side * on_state(i, e, z); };
-      auto g_of_theta = [&](double t) { return g_state(integ.dense(t)); };
-      // Bracketed on the dense output (cheap), then refined on the step map (a few steps); a crossing the
-      // dense output puts after an already accepted one is not refined: it cannot end the ray.
-      if (auto c = locate_first_crossing(g_of_theta, side * g_prev[i], side * g1, samples[i]);
-          c && c->theta < theta_first) {
-        const long evals_before = integ.rhs_evals();
-        const bool refine = settings.refine_events && (i != 1 || settings.refine_escape);  // 1: the sky sphere
-        const auto [theta_hit, z_hit] = detail::refine_located(integ, system, g_of_theta, g_state, *c, refine);
-        result.refinement_evals += integ.rhs_evals() - evals_before;
-        if (theta_hit < theta_first && event_accepts(e, system.geodesic_state(z_hit))) {
-          theta_first = theta_hit;
-          z_first = z_hit;
-          first = i;
-        }
-      }
-      g_prev[i] = g1;
-    });
-    if (first < K) {
-      observer(integ, theta_first);
-      const double lambda_hit = integ.previous_lambda() + theta_first * integ.last_step();
-      if (violated(z_first)) return finish(RayStatus::non_finite, z_first, lambda_hit, integ);
-      return finish(detail::status_of(first, result), z_first, lambda_hit, integ);
-    }
-    if (!guard_armed && rho_now > rho_guard) {  // out of the hole: from here on a fall back inside is a capture
-      guard_armed = true;
-      g_prev[0] = rho_now - rho_guard;
-    }
-    if (++steps_since_check >= check_interval) {
-      steps_since_check = 0;
-      if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
-    }
-    observer(integ, 1.0);
-    if (State z = integ.state(); system.wrap_chart(z)) {
-      ++result.chart_wraps;
-      integ.reseat(system, z);
-      detail::for_each_event(all, [&](std::size_t i, const auto& e) { g_prev[i] = on_state(i, e, z); });
-    }
-  }
-  if (steps_since_check > 0 && violated(integ.state()))
-    return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ);
-  return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ);
+  using Loop = TraceLoop<Tableau, Controller, System, Events...>;
+  const Loop loop(system, settings, r_capture, events...);
+  typename Loop::Integrator integ(settings.integrator, controller);
+  typename Loop::Progress progress;
+  if (auto ended = loop.begin(z0, leaves_interior, progress, integ)) return *ended;
+  return loop.run(integ, progress, observer);
 }
 
 /// The tracer of any metric policy: the geodesic equation (MetricGeodesicSystem) through trace_geodesic_system.

@@ -10,6 +10,10 @@
 //                                                the spacetime and scene it traces: render_frame then checks the
 //                                                frame's mirror symmetries (render/mirror_symmetry.hpp) and traces
 //                                                only the pixels it cannot reflect; without them every pixel is traced
+//   void trace_many(std::span<const GeodesicState> y0, std::span<RayOutcome> out) const
+//                                                out[i] = trace(y0[i]) for a group of rays, bit for bit, in less time
+//                                                (GeneralSceneTracer: rays side by side, trace/batched_trace.hpp):
+//                                                render_frame then traces each tile's pixels together (TracesMany)
 // The library's tracers: GeneralSceneTracer (any metric, every pixel integrated, trace/scene_tracer.hpp),
 // SymmetricSceneTracer (Schwarzschild sky and horizon from one table of rays), StraightLineTracer (flat space).
 #pragma once
@@ -19,6 +23,7 @@
 #include "grtrace/trace/ray_outcome.hpp"
 
 #include <concepts>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,5 +37,12 @@ concept SceneTracer = requires(const T t, const GeodesicState y, const RayOutcom
   { t.scene().shade(o) } -> std::same_as<PixelSample>;
   { t.scene().object_names() } -> std::convertible_to<std::vector<std::string>>;
 };
+
+/// The optional trait above: a scene tracer that traces a group of rays in one call.
+template <class T>
+concept TracesMany =
+    SceneTracer<T> && requires(const T t, std::span<const GeodesicState> y0, std::span<RayOutcome> out) {
+                        t.trace_many(y0, out);
+                      };
 
 }  // namespace grtrace

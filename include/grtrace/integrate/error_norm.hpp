@@ -36,36 +36,29 @@ struct RmsNorm {
     return std::sqrt(sum / N);
   }
 
-  /// The same for W lanes at once (component-major, integrate/batch_stepper.hpp): lane l is operator() on lane l
-  /// bit for bit (the same operations in the same order), with the lanes side by side in vector registers.
+  /// The same for W lanes at once (component-major, integrate/batch_stepper.hpp; W = 2, 4 or 8, one SIMD vector,
+  /// core/lanes.hpp): lane l is operator() on lane l bit for bit (the same operations in the same order). In vector
+  /// registers because the compiler leaves a loop over the lanes scalar; other widths are normed lane by lane
+  /// (BatchedIntegrator does).
   template <std::size_t N, std::size_t W>
+    requires(W == 2 || W == 4 || W == 8)
   std::array<double, W> operator()(const std::array<std::array<double, W>, N>& err,
                                    const std::array<std::array<double, W>, N>& y,
                                    const std::array<std::array<double, W>, N>& y_new, const Tolerance& tol) const {
-    std::array<double, W> sum{};
-    if constexpr (W == 2 || W == 4 || W == 8) {
-      // In vector registers (core/lanes.hpp): the compiler leaves the loop below scalar.
-      constexpr int w = static_cast<int>(W);
-      const auto abs = [](const Lanes<w>& x) {  // std::abs: the sign bit cleared
-        return std::bit_cast<Lanes<w>>(std::bit_cast<LaneMask<w>>(x) & std::numeric_limits<std::int64_t>::max());
-      };
-      const Lanes<w> atol = splat<w>(tol.atol), rtol = splat<w>(tol.rtol);
-      Lanes<w> s = splat<w>(0.0);
-      for (std::size_t i = 0; i < N; ++i) {
-        const Lanes<w> a = abs(load_lanes(y[i])), b = abs(load_lanes(y_new[i]));
-        const Lanes<w> sc = atol + rtol * (a < b ? b : a);  // std::max(a, b)
-        const Lanes<w> e = load_lanes(err[i]) / sc;
-        s = mul_add(e, e, s);
-      }
-      store_lanes(s, sum);
-    } else {
-      for (std::size_t i = 0; i < N; ++i)
-        for (std::size_t l = 0; l < W; ++l) {
-          const double sc = tol.atol + tol.rtol * std::max(std::abs(y[i][l]), std::abs(y_new[i][l]));
-          const double e = err[i][l] / sc;
-          sum[l] = mul_add(e, e, sum[l]);
-        }
+    constexpr int w = static_cast<int>(W);
+    const auto abs = [](const Lanes<w>& x) {  // std::abs: the sign bit cleared
+      return std::bit_cast<Lanes<w>>(std::bit_cast<LaneMask<w>>(x) & std::numeric_limits<std::int64_t>::max());
+    };
+    const Lanes<w> atol = splat<w>(tol.atol), rtol = splat<w>(tol.rtol);
+    Lanes<w> s = splat<w>(0.0);
+    for (std::size_t i = 0; i < N; ++i) {
+      const Lanes<w> a = abs(load_lanes(y[i])), b = abs(load_lanes(y_new[i]));
+      const Lanes<w> sc = atol + rtol * (a < b ? b : a);  // std::max(a, b)
+      const Lanes<w> e = load_lanes(err[i]) / sc;
+      s = mul_add(e, e, s);
     }
+    std::array<double, W> sum{};
+    store_lanes(s, sum);
     for (std::size_t l = 0; l < W; ++l) sum[l] = std::sqrt(sum[l] / static_cast<int>(N));
     return sum;
   }

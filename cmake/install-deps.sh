@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config   # Ninja: the presets' generator (parallel, a build log with times)
   libglm-dev libeigen3-dev            # core: numerics (Eigen) and graphics vectors (GLM)
   libopenexr-dev libpng-dev           # renderer output
   libdeflate-dev                      # renderer: fast deflate of the EXR chunks

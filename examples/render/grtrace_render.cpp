@@ -19,7 +19,7 @@
 #include "grtrace/render/frame_files.hpp"
 #include "grtrace/render/png_preview.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
-#include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/app/tool_methods.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -71,8 +71,10 @@ CommandLine make_command_line() {
       .option("fov", "90", "horizontal field of view, degrees, in (0, 180)")
       .option("width", "1024", "image width in pixels")
       .option("height", "1024", "image height in pixels")
-      .option("tableau", "rkf78", "Runge-Kutta tableau: " + tools::join(tableau_names(), "|"))
-      .option("control", "i", "step control: fixed | doubling | i | pi")
+      .option("tableau", "rkf78", "Runge-Kutta tableau: " + app::tool_tableau_names() +
+                                      ". With --control, one of the offered methods: " + app::tool_methods_list() +
+                                      " (every pair: grtrace-work-precision, grtrace-geodesic)")
+      .option("control", "i", "step control: " + app::tool_control_names() + " (see --tableau for the pairs)")
       .option("step", "0", "initial step (0 = automatic), or the step of --control fixed")
       .option("rtol", "1e-9", "relative tolerance")
       .option("atol", "1e-11", "absolute tolerance")
@@ -207,9 +209,10 @@ Request read_request(const CommandLine& cli) {
 
   q.tableau = cli.text("tableau");
   q.control = cli.text("control");
-  {  // validate the method name pair now, before any work
-    const auto err = dispatch_method(q.tableau, q.control, []<class T, class C>() {});
-    if (err != DispatchError::none) throw UsageError(describe(err, q.tableau, q.control));
+  try {  // one of the offered methods (grtrace/app/tool_methods.hpp), checked now, before any work
+    app::check_tool_method(q.tableau, q.control);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
   TraceSettings& s = q.settings;
   s.integrator.tolerance = {cli.number("rtol"), cli.number("atol")};
@@ -297,21 +300,6 @@ Request read_request(const CommandLine& cli) {
   }
 
   q.tracer = cli.text("tracer");
-  if (q.tracer != "auto" && q.tracer != "general" && q.tracer != "symmetric" && q.tracer != "planar")
-    throw UsageError("unknown --tracer '" + q.tracer + "'; choose auto, general, planar or symmetric");
-  if (q.tracer == "planar" && ms.name != "schwarzschild" && ms.name != "rn")
-    throw UsageError("--tracer planar needs a static spherically symmetric metric with a horizon (--metric "
-                     "schwarzschild or rn); use general");
-  if (q.tracer == "planar" && q.control == "fixed")
-    throw UsageError("--tracer planar integrates its table in swept angle, where a fixed --step would mean something "
-                     "else; use --control i, pi or doubling, or --tracer general");
-  if (q.tracer == "symmetric" && disk)
-    throw UsageError("--tracer symmetric cannot draw a disk (it breaks the spherical symmetry); use general");
-  if (q.tracer == "symmetric" && ms.name != "schwarzschild")
-    throw UsageError("--tracer symmetric needs --metric schwarzschild (its table assumes that metric); use general");
-  if (ms.name == "minkowski") q.tracer = "straight-line";
-  // auto (and planar, checked above): the library picks the fastest tracer whose assumptions hold
-  // (trace/auto_tracer.hpp); the JSON line and the EXR header say which one ran.
 
   const long squares = cli.integer("checker-squares");
   if (squares < 1 || squares > 10000) throw UsageError("--checker-squares must be in 1 .. 10000");
@@ -344,6 +332,15 @@ Request read_request(const CommandLine& cli) {
   q.mirror_symmetry = !cli.flag_set("no-mirrors");
   if (q.error_map && ms.name != "schwarzschild" && ms.name != "minkowski")
     throw UsageError("--error-map needs --metric schwarzschild or minkowski (the exact elliptic-integral reference)");
+
+  // Which tracer can draw this metric, scene and method is the application layer's answer (check_frame_request);
+  // auto picks the fastest tracer whose assumptions hold (trace/auto_tracer.hpp), and the JSON line and the EXR
+  // header say which one ran.
+  try {
+    app::check_frame_request(render_tool::frame_request(q));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
 
   q.out = cli.text("out");
   if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
@@ -515,13 +512,17 @@ void describe_frame(Image& image, const Request& q, const CommandLine& cli, int 
   image.metadata["angle_correction"] = q.correction_name;
 }
 
-/// The frame (or, for a flight, every frame through q.flight.sink) from the translation unit of q's metric.
+/// The frame (or, for a flight, every frame through q.flight.sink, and nothing returned), drawn by the
+/// application layer (grtrace/app/frame_tracer.hpp).
 std::optional<Frame> render_request(const Request& q, SkyDirections* where, TracerReport& table) {
-  const std::string& metric = q.metric.name;
-  if (metric == "schwarzschild" || metric == "minkowski") return render_tool::render_schwarzschild(q, where, table);
-  if (metric == "kerr") return render_tool::render_kerr(q, where);
-  if (metric == "rn" || metric == "sds") return render_tool::render_rn_sds(q, where, table);
-  return render_tool::render_wormhole_ef(q, where);
+  const app::FrameRequest request = render_tool::frame_request(q);
+  const RenderOptions options = q.render_options();
+  if (q.flight.cameras.empty()) return app::render_frame(request, *q.camera, options, where, &table);
+  const FlightStats stats = app::render_flight(
+      request, q.flight.cameras, q.flight.skip,
+      [&](int i, Frame&& frame, const TracerReport& report) { q.flight.sink(i, frame, report); }, options);
+  if (q.flight.stats) *q.flight.stats = stats;
+  return std::nullopt;
 }
 
 JsonObject status_counts_json(const std::array<long, kRayStatusCount>& counts) {

@@ -48,7 +48,7 @@
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/scene/thin_disk.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
-#include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/app/tool_methods.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/symmetric_scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
@@ -123,8 +123,9 @@ CommandLine make_command_line() {
   tools::declare_disk_retrograde_flag(cli, "; also picks the ISCO ring drawn. With --frame: the frame's sense "
                                            "unless given");
   cli.option("angle-correction", "exact", "sky direction of escaped rays: none | flat | exact")
-      .option("tableau", "dopri5", "Runge-Kutta tableau: " + tools::join(tableau_names(), "|"))
-      .option("control", "pi", "step control: fixed | doubling | i | pi")
+      .option("tableau", "dopri5", "Runge-Kutta tableau: " + app::tool_tableau_names() + "; with --control one of " +
+                                       app::tool_methods_list())
+      .option("control", "pi", "step control: " + app::tool_control_names() + " (see --tableau for the pairs)")
       .option("step", "0", "initial step (0 = automatic), or the step of --control fixed")
       .option("rtol", "1e-8", "relative tolerance")
       .option("atol", "1e-10", "absolute tolerance")
@@ -147,7 +148,8 @@ CommandLine make_command_line() {
       .option("orbit-r", "100", "orbit: start radius (equatorial plane, phi = 0; velocity --orbit-dr, --orbit-dphi)")
       .option("orbit-revolutions", "12", "orbit: turns in phi to trace")
       .option("orbit-tableau", "rk4", "orbit: tableau (the seed used classic RK4 with step doubling)")
-      .option("orbit-control", "doubling", "orbit: step control: fixed | doubling | i | pi")
+      .option("orbit-control", "doubling", "orbit: step control: " + app::tool_control_names() +
+                                                " (the pairs: see --tableau)")
       .option("orbit-rtol", "1e-7", "orbit: relative tolerance")
       .option("orbit-atol", "1e-10", "orbit: absolute tolerance")
       .option("orbit-step", "0", "orbit: initial step (0 = automatic; the step of --orbit-control fixed)")
@@ -235,9 +237,11 @@ MethodChoice read_method(const Params& p, const std::string& prefix, double esca
   if (!(m.settings.integrator.tolerance.atol >= 0.0 && m.settings.integrator.tolerance.atol < 1.0))
     throw UsageError("--" + prefix + "atol must lie in [0, 1), got " + p.text(prefix + "atol"));
   m.settings.escape_radius = escape_radius;
-  const auto error = dispatch_method(m.tableau, m.control, []<class T, class C>() {});
-  if (error != DispatchError::none)
-    throw UsageError("--" + prefix + "tableau / --" + prefix + "control: " + describe(error, m.tableau, m.control));
+  try {  // one of the methods the tools offer (grtrace/app/tool_methods.hpp)
+    app::check_tool_method(m.tableau, m.control);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--" + prefix + "tableau / --" + prefix + "control: " + e.what());
+  }
   return m;
 }
 

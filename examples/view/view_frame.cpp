@@ -1,39 +1,35 @@
-// grtrace-view: the frame rendered in-process (see view_request.hpp).
+// grtrace-view: the frame rendered in-process (see view_request.hpp), by the application layer that draws
+// grtrace-render's frames (grtrace/app/frame_tracer.hpp): the same tracers, compiled once.
 #include "view_request.hpp"
 
-#include "grtrace/render/frame.hpp"
-#include "grtrace/trace/method_dispatch.hpp"
-#include "grtrace/trace/auto_tracer.hpp"
-#include "grtrace/trace/scene_tracer.hpp"
-
-#include <stdexcept>
-#include <type_traits>
+#include "grtrace/app/frame_tracer.hpp"
 
 namespace grtrace::view {
 
-/// Renders the frame in-process as grtrace-render does (--tracer auto, trace/auto_tracer.hpp): the fastest exact
-/// tracer for the scene: one table of rays (planar tracer) around a Schwarzschild hole, disk included; every pixel
-/// integrated for Kerr in either chart (its sky is not spherically symmetric). The image header's "tracer" says
-/// which ran.
+/// The request's frame as grtrace-render draws it with --tracer auto (trace/auto_tracer.hpp): one table of rays
+/// (planar tracer) around a Schwarzschild hole, disk included; Kerr's separated equations (kerr-mino) in
+/// Boyer-Lindquist coordinates with an adaptive controller; every pixel integrated otherwise. The image header's
+/// "tracer" says which ran.
+app::FrameRequest frame_request(const Request& q) {
+  app::FrameRequest f;
+  f.metric.name = q.kerr ? "kerr" : "schwarzschild";
+  f.metric.mass = q.mass;
+  f.metric.spin = q.kerr ? q.spin : 0.0;
+  f.metric.chart = q.kerr ? q.chart : "bl";
+  f.metric.slicing = q.ks_slicing;
+  f.scene = make_scene_spec(q);
+  f.tableau = q.rays.tableau;
+  f.control = q.rays.control;
+  f.settings = q.rays.settings;
+  f.correction = q.correction;
+  return f;
+}
+
 Image render_frame(const Request& q) {
-  const Camera& camera = *q.camera;
   RenderOptions options;
   options.threads = q.threads;
   options.progress_label = "frame";
-  std::optional<Frame> frame;
-  dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
-    with_standard_scene(make_scene_spec(q), [&]<class Scene>(Scene scene) {
-      auto draw = [&](const auto& tracer) { frame.emplace(grtrace::render_frame(camera, tracer, options)); };
-      with_metric(q, [&](const auto& metric) {
-        if constexpr (scene_fits_metric<std::remove_cvref_t<decltype(metric)>, Scene>)
-          with_auto_tracer<T, C>(metric, q.rays.settings, camera, q.correction, scene, grtrace::default_table_rays,
-                                 draw);
-        else
-          throw std::logic_error("grtrace-view: a disk scene in a chart that cannot hold it was not refused");
-      });
-    });
-  });
-  return std::move(frame->image);
+  return app::render_frame(frame_request(q), *q.camera, options).image;
 }
 
 }  // namespace grtrace::view

@@ -2,13 +2,13 @@
 #include "view_request.hpp"
 
 #include "grtrace/metric/schwarzschild.hpp"
-#include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/app/tool_methods.hpp"
 
 namespace grtrace::view {
 
 viz::TracedPath trace_orbit(const Request& q) {
   viz::TracedPath path;
-  dispatch_method(q.orbit_method.tableau, q.orbit_method.control, [&]<class T, class C>() {
+  app::dispatch_tool_method(q.orbit_method.tableau, q.orbit_method.control, [&]<class T, class C>() {
     const GeodesicTracer<SchwarzschildMetric, T, C> tracer(SchwarzschildMetric{q.mass}, q.orbit_method.settings);
     path = viz::trace_orbit(tracer, q.orbit, q.samples_per_step);
   });

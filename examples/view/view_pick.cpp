@@ -1,7 +1,7 @@
 // grtrace-view: picked pixels (see view_request.hpp).
 #include "view_request.hpp"
 
-#include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/app/tool_methods.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/pick.hpp"
 
@@ -15,7 +15,7 @@ namespace grtrace::view {
 viz::RayPick pick_ray(const Request& q, std::array<int, 2> pixel, const viz::Rgb8Image& frame) {
   const Camera& camera = *q.camera;
   viz::RayPick pick;
-  dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
+  app::dispatch_tool_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
     with_standard_scene(make_scene_spec(q), [&]<class Scene>(Scene scene) {
       with_metric(q, [&](const auto& metric) {
         if constexpr (scene_fits_metric<std::remove_cvref_t<decltype(metric)>, Scene>) {

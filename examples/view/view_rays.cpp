@@ -1,7 +1,7 @@
 // grtrace-view: the bundle's rays (see view_request.hpp).
 #include "view_request.hpp"
 
-#include "grtrace/trace/method_dispatch.hpp"
+#include "grtrace/app/tool_methods.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
 
@@ -15,7 +15,7 @@ namespace {
 /// Calls f(GeodesicTracer, events...) with the scene's objects as events (a disk for the disk scene).
 template <class F>
 void with_scene_tracer(const Request& q, F&& f) {
-  dispatch_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
+  app::dispatch_tool_method(q.rays.tableau, q.rays.control, [&]<class T, class C>() {
     with_metric(q, [&](const auto& metric) {
       using M = std::remove_cvref_t<decltype(metric)>;
       const GeodesicTracer<M, T, C> tracer(metric, q.rays.settings);

@@ -147,8 +147,8 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
        "bl", "kerr-mino"},
       {{"--spin", "-0.5", "--tracer", "general"}, -0.5, Orbit::prograde, "prograde", "zamo", "bl", "general"},
       {{"--spin", "0.9", "--chart", "ks"}, 0.9, Orbit::prograde, "prograde", "zamo", "ks", "general"},  // KS disk too
-      {{"--spin", "0.5", "--control", "fixed", "--step", "0.5"}, 0.5, Orbit::prograde, "prograde", "zamo", "bl",
-       "general"},  // a fixed step means something else in Mino time
+      {{"--spin", "0.5", "--tableau", "rk4", "--control", "fixed", "--step", "0.5"}, 0.5, Orbit::prograde, "prograde",
+       "zamo", "bl", "general"},  // a fixed step means something else in Mino time
   };
   for (const auto& c : cases) {
     const std::string path = out("disk.exr").string();

@@ -1,0 +1,74 @@
+// The frame tracers' front door: the checks, the dispatch by metric to the units that instantiate the tracers,
+// and the frame and flight loops over a FrameTracer, compiled once (grtrace/app/frame_tracer.hpp).
+#include "frame_tracers.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace grtrace::app {
+
+void check_frame_request(const FrameRequest& q) {
+  check_tool_method(q.tableau, q.control);
+  const std::string& metric = q.metric.name;
+  bool known_tracer = false;
+  for (std::string_view name : kTracerNames) known_tracer = known_tracer || name == q.tracer;
+  if (!known_tracer)
+    throw std::invalid_argument("unknown --tracer '" + q.tracer + "'; choose auto, general, planar or symmetric");
+  if (q.tracer == "planar" && metric != "schwarzschild" && metric != "rn")
+    throw std::invalid_argument("--tracer planar needs a static spherically symmetric metric with a horizon "
+                                "(--metric schwarzschild or rn); use general");
+  if (q.tracer == "planar" && q.control == "fixed")
+    throw std::invalid_argument("--tracer planar integrates its table in swept angle, where a fixed --step would mean "
+                                "something else; use --control i, pi or doubling, or --tracer general");
+  if (q.tracer == "symmetric" && q.scene.name == "disk")
+    throw std::invalid_argument("--tracer symmetric cannot draw a disk (it breaks the spherical symmetry); use "
+                                "general");
+  if (q.tracer == "symmetric" && metric != "schwarzschild")
+    throw std::invalid_argument("--tracer symmetric needs --metric schwarzschild (its table assumes that metric); "
+                                "use general");
+}
+
+void with_frame_tracer(const FrameRequest& q, const Camera& camera, const FrameTracerUser& f) {
+  check_frame_request(q);
+  const std::string& metric = q.metric.name;
+  if (metric == "schwarzschild" || metric == "minkowski") return with_schwarzschild_tracer(q, camera, f);
+  if (metric == "kerr") {
+    if (q.metric.chart == "ks") return with_kerr_schild_tracer(q, camera, f);
+    return with_kerr_tracer(q, camera, f);
+  }
+  if (metric == "rn" || metric == "sds") return with_rn_sds_tracer(q, camera, f);
+  if (metric == "wormhole" || metric == "schwarzschild-ef") return with_wormhole_ef_tracer(q, camera, f);
+  check_metric_spec(q.metric);  // throws: names the metrics there are
+  throw std::logic_error("grtrace_app: metric '" + metric + "' has no frame tracer");
+}
+
+Frame render_frame(const Camera& camera, const FrameTracer& tracer, const RenderOptions& options,
+                   std::vector<SkyDirection>* directions) {
+  return tracer.render(camera, options, directions);
+}
+
+TracerReport tracer_report(const FrameTracer& tracer) { return tracer.report(); }
+
+Frame render_frame(const FrameRequest& q, const Camera& camera, const RenderOptions& options,
+                   std::vector<SkyDirection>* directions, TracerReport* report) {
+  std::optional<Frame> frame;
+  with_frame_tracer(q, camera, [&](const FrameTracer& tracer) {
+    frame.emplace(tracer.render(camera, options, directions));
+    if (report) *report = tracer.report();
+  });
+  return std::move(*frame);
+}
+
+FlightStats render_flight(const FrameRequest& q, const std::vector<Camera>& cameras, const FlightSkip& skip,
+                          const FlightSink& sink, const RenderOptions& options) {
+  check_frame_request(q);
+  if (q.tracer == "symmetric") throw std::invalid_argument("--tracer symmetric does not fly; use auto (or general)");
+  return grtrace::render_flight(
+      cameras,
+      [&](const Camera& camera, auto&& f) {
+        with_frame_tracer(q, camera, [&](const FrameTracer& tracer) { f(tracer); });
+      },
+      skip, [&](int i, Frame&& frame, const TracerReport& report) { sink(i, std::move(frame), report); }, options);
+}
+
+}  // namespace grtrace::app

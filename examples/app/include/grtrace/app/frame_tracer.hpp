@@ -1,0 +1,97 @@
+// grtrace/app/frame_tracer.hpp
+// The rendering tools' frames, compiled once: names become types here and nowhere else. A FrameRequest names the
+// metric, the preset scene, the method (grtrace/app/tool_methods.hpp), the tracer and its settings; the
+// application layer (the static library grtrace_app that grtrace-render, grtrace-view and their tests link) builds
+// the one concrete scene tracer it names and hands it over as a FrameTracer: one virtual call per frame, below which
+// everything (the pixel loop, shading, mirror images, the trace loop) is the concrete tracer's own inlined code.
+//
+//   app::FrameRequest q;                    // the seed's main frame, rkf78 + I, tracer auto
+//   const Camera camera = ...;              // observer/camera_spec.hpp
+//   Frame frame = app::render_frame(q, camera);
+//
+// Takes:   a FrameRequest (checked by check_frame_request: what can draw what is the library's answer, not a string
+//          compare in a tool), a camera; for flights the cameras and the skip/sink of render/flight.hpp.
+// Returns: the Frame render_frame (render/frame.hpp) returns for the concrete tracer, bit for bit; the tracer's
+//          report (trace/tracer_report.hpp).
+// Why the boundary is the frame and not the tile: the frame loop's per-pixel work (shading, mirror reflections)
+//          stays inlined into each tracer's own loop, so a frame costs what it cost when every tool instantiated its
+//          tracers itself; the compile-time saving comes from instantiating each tracer once, in one place.
+#pragma once
+
+#include "grtrace/core/sky_direction.hpp"
+#include "grtrace/metric/named_metrics.hpp"
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/render/flight.hpp"
+#include "grtrace/render/frame.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
+#include "grtrace/trace/critical_angle_grid.hpp"
+#include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/tracer_report.hpp"
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace grtrace::app {
+
+/// What a frame is drawn with: everything the tools choose by name.
+struct FrameRequest {
+  MetricSpec metric;                 ///< metric/named_metrics.hpp
+  StandardSceneSpec scene;           ///< scene/standard_scenes.hpp
+  std::string tableau = "rkf78";     ///< with control: one of kToolMethods
+  std::string control = "i";
+  /// auto (the fastest tracer whose assumptions hold: trace/auto_tracer.hpp), general (every pixel integrated),
+  /// planar (auto's choice around a static spherical hole, asked for by name), symmetric (the older sky-only
+  /// table, Schwarzschild without objects). Flat space (minkowski) always draws straight lines.
+  std::string tracer = "auto";
+  TraceSettings settings;
+  AngleCorrection correction = AngleCorrection::exact;
+  int table_rays = grtrace::default_table_rays;  ///< planar and symmetric tracers: table rays per side
+};
+
+inline constexpr std::array<std::string_view, 4> kTracerNames = {"auto", "general", "planar", "symmetric"};
+
+/// Refuses (std::invalid_argument, saying what to change) a request whose tracer cannot draw its metric, scene or
+/// method, or whose method is not offered (check_tool_method). Checked before any work.
+void check_frame_request(const FrameRequest& q);
+
+/// The scene tracer a request names, as the frame loop sees it. Lives only inside a with_frame_tracer call.
+class FrameTracer {
+ public:
+  virtual ~FrameTracer() = default;
+  /// render_frame (render/frame.hpp) with the concrete tracer.
+  virtual Frame render(const Camera& camera, const RenderOptions& options,
+                       std::vector<SkyDirection>* directions) const = 0;
+  /// tracer_report (trace/tracer_report.hpp) of the concrete tracer: its name, table and fallback counts.
+  virtual TracerReport report() const = 0;
+
+ protected:
+  FrameTracer() = default;
+  FrameTracer(const FrameTracer&) = default;
+  FrameTracer& operator=(const FrameTracer&) = default;
+};
+
+/// render_frame and tracer_report for a FrameTracer: what render_flight (render/flight.hpp) calls on it.
+Frame render_frame(const Camera& camera, const FrameTracer& tracer, const RenderOptions& options = {},
+                   std::vector<SkyDirection>* directions = nullptr);
+TracerReport tracer_report(const FrameTracer& tracer);
+
+using FrameTracerUser = std::function<void(const FrameTracer&)>;
+
+/// Builds the tracer the request names for this camera (the planar tracer's table covers the camera's pixels) and
+/// calls f once with it. Throws std::invalid_argument for a request check_frame_request refuses.
+void with_frame_tracer(const FrameRequest& q, const Camera& camera, const FrameTracerUser& f);
+
+/// One frame: with_frame_tracer + render_frame; *report (if given) receives the tracer's report.
+Frame render_frame(const FrameRequest& q, const Camera& camera, const RenderOptions& options = {},
+                   std::vector<SkyDirection>* directions = nullptr, TracerReport* report = nullptr);
+
+using FlightSkip = std::function<bool(int)>;
+using FlightSink = std::function<void(int, Frame&&, const TracerReport&)>;
+
+/// A flight (render/flight.hpp) drawn with the request's tracer, built per camera.
+FlightStats render_flight(const FrameRequest& q, const std::vector<Camera>& cameras, const FlightSkip& skip,
+                          const FlightSink& sink, const RenderOptions& options = {});
+
+}  // namespace grtrace::app

@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config   # Ninja: the presets' generator (parallel, a build log with times)
-  libglm-dev libeigen3-dev            # core: numerics (Eigen) and graphics vectors (GLM)
+  libeigen3-dev                       # core: numerics and vectors (Eigen)
   libopenexr-dev libpng-dev           # renderer output
   libdeflate-dev                      # renderer: fast deflate of the EXR chunks
   libvtk9-dev                         # viz frontend

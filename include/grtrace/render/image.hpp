@@ -1,5 +1,6 @@
 // grtrace/render/image.hpp
-// What a render produces: one PixelSample per pixel, stored as planar float channels (the EXR layout).
+// What a render produces: one PixelSample (scene/pixel_sample.hpp) per pixel, stored as planar float channels
+// (the EXR layout).
 // Row 0 is the top of the picture, column 0 the left.
 //
 // Channels (names are part of the grtrace-render contract, shared/DESIGN.md):
@@ -22,6 +23,7 @@
 
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/core/memory_limit.hpp"
+#include "grtrace/scene/pixel_sample.hpp"
 #include "grtrace/render/output_file.hpp"
 
 #include <array>
@@ -61,17 +63,6 @@ inline void advise_huge_pages([[maybe_unused]] std::vector<float>& v, [[maybe_un
 }
 
 }  // namespace detail
-
-struct PixelSample {
-  static constexpr float nan = std::numeric_limits<float>::quiet_NaN();
-  std::array<float, 3> rgb{0.0f, 0.0f, 0.0f};
-  int object = 0;  ///< position in the scene: 0 sky, 1 horizon, 2... objects (scene/object_ids.hpp)
-  RayStatus status = RayStatus::max_steps;
-  float redshift = nan;
-  float sky_theta = nan;
-  float sky_phi = nan;
-  int steps = 0;
-};
 
 /// Planar float image with named channels, in a fixed channel order for the standard ones.
 class Image {

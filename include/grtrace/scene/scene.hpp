@@ -13,7 +13,7 @@
 // colour. With colour_by_redshift every pixel is painted by f_obs / f_src (seed Fig. 5) instead.
 #pragma once
 
-#include "grtrace/render/image.hpp"
+#include "grtrace/scene/pixel_sample.hpp"
 #include "grtrace/scene/colour_maps.hpp"
 #include "grtrace/scene/object_ids.hpp"
 #include "grtrace/scene/scene_object.hpp"

@@ -19,7 +19,7 @@
 #pragma once
 
 #include "grtrace/core/types.hpp"
-#include "grtrace/render/image.hpp"
+#include "grtrace/scene/pixel_sample.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 
 #include <concepts>

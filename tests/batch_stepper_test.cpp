@@ -8,6 +8,8 @@
 #include "grtrace/integrate/controlled_integrator.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
 
+#include "common/tableau_types.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -29,37 +31,40 @@ void batch_rhs(const Batch<3, W>& y, Batch<3, W>& dy) {
   for (int l = 0; l < W; ++l) set_lane(dy, l, euler_rhs(lane_of(y, l)));
 }
 
-TEST(BatchStepper, EveryLaneIsTheScalarStepBitForBit) {
+// Every shipped tableau on its own (BatchStepperOfEveryTableau/<name>).
+template <class T>
+class BatchStepperOfEveryTableau : public ::testing::Test {};
+TYPED_TEST_SUITE(BatchStepperOfEveryTableau, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(BatchStepperOfEveryTableau, EveryLaneIsTheScalarStepBitForBit) {
   constexpr int W = 3;
-  for_each_tableau([](auto tag) {
-    using T = typename decltype(tag)::type;
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(-1.5, 1.5);
-    RungeKuttaBatchStepper<T, 3, W> batch;
-    Batch<3, W> y{}, f{}, y_new{}, err{};
-    std::array<double, W> h{};
-    std::array<Vector<3>, W> ys;
-    for (int l = 0; l < W; ++l) {
-      ys[static_cast<std::size_t>(l)] = Vector<3>(u(rng), u(rng), u(rng));
-      set_lane(y, l, ys[static_cast<std::size_t>(l)]);
-      set_lane(f, l, euler_rhs(ys[static_cast<std::size_t>(l)]));
-      h[static_cast<std::size_t>(l)] = 0.05 * (l + 1) + 0.01 * u(rng);  // a different step in every lane
-    }
-    batch.step(batch_rhs<W>, y, f, h, y_new, err);
-    for (int l = 0; l < W; ++l) {
-      RungeKuttaStepper<T, 3> scalar;
-      Vector<3> s_new, s_err = Vector<3>::Zero();
-      const Vector<3>& y0 = ys[static_cast<std::size_t>(l)];
-      scalar.step(euler_rhs, y0, euler_rhs(y0), h[static_cast<std::size_t>(l)], s_new, s_err);
-      for (int i = 0; i < 3; ++i) {
-        EXPECT_EQ(lane_of(y_new, l)[i], s_new[i]) << T::name << " lane " << l << " component " << i;
-        if constexpr (has_embedded_pair<T>) {
-          EXPECT_EQ(lane_of(err, l)[i], s_err[i]) << T::name << " lane " << l;
-        }
+  using T = TypeParam;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  RungeKuttaBatchStepper<T, 3, W> batch;
+  Batch<3, W> y{}, f{}, y_new{}, err{};
+  std::array<double, W> h{};
+  std::array<Vector<3>, W> ys;
+  for (int l = 0; l < W; ++l) {
+    ys[static_cast<std::size_t>(l)] = Vector<3>(u(rng), u(rng), u(rng));
+    set_lane(y, l, ys[static_cast<std::size_t>(l)]);
+    set_lane(f, l, euler_rhs(ys[static_cast<std::size_t>(l)]));
+    h[static_cast<std::size_t>(l)] = 0.05 * (l + 1) + 0.01 * u(rng);  // a different step in every lane
+  }
+  batch.step(batch_rhs<W>, y, f, h, y_new, err);
+  for (int l = 0; l < W; ++l) {
+    RungeKuttaStepper<T, 3> scalar;
+    Vector<3> s_new, s_err = Vector<3>::Zero();
+    const Vector<3>& y0 = ys[static_cast<std::size_t>(l)];
+    scalar.step(euler_rhs, y0, euler_rhs(y0), h[static_cast<std::size_t>(l)], s_new, s_err);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(lane_of(y_new, l)[i], s_new[i]) << T::name << " lane " << l << " component " << i;
+      if constexpr (has_embedded_pair<T>) {
+        EXPECT_EQ(lane_of(err, l)[i], s_err[i]) << T::name << " lane " << l;
       }
-      for (std::size_t s = 0; s < T::stages; ++s) EXPECT_EQ(lane_of(batch.stage(s), l), scalar.stage(s)) << T::name;
     }
-  });
+    for (std::size_t s = 0; s < T::stages; ++s) EXPECT_EQ(lane_of(batch.stage(s), l), scalar.stage(s)) << T::name;
+  }
 }
 
 // A lane driven by batched trials and judge_trial takes advance()'s accepted and rejected steps exactly, for an

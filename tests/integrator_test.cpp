@@ -15,6 +15,8 @@
 #include "grtrace/tableau/all_tableaux.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 
+#include "common/tableau_types.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -115,48 +117,47 @@ AdaptiveRun run_kepler_adaptive(double e, double t_end, double rtol, C controlle
 // -----------------------------------------------------------------------------------------------------------
 // Straight lines in flat space
 
-TEST(FlatSpace, EveryTableauFollowsAStraightLineToRoundOff) {
+// Every shipped tableau on its own (FlatSpace/<name>).
+template <class T>
+class FlatSpace : public ::testing::Test {};
+TYPED_TEST_SUITE(FlatSpace, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(FlatSpace, FollowsAStraightLineToRoundOff) {
+  using T = TypeParam;
   const MinkowskiMetric flat;
   const Vec4 x0(0.5, 1.0, 2.0, 3.0), k(1.0, 0.6, -0.48, 0.64);  // null: 0.36 + 0.2304 + 0.4096 = 1
-  for_each_tableau([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    SCOPED_TRACE(name_of(T::name));
-    TraceSettings s;
-    s.initial_step = 0.37;
-    s.max_steps = 300;
-    s.escape_radius = 1e6;
-    const GeodesicTracer<MinkowskiMetric, T, FixedStep> tracer(flat, s);
-    const TraceResult r = tracer.trace(make_state(x0, k));
-    EXPECT_EQ(r.status, RayStatus::max_steps);
-    EXPECT_EQ(r.accepted, 300);
-    EXPECT_NEAR(r.lambda, 300 * 0.37, 1e-12 * 300 * 0.37);
-    const Vec4 expected = x0 + r.lambda * k;
-    const double rel = (r.final_state.head<4>() - expected).norm() / expected.norm();
-    EXPECT_LT(rel, 1e-12) << "relative position error " << rel;
-    EXPECT_EQ((r.final_state.tail<4>() - k).cwiseAbs().maxCoeff(), 0.0);  // k never changes
-    EXPECT_EQ(r.constraint_drift, 0.0);
-  });
+  TraceSettings s;
+  s.initial_step = 0.37;
+  s.max_steps = 300;
+  s.escape_radius = 1e6;
+  const GeodesicTracer<MinkowskiMetric, T, FixedStep> tracer(flat, s);
+  const TraceResult r = tracer.trace(make_state(x0, k));
+  EXPECT_EQ(r.status, RayStatus::max_steps);
+  EXPECT_EQ(r.accepted, 300);
+  EXPECT_NEAR(r.lambda, 300 * 0.37, 1e-12 * 300 * 0.37);
+  const Vec4 expected = x0 + r.lambda * k;
+  const double rel = (r.final_state.head<4>() - expected).norm() / expected.norm();
+  EXPECT_LT(rel, 1e-12) << "relative position error " << rel;
+  EXPECT_EQ((r.final_state.tail<4>() - k).cwiseAbs().maxCoeff(), 0.0);  // k never changes
+  EXPECT_EQ(r.constraint_drift, 0.0);
 }
 
 /// With a controller the ray ends on the escape sphere, located on the dense output (which is exact on a line).
-TEST(FlatSpace, AdaptiveRunsEndOnTheEscapeSphereOnTheLine) {
+TYPED_TEST(FlatSpace, AdaptiveRunsEndOnTheEscapeSphereOnTheLine) {
+  using T = TypeParam;
+  using C = std::conditional_t<has_embedded_pair<T>, PIController, StepDoubling>;
   const MinkowskiMetric flat;
   const Vec4 x0(0.0, 1.0, 2.0, 3.0), k(1.0, 0.6, -0.48, 0.64);
-  for_each_tableau([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    using C = std::conditional_t<has_embedded_pair<T>, PIController, StepDoubling>;
-    SCOPED_TRACE(name_of(T::name));
-    TraceSettings s;
-    s.escape_radius = 1000.0;
-    s.integrator.h_max = 50.0;
-    const GeodesicTracer<MinkowskiMetric, T, C> tracer(flat, s);
-    const TraceResult r = tracer.trace(make_state(x0, k));
-    EXPECT_EQ(r.status, RayStatus::escaped);
-    EXPECT_NEAR(flat.radius(r.final_state.head<4>()), 1000.0, 1e-9);
-    const Vec4 expected = x0 + r.lambda * k;
-    EXPECT_LT((r.final_state.head<4>() - expected).norm() / expected.norm(), 1e-12);
-    EXPECT_EQ(r.rejected, 0);  // the error estimate of a straight line is zero
-  });
+  TraceSettings s;
+  s.escape_radius = 1000.0;
+  s.integrator.h_max = 50.0;
+  const GeodesicTracer<MinkowskiMetric, T, C> tracer(flat, s);
+  const TraceResult r = tracer.trace(make_state(x0, k));
+  EXPECT_EQ(r.status, RayStatus::escaped);
+  EXPECT_NEAR(flat.radius(r.final_state.head<4>()), 1000.0, 1e-9);
+  const Vec4 expected = x0 + r.lambda * k;
+  EXPECT_LT((r.final_state.head<4>() - expected).norm() / expected.norm(), 1e-12);
+  EXPECT_EQ(r.rejected, 0);  // the error estimate of a straight line is zero
 }
 
 // -----------------------------------------------------------------------------------------------------------
@@ -183,96 +184,102 @@ int first_step_count(int order) {
   }
 }
 
-TEST(Convergence, FixedStepOrderMatchesTheStatedOrder) {
+// Every shipped tableau on its own (Convergence/<name>); the rows of one table.
+template <class T>
+class Convergence : public ::testing::Test {};
+TYPED_TEST_SUITE(Convergence, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(Convergence, FixedStepOrderMatchesTheStatedOrder) {
+  using T = TypeParam;
   constexpr double e = 0.3, t_end = 3.0;
   const State4 y0 = kepler_exact(e, 0.0), y_end = kepler_exact(e, t_end);
-  std::printf("%-9s %5s %8s   errors at n, 2n, 4n, 8n steps over t = %.1f (Kepler e = %.1f)\n", "tableau", "order",
-              "slope", t_end, e);
-  for_each_tableau([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    SCOPED_TRACE(name_of(T::name));
-    std::vector<double> hs, errs;
-    const int n0 = first_step_count(T::order);
-    for (int n = n0; n <= 8 * n0; n *= 2) {
-      const double h = t_end / n;
-      ControlledIntegrator<T, FixedStep, 4> integ;
-      const KeplerRhs f{};
-      integ.start(f, y0, h);
-      for (int i = 0; i < n; ++i) ASSERT_EQ(integ.advance(f), StepOutcome::ok);
-      hs.push_back(h);
-      errs.push_back(max_abs(integ.state() - y_end));
-    }
-    const double slope = loglog_slope(hs, errs);
-    std::printf("%-9s %5d %8.3f   %.2e %.2e %.2e %.2e\n", name_of(T::name).c_str(), T::order, slope, errs[0], errs[1],
-                errs[2], errs[3]);
-    EXPECT_NEAR(slope, T::order, 0.2);
-    EXPECT_GT(errs.back(), 1e-14);  // still above round-off, so the slope is the method's
-  });
+  if (tableau_tests::first_row("convergence"))
+    std::printf("%-9s %5s %8s   errors at n, 2n, 4n, 8n steps over t = %.1f (Kepler e = %.1f)\n", "tableau",
+                "order", "slope", t_end, e);
+  std::vector<double> hs, errs;
+  const int n0 = first_step_count(T::order);
+  for (int n = n0; n <= 8 * n0; n *= 2) {
+    const double h = t_end / n;
+    ControlledIntegrator<T, FixedStep, 4> integ;
+    const KeplerRhs f{};
+    integ.start(f, y0, h);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(integ.advance(f), StepOutcome::ok);
+    hs.push_back(h);
+    errs.push_back(max_abs(integ.state() - y_end));
+  }
+  const double slope = loglog_slope(hs, errs);
+  std::printf("%-9s %5d %8.3f   %.2e %.2e %.2e %.2e\n", name_of(T::name).c_str(), T::order, slope, errs[0], errs[1],
+              errs[2], errs[3]);
+  EXPECT_NEAR(slope, T::order, 0.2);
+  EXPECT_GT(errs.back(), 1e-14);  // still above round-off, so the slope is the method's
 }
 
 // -----------------------------------------------------------------------------------------------------------
 // Step controllers
 
-TEST(Controllers, EmbeddedPairsMeetTighterTolerancesAndPIRejectsLess) {
+// Every tableau with an embedded pair on its own (EmbeddedPairControllers/<name>); the rows of one table.
+template <class T>
+class EmbeddedPairControllers : public ::testing::Test {};
+TYPED_TEST_SUITE(EmbeddedPairControllers, tableau_tests::EmbeddedPairTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(EmbeddedPairControllers, MeetTighterTolerancesAndPIRejectsLess) {
+  using T = TypeParam;
   constexpr double e = 0.5, t_end = 2.0 * std::numbers::pi;
-  std::printf("%-9s %6s | %-28s | %-28s\n", "tableau", "rtol", "I: error  acc  rej", "PI: error  acc  rej");
-  for_each_tableau([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    if constexpr (has_embedded_pair<T>) {
-      SCOPED_TRACE(name_of(T::name));
-      const std::vector<double> rtols =
-          T::order <= 2 ? std::vector<double>{1e-5, 1e-7, 1e-9} : std::vector<double>{1e-5, 1e-7, 1e-9, 1e-11};
-      int rejected_i = 0, rejected_pi = 0;
-      double prev_i = std::numeric_limits<double>::infinity(), prev_pi = prev_i;
-      for (double rtol : rtols) {
-        const AdaptiveRun i = run_kepler_adaptive<T, IController>(e, t_end, rtol);
-        const AdaptiveRun pi = run_kepler_adaptive<T, PIController>(e, t_end, rtol);
-        ASSERT_TRUE(i.ok && pi.ok);
-        std::printf("%-9s %6.0e | %.2e %7d %4d | %.2e %7d %4d\n", name_of(T::name).c_str(), rtol, i.error, i.accepted,
-                    i.rejected, pi.error, pi.accepted, pi.rejected);
-        // A 100x tighter tolerance buys at least 10x in the global error, and the global error over one orbit
-        // stays within a fixed multiple of the tolerance (tolerance proportionality).
-        EXPECT_LT(i.error, prev_i / 10.0) << "rtol " << rtol;
-        EXPECT_LT(pi.error, prev_pi / 10.0) << "rtol " << rtol;
-        EXPECT_LT(i.error, 3e3 * rtol);
-        EXPECT_LT(pi.error, 3e3 * rtol);
-        prev_i = i.error;
-        prev_pi = pi.error;
-        rejected_i += i.rejected;
-        rejected_pi += pi.rejected;
-      }
-      EXPECT_LE(rejected_pi, rejected_i) << "PI rejected " << rejected_pi << " steps, I " << rejected_i;
-    }
-  });
+  if (tableau_tests::first_row("embedded pair controllers"))
+    std::printf("%-9s %6s | %-28s | %-28s\n", "tableau", "rtol", "I: error  acc  rej", "PI: error  acc  rej");
+  const std::vector<double> rtols =
+      T::order <= 2 ? std::vector<double>{1e-5, 1e-7, 1e-9} : std::vector<double>{1e-5, 1e-7, 1e-9, 1e-11};
+  int rejected_i = 0, rejected_pi = 0;
+  double prev_i = std::numeric_limits<double>::infinity(), prev_pi = prev_i;
+  for (double rtol : rtols) {
+    const AdaptiveRun i = run_kepler_adaptive<T, IController>(e, t_end, rtol);
+    const AdaptiveRun pi = run_kepler_adaptive<T, PIController>(e, t_end, rtol);
+    ASSERT_TRUE(i.ok && pi.ok);
+    std::printf("%-9s %6.0e | %.2e %7d %4d | %.2e %7d %4d\n", name_of(T::name).c_str(), rtol, i.error, i.accepted,
+                i.rejected, pi.error, pi.accepted, pi.rejected);
+    // A 100x tighter tolerance buys at least 10x in the global error, and the global error over one orbit
+    // stays within a fixed multiple of the tolerance (tolerance proportionality).
+    EXPECT_LT(i.error, prev_i / 10.0) << "rtol " << rtol;
+    EXPECT_LT(pi.error, prev_pi / 10.0) << "rtol " << rtol;
+    EXPECT_LT(i.error, 3e3 * rtol);
+    EXPECT_LT(pi.error, 3e3 * rtol);
+    prev_i = i.error;
+    prev_pi = pi.error;
+    rejected_i += i.rejected;
+    rejected_pi += pi.rejected;
+  }
+  EXPECT_LE(rejected_pi, rejected_i) << "PI rejected " << rejected_pi << " steps, I " << rejected_i;
 }
 
-TEST(Controllers, StepDoublingWorksWithTableauxWithoutAnEmbeddedPair) {
+// Every tableau without an embedded pair on its own (StepDoublingController/<name>); the rows of one table.
+template <class T>
+class StepDoublingController : public ::testing::Test {};
+TYPED_TEST_SUITE(StepDoublingController, tableau_tests::NoEmbeddedPairTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(StepDoublingController, WorksWithATableauWithoutAnEmbeddedPair) {
+  using T = TypeParam;
   constexpr double e = 0.5, t_end = 2.0 * std::numbers::pi;
-  std::printf("%-9s %6s | %-28s | %-28s\n", "tableau", "rtol", "doubling: error acc rej", "+richardson: error acc rej");
-  for_each_tableau([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    if constexpr (!has_embedded_pair<T>) {
-      SCOPED_TRACE(name_of(T::name));
-      const std::vector<double> rtols =
-          T::order == 1 ? std::vector<double>{1e-5, 1e-7, 1e-9} : std::vector<double>{1e-5, 1e-7, 1e-9, 1e-11};
-      double prev = std::numeric_limits<double>::infinity(), prev_r = prev;
-      for (double rtol : rtols) {
-        StepDoubling plain, extrapolated;
-        extrapolated.richardson = true;
-        const AdaptiveRun d = run_kepler_adaptive<T, StepDoubling>(e, t_end, rtol, plain);
-        const AdaptiveRun r = run_kepler_adaptive<T, StepDoubling>(e, t_end, rtol, extrapolated);
-        ASSERT_TRUE(d.ok && r.ok);
-        std::printf("%-9s %6.0e | %.2e %7d %4d | %.2e %7d %4d\n", name_of(T::name).c_str(), rtol, d.error, d.accepted,
-                    d.rejected, r.error, r.accepted, r.rejected);
-        EXPECT_LT(d.error, prev / 5.0) << "rtol " << rtol;
-        EXPECT_LT(r.error, prev_r / 5.0) << "rtol " << rtol;
-        // The extrapolated value has order p + 1: for the same tolerance it is the more accurate one.
-        EXPECT_LT(r.error, d.error) << "rtol " << rtol;
-        prev = d.error;
-        prev_r = r.error;
-      }
-    }
-  });
+  if (tableau_tests::first_row("step doubling controller"))
+    std::printf("%-9s %6s | %-28s | %-28s\n", "tableau", "rtol", "doubling: error acc rej",
+                "+richardson: error acc rej");
+  const std::vector<double> rtols =
+      T::order == 1 ? std::vector<double>{1e-5, 1e-7, 1e-9} : std::vector<double>{1e-5, 1e-7, 1e-9, 1e-11};
+  double prev = std::numeric_limits<double>::infinity(), prev_r = prev;
+  for (double rtol : rtols) {
+    StepDoubling plain, extrapolated;
+    extrapolated.richardson = true;
+    const AdaptiveRun d = run_kepler_adaptive<T, StepDoubling>(e, t_end, rtol, plain);
+    const AdaptiveRun r = run_kepler_adaptive<T, StepDoubling>(e, t_end, rtol, extrapolated);
+    ASSERT_TRUE(d.ok && r.ok);
+    std::printf("%-9s %6.0e | %.2e %7d %4d | %.2e %7d %4d\n", name_of(T::name).c_str(), rtol, d.error, d.accepted,
+                d.rejected, r.error, r.accepted, r.rejected);
+    EXPECT_LT(d.error, prev / 5.0) << "rtol " << rtol;
+    EXPECT_LT(r.error, prev_r / 5.0) << "rtol " << rtol;
+    // The extrapolated value has order p + 1: for the same tolerance it is the more accurate one.
+    EXPECT_LT(r.error, d.error) << "rtol " << rtol;
+    prev = d.error;
+    prev_r = r.error;
+  }
 }
 
 // -----------------------------------------------------------------------------------------------------------
@@ -309,17 +316,23 @@ void check_rhs_count(double h0, bool expect_rejections = false) {
   }
 }
 
-TEST(RhsEvaluations, AreCountedExactlyForEveryTableauAndController) {
-  for_each_tableau([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    check_rhs_count<T, FixedStep>(0.01);
-    check_rhs_count<T, StepDoubling>(0.0);
-    check_rhs_count<T, StepDoubling>(1.0, true);  // a too-large first step forces rejections
-    if constexpr (has_embedded_pair<T>) {
-      check_rhs_count<T, IController>(0.0);
-      check_rhs_count<T, PIController>(1.0, true);
-    }
-  });
+// Every shipped tableau on its own (RhsEvaluationsOfEveryTableau/<name>).
+template <class T>
+class RhsEvaluationsOfEveryTableau : public ::testing::Test {};
+TYPED_TEST_SUITE(RhsEvaluationsOfEveryTableau, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(RhsEvaluationsOfEveryTableau, AreCountedExactlyForEveryController) {
+  using T = TypeParam;
+  check_rhs_count<T, FixedStep>(0.01);
+  check_rhs_count<T, StepDoubling>(0.0);
+  check_rhs_count<T, StepDoubling>(1.0, true);  // a too-large first step forces rejections
+  if constexpr (has_embedded_pair<T>) {
+    check_rhs_count<T, IController>(0.0);
+    check_rhs_count<T, PIController>(1.0, true);
+  }
+}
+
+TEST(RhsEvaluations, Dp5CostsSixPerTrial) {
   // The brief's example, spelled out: DP5 is FSAL with 7 stages, so every trial costs 6 evaluations.
   long calls = 0;
   const KeplerRhs f{&calls};
@@ -401,30 +414,34 @@ struct PoisonedSchwarzschild : SchwarzschildMetric {
   }
 };
 
-TEST(Failures, NonFiniteRightHandSideEndsAFixedStepRunAsNonFinite) {
+// Every shipped tableau on its own (FailuresOfEveryTableau/<name>).
+template <class T>
+class FailuresOfEveryTableau : public ::testing::Test {};
+TYPED_TEST_SUITE(FailuresOfEveryTableau, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(FailuresOfEveryTableau, NonFiniteRightHandSideEndsAFixedStepRunAsNonFinite) {
+  using T = TypeParam;
   // Integrator level: the Kepler right-hand side turns NaN once y > 0.5.
   auto poisoned = [](const State4& y) {
     State4 d = KeplerRhs{}(y);
     if (y[1] > 0.5) d.setConstant(std::numeric_limits<double>::quiet_NaN());
     return d;
   };
-  for_each_tableau([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    SCOPED_TRACE(name_of(T::name));
-    ControlledIntegrator<T, FixedStep, 4> integ;
-    integ.start(poisoned, kepler_exact(0.5, 0.0), 0.05);
-    StepOutcome outcome = StepOutcome::ok;
-    int steps = 0;
-    while (outcome == StepOutcome::ok && steps < 1000) {
-      outcome = integ.advance(poisoned);
-      ++steps;
-    }
-    EXPECT_EQ(outcome, StepOutcome::non_finite);
-    EXPECT_LT(steps, 100);                   // y passes 0.5 after t ~ 0.4 (8 steps)
-    EXPECT_TRUE(integ.state().allFinite());  // the failed step was not accepted
-    EXPECT_LE(integ.state()[1], 0.5);
-  });
+  ControlledIntegrator<T, FixedStep, 4> integ;
+  integ.start(poisoned, kepler_exact(0.5, 0.0), 0.05);
+  StepOutcome outcome = StepOutcome::ok;
+  int steps = 0;
+  while (outcome == StepOutcome::ok && steps < 1000) {
+    outcome = integ.advance(poisoned);
+    ++steps;
+  }
+  EXPECT_EQ(outcome, StepOutcome::non_finite);
+  EXPECT_LT(steps, 100);                   // y passes 0.5 after t ~ 0.4 (8 steps)
+  EXPECT_TRUE(integ.state().allFinite());  // the failed step was not accepted
+  EXPECT_LE(integ.state()[1], 0.5);
+}
 
+TEST(Failures, NonFiniteRightHandSideEndsAFixedStepTraceAsNonFinite) {
   // Tracer level, fixed step: status non_finite, the last good state returned.
   PoisonedSchwarzschild m;
   TraceSettings s;

@@ -19,6 +19,8 @@
 #include "grtrace/tableau/all_tableaux.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 
+#include "common/tableau_types.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -81,10 +83,6 @@ TEST(StabilityInterval, MatchesTheLiterature) {
   EXPECT_NEAR(real_stability_interval<ClassicRK4>().lower, -2.7853, 5e-5);
   EXPECT_NEAR(real_stability_interval<Rule38>().lower, -2.7853, 5e-5);
   EXPECT_NEAR(real_stability_interval<DormandPrince54>().lower, -3.3066, 5e-5);
-  for_each_tableau([](auto tag) {
-    using T = typename decltype(tag)::type;
-    EXPECT_EQ(real_stability_interval<T>().upper, 0.0) << T::name;
-  });
 }
 
 TEST(StabilityInterval, AgreesWithAnIndependentRootOfTheStabilityPolynomial) {
@@ -95,11 +93,22 @@ TEST(StabilityInterval, AgreesWithAnIndependentRootOfTheStabilityPolynomial) {
   EXPECT_NEAR(real_stability_interval<BogackiShampine32>().lower, left_end(t3), 1e-10);
   EXPECT_NEAR(real_stability_interval<ClassicRK4>().lower, left_end(t4), 1e-10);
   EXPECT_NEAR(real_stability_interval<DormandPrince54>().lower, left_end(dp5), 1e-10);
-  // And for every shipped tableau, against its own polynomial coefficients.
-  for_each_tableau([](auto tag) {
-    using T = typename decltype(tag)::type;
-    EXPECT_NEAR(real_stability_interval<T>().lower, left_end(stability_polynomial<T>()), 1e-9) << T::name;
-  });
+}
+
+// Every shipped tableau on its own (StabilityIntervalOfEveryTableau/<name>).
+template <class T>
+class StabilityIntervalOfEveryTableau : public ::testing::Test {};
+TYPED_TEST_SUITE(StabilityIntervalOfEveryTableau, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(StabilityIntervalOfEveryTableau, EndsAtZero) {
+  using T = TypeParam;
+  EXPECT_EQ(real_stability_interval<T>().upper, 0.0) << T::name;
+}
+
+TYPED_TEST(StabilityIntervalOfEveryTableau, AgreesWithAnIndependentRootOfItsOwnPolynomial) {
+  // Against the tableau's own polynomial coefficients.
+  using T = TypeParam;
+  EXPECT_NEAR(real_stability_interval<T>().lower, left_end(stability_polynomial<T>()), 1e-9) << T::name;
 }
 
 TEST(StabilityInterval, GaussLegendreIsUnboundedOnTheRealAxis) {
@@ -126,26 +135,32 @@ TEST(StabilityFunction, IsTheTaylorPolynomialForSStageMethodsOfOrderS) {
   check(std::type_identity<Rule38>{}, 4);
 }
 
-TEST(StabilityFunction, ResolventAndPolynomialAgreeAndStartWithTheExponential) {
-  for_each_tableau([](auto tag) {
-    using T = typename decltype(tag)::type;
-    constexpr auto gamma = stability_polynomial<T>();
-    // gamma_k = 1/k! for k <= order (Hairer & Wanner II, IV.2).
-    double factorial = 1.0;
-    for (int k = 0; k <= T::order; ++k) {
-      if (k > 0) factorial *= k;
-      EXPECT_NEAR(gamma[static_cast<std::size_t>(k)], 1.0 / factorial, 1e-12) << T::name << " k = " << k;
-    }
-    if (T::stages > static_cast<std::size_t>(T::order)) {
-      EXPECT_GT(std::abs(gamma[static_cast<std::size_t>(T::order) + 1] * factorial * (T::order + 1) - 1.0), 1e-6)
-          << T::name << ": R should not match e^z beyond the order";
-    }
-    for (const Complex z : kSamplePoints) {
-      Complex p = 0.0;
-      for (std::size_t k = gamma.size(); k-- > 0;) p = p * z + gamma[k];
-      EXPECT_LT(std::abs(stability_function<T>(z) - p), 1e-12 * (1.0 + std::abs(p))) << T::name << " at " << z;
-    }
-  });
+// Every shipped tableau on its own (StabilityFunctionOfEveryTableau/<name>).
+template <class T>
+class StabilityFunctionOfEveryTableau : public ::testing::Test {};
+TYPED_TEST_SUITE(StabilityFunctionOfEveryTableau, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(StabilityFunctionOfEveryTableau, ResolventAndPolynomialAgreeAndStartWithTheExponential) {
+  using T = TypeParam;
+  constexpr auto gamma = stability_polynomial<T>();
+  // gamma_k = 1/k! for k <= order (Hairer & Wanner II, IV.2).
+  double factorial = 1.0;
+  for (int k = 0; k <= T::order; ++k) {
+    if (k > 0) factorial *= k;
+    EXPECT_NEAR(gamma[static_cast<std::size_t>(k)], 1.0 / factorial, 1e-12) << T::name << " k = " << k;
+  }
+  if (T::stages > static_cast<std::size_t>(T::order)) {
+    EXPECT_GT(std::abs(gamma[static_cast<std::size_t>(T::order) + 1] * factorial * (T::order + 1) - 1.0), 1e-6)
+        << T::name << ": R should not match e^z beyond the order";
+  }
+  for (const Complex z : kSamplePoints) {
+    Complex p = 0.0;
+    for (std::size_t k = gamma.size(); k-- > 0;) p = p * z + gamma[k];
+    EXPECT_LT(std::abs(stability_function<T>(z) - p), 1e-12 * (1.0 + std::abs(p))) << T::name << " at " << z;
+  }
+}
+
+TEST(StabilityFunction, Dopri5sSixthCoefficientIsOneOver600) {
   // DOPRI5's sixth coefficient is 1/600 (Hairer & Wanner II, IV.2).
   EXPECT_NEAR(stability_polynomial<DormandPrince54>()[6], 1.0 / 600.0, 1e-15);
 }

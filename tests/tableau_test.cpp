@@ -4,6 +4,8 @@
 // time, and the name-based dispatch. Needs only the tableau headers.
 #include "grtrace/tableau/all_tableaux.hpp"
 
+#include "common/tableau_types.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -71,57 +73,66 @@ double dense_output_residual(double theta, int q) {
 // -----------------------------------------------------------------------------------------------------------
 // Every shipped tableau
 
-TEST(AllTableaux, AreValidAndHaveExactlyTheirStatedOrders) {
-  std::printf("%-9s %6s %12s %12s | %6s %12s %12s\n", "name", "order", "res(p)", "res(p+1)", "emb", "res(q)",
-              "res(q+1)");
-  for_each_tableau([](auto tag) {
-    using T = typename decltype(tag)::type;
-    constexpr std::size_t S = T::stages;
-    SCOPED_TRACE(T::name);
-    EXPECT_TRUE(tableau_is_valid<T>());
+// Every shipped tableau on its own (EveryTableau/<name>); the rows of one table.
+template <class T>
+class EveryTableau : public ::testing::Test {};
+TYPED_TEST_SUITE(EveryTableau, tableau_tests::AllTableauTypes, tableau_tests::TableauName);
 
-    const double at_order = order_condition_residual<S>(T::a, T::b, T::order);
-    const double above = residual_one_above<S>(T::a, T::b, T::c, T::order);
-    EXPECT_LT(at_order, kOrderTolerance);
-    EXPECT_GT(above, 1e-6) << "b satisfies the conditions of order " << T::order + 1;
-    // '*': order + 1 is beyond the tree enumeration, so res(p+1) is the bushy-tree condition alone.
-    std::printf("%-9.*s %6d %12.3g %12.3g%s", static_cast<int>(T::name.size()), T::name.data(), T::order, at_order,
-                above, T::order + 1 > tableau_detail::kMaxCheckedOrder ? "*" : " ");
+TYPED_TEST(EveryTableau, IsValidAndHasExactlyItsStatedOrders) {
+  using T = TypeParam;
+  constexpr std::size_t S = T::stages;
+  if (tableau_tests::first_row("orders"))
+    std::printf("%-9s %6s %12s %12s | %6s %12s %12s\n", "name", "order", "res(p)", "res(p+1)", "emb", "res(q)",
+                "res(q+1)");
+  EXPECT_TRUE(tableau_is_valid<T>());
 
-    if constexpr (has_embedded_pair<T>) {
-      const double emb_at = order_condition_residual<S>(T::a, T::b_hat, T::embedded_order);
-      const double emb_above = residual_one_above<S>(T::a, T::b_hat, T::c, T::embedded_order);
-      EXPECT_LT(emb_at, kOrderTolerance);
-      EXPECT_GT(emb_above, 1e-6) << "b_hat satisfies the conditions of order " << T::embedded_order + 1;
-      EXPECT_NE(T::order, T::embedded_order);
-      std::printf(" | %6d %12.3g %12.3g\n", T::embedded_order, emb_at, emb_above);
-    } else {
-      for (double v : T::b_hat) EXPECT_EQ(v, 0.0);
-      std::printf(" | %6s\n", "-");
-    }
+  const double at_order = order_condition_residual<S>(T::a, T::b, T::order);
+  const double above = residual_one_above<S>(T::a, T::b, T::c, T::order);
+  EXPECT_LT(at_order, kOrderTolerance);
+  EXPECT_GT(above, 1e-6) << "b satisfies the conditions of order " << T::order + 1;
+  // '*': order + 1 is beyond the tree enumeration, so res(p+1) is the bushy-tree condition alone.
+  std::printf("%-9.*s %6d %12.3g %12.3g%s", static_cast<int>(T::name.size()), T::name.data(), T::order, at_order,
+              above, T::order + 1 > tableau_detail::kMaxCheckedOrder ? "*" : " ");
 
-    if constexpr (T::fsal) {
-      EXPECT_EQ(T::c[S - 1], 1.0);
-      for (std::size_t j = 0; j < S; ++j) EXPECT_EQ(T::a[S - 1][j], T::b[j]) << "j = " << j;
-    }
-    EXPECT_EQ(T::c[0], 0.0);
-  });
+  if constexpr (has_embedded_pair<T>) {
+    const double emb_at = order_condition_residual<S>(T::a, T::b_hat, T::embedded_order);
+    const double emb_above = residual_one_above<S>(T::a, T::b_hat, T::c, T::embedded_order);
+    EXPECT_LT(emb_at, kOrderTolerance);
+    EXPECT_GT(emb_above, 1e-6) << "b_hat satisfies the conditions of order " << T::embedded_order + 1;
+    EXPECT_NE(T::order, T::embedded_order);
+    std::printf(" | %6d %12.3g %12.3g\n", T::embedded_order, emb_at, emb_above);
+  } else {
+    for (double v : T::b_hat) EXPECT_EQ(v, 0.0);
+    std::printf(" | %6s\n", "-");
+  }
+
+  if constexpr (T::fsal) {
+    EXPECT_EQ(T::c[S - 1], 1.0);
+    for (std::size_t j = 0; j < S; ++j) EXPECT_EQ(T::a[S - 1][j], T::b[j]) << "j = " << j;
+  }
+  EXPECT_EQ(T::c[0], 0.0);
 }
 
-TEST(AllTableaux, DenseOutputHasOrderOfItsDegreeAcrossTheStep) {
+// Every tableau with its own dense output on its own (TableauDenseOutput/<name>).
+template <class T>
+class TableauDenseOutput : public ::testing::Test {};
+TYPED_TEST_SUITE(TableauDenseOutput, tableau_tests::DenseOutputTableauTypes, tableau_tests::TableauName);
+
+TYPED_TEST(TableauDenseOutput, HasOrderOfItsDegreeAcrossTheStep) {
+  using T = TypeParam;
+  // Dividing A by theta amplifies round-off (tsit5: ~7e-11 at theta = 0.1), so stay at theta >= 1/4.
+  for (double theta : {0.25, 0.5, 0.75, 0.9, 1.0}) {
+    EXPECT_LT(dense_output_residual<T>(theta, T::dense_degree), 1e-10) << "theta = " << theta;
+  }
+  // Weights of degree d cannot give order d + 1 in the interior of the step.
+  EXPECT_GT(dense_output_residual<T>(0.5, T::dense_degree + 1), 1e-6);
+}
+
+TEST(AllTableaux, AtLeastTwoHaveTheirOwnDenseOutput) {
   int checked = 0;
   for_each_tableau([&](auto tag) {
     using T = typename decltype(tag)::type;
-    if constexpr (TableauWithDenseOutput<T>) {
-      SCOPED_TRACE(T::name);
-      ++checked;
-      // Dividing A by theta amplifies round-off (tsit5: ~7e-11 at theta = 0.1), so stay at theta >= 1/4.
-      for (double theta : {0.25, 0.5, 0.75, 0.9, 1.0}) {
-        EXPECT_LT(dense_output_residual<T>(theta, T::dense_degree), 1e-10) << "theta = " << theta;
-      }
-      // Weights of degree d cannot give order d + 1 in the interior of the step.
-      EXPECT_GT(dense_output_residual<T>(0.5, T::dense_degree + 1), 1e-6);
-    }
+    if constexpr (TableauWithDenseOutput<T>) ++checked;
   });
   EXPECT_GE(checked, 2);  // at least dopri5 and tsit5
 }

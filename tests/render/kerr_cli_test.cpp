@@ -8,15 +8,11 @@
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/render/exr_io.hpp"
 
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "../common/tool_run.hpp"
 
-#include <array>
-#include <cstdio>
+#include <gtest/gtest.h>
+
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,26 +20,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using grtrace::tool_tests::ToolRun;
+
 fs::path render_binary() {
 #ifdef GRTRACE_RENDER_BINARY
-  return fs::path(GRTRACE_RENDER_BINARY);
+  return grtrace::tool_tests::tool_path(GRTRACE_RENDER_BINARY, "render", "grtrace-render");
 #else
-  const fs::path self = fs::read_symlink("/proc/self/exe");
-  return self.parent_path().parent_path().parent_path() / "examples" / "render" / "grtrace-render";
+  return grtrace::tool_tests::tool_path(nullptr, "render", "grtrace-render");
 #endif
 }
-
-/// s quoted for /bin/sh.
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct ToolRun {
-  int exit_code = -1;
-  std::string out, err;
-};
 
 class KerrCli : public ::testing::Test {
  protected:
@@ -51,41 +36,19 @@ class KerrCli : public ::testing::Test {
     binary_ = render_binary();
     ASSERT_TRUE(fs::exists(binary_)) << "grtrace-render not found at " << binary_
                                      << "; build the grtrace-render target first";
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    base_ = fs::temp_directory_path() / ("grtrace_kerr_cli_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(base_);
     fs::create_directories(base_ / "out");
-    fs::create_directories(base_ / "log");
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(base_, ec);
   }
 
-  /// Runs the tool with args (stdout captured, stderr to a file); returns exit code, stdout and stderr.
+  /// Runs the tool with args (stdout captured, stderr apart through a file outside out/).
   ToolRun run(const std::vector<std::string>& args) const {
-    std::string cmd = quoted(binary_.string());
-    for (const auto& a : args) cmd += " " + quoted(a);
-    const fs::path err = base_ / "log" / "stderr.txt";
-    cmd += " 2>" + quoted(err.string());
-    ToolRun r;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.err = ss.str();
-    return r;
+    return grtrace::tool_tests::run_tool(binary_, args, base_);
   }
 
   bool out_empty() const { return fs::is_empty(base_ / "out"); }
   fs::path out(const std::string& name) const { return base_ / "out" / name; }
 
-  fs::path binary_, base_;
+  grtrace::tool_tests::ScratchDir scratch_{"grtrace_kerr_cli"};
+  fs::path binary_, base_ = scratch_.path();
 };
 
 /// A small, fast Kerr frame: args plus the size, loose tolerances and the output path.
@@ -123,7 +86,7 @@ TEST_F(KerrCli, RefusesBadKerrInputBeforeTracingAndLeavesNoFile) {
     const ToolRun r = run(kerr(c.args, target));
     std::string shown;
     for (const auto& a : c.args) shown += a + " ";
-    EXPECT_EQ(r.exit_code, 2) << shown << "\n" << r.err;
+    EXPECT_EQ(r.status, 2) << shown << "\n" << r.err;
     EXPECT_TRUE(r.out.empty()) << shown << "\n" << r.out;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << shown << ": message should say '" << c.says << "':\n" << r.err;
     EXPECT_TRUE(out_empty()) << shown;
@@ -156,7 +119,7 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
     for (const char* a : {"--scene", "disk", "--camera-r", "40", "--camera-theta", "80", "--fov", "50"})
       args.emplace_back(a);
     const ToolRun r = run(kerr(args, path));
-    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_EQ(r.status, 0) << r.err;
     const grtrace::Image img = grtrace::read_exr(path);
     const auto& md = img.metadata;
     EXPECT_DOUBLE_EQ(std::stod(md.at("spin")), c.spin);
@@ -176,7 +139,7 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
   const std::string path = out("schw.exr").string();
   const ToolRun r = run({"--scene", "disk", "--width", "8", "--height", "8", "--rtol", "1e-7", "--atol", "1e-9",
                          "--camera-r", "40", "--out", path});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(grtrace::read_exr(path).metadata.at("disk_inner"), "6");
 }
 

@@ -3,10 +3,10 @@
 // photon's deflection matches the exact Iyer-Hansen value; bad Kerr input exits with code 2.
 //
 // The binary: <build>/examples/geodesic/grtrace-geodesic beside this test's <build>/tests/render/.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
+#include "../common/tool_run.hpp"
 
-#include <array>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,28 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path geodesic_binary() {
-  const fs::path self = fs::read_symlink("/proc/self/exe");
-  return self.parent_path().parent_path().parent_path() / "examples" / "geodesic" / "grtrace-geodesic";
-}
+using grtrace::tool_tests::ToolRun;
 
-struct ToolRun {
-  int exit_code = -1;
-  std::string out;
-};
-
-/// Runs the tool with `args` (a shell word list), stdout captured, stderr discarded.
-ToolRun run(const std::string& args) {
-  const std::string cmd = "'" + geodesic_binary().string() + "' " + args + " 2>/dev/null";
-  ToolRun r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+fs::path geodesic_binary() { return grtrace::tool_tests::tool_path(nullptr, "geodesic", "grtrace-geodesic"); }
 
 /// The number after "key": in the one-line JSON (NaN when absent or null).
 double number(const std::string& json, const std::string& key) {
@@ -52,14 +33,20 @@ class KerrGeodesicCli : public ::testing::Test {
   void SetUp() override {
     ASSERT_TRUE(fs::exists(geodesic_binary())) << "build the grtrace-geodesic target first";
   }
+  /// Runs the tool with `args` (a shell word list): stdout in out, stderr apart.
+  ToolRun run(const std::string& args) const {
+    return grtrace::tool_tests::run_separated(grtrace::tool_tests::quoted(geodesic_binary().string()) + " " + args,
+                                              scratch_.path());
+  }
+  grtrace::tool_tests::ScratchDir scratch_{"grtrace_kerr_geodesic_cli"};
 };
 
 TEST_F(KerrGeodesicCli, ReportsConservedConstantsInBothCharts) {
   const std::string ray = "--metric kerr --spin 0.9 --position 0,20,1.2,0 --velocity -1,0.012,0.02 "
                           "--rtol 1e-10 --atol 1e-12 --escape-radius 100 ";
   const ToolRun bl = run(ray), ks = run(ray + "--chart ks");
-  ASSERT_EQ(bl.exit_code, 0) << bl.out;
-  ASSERT_EQ(ks.exit_code, 0) << ks.out;
+  ASSERT_EQ(bl.status, 0) << bl.out;
+  ASSERT_EQ(ks.status, 0) << ks.out;
   std::printf("BL: %s\nKS: %s\n", bl.out.c_str(), ks.out.c_str());
   for (const ToolRun* r : {&bl, &ks}) {
     EXPECT_NE(r->out.find("\"status\":\"escaped\""), std::string::npos) << r->out;
@@ -76,7 +63,7 @@ TEST_F(KerrGeodesicCli, ReportsConservedConstantsInBothCharts) {
 TEST_F(KerrGeodesicCli, EquatorialDeflectionMatchesIyerHansen) {
   for (const char* args : {"--impact 6 --spin 0.9", "--impact 9 --spin -0.9", "--impact 7 --spin 0.5 --chart ks"}) {
     const ToolRun r = run(std::string("--metric kerr --rtol 1e-11 --atol 1e-13 ") + args);
-    ASSERT_EQ(r.exit_code, 0) << args << ": " << r.out;
+    ASSERT_EQ(r.status, 0) << args << ": " << r.out;
     std::printf("%s: %s\n", args, r.out.c_str());
     EXPECT_GT(number(r.out, "deflection"), 0.3) << args;
     EXPECT_LT(std::abs(number(r.out, "deflection_error")), 1e-7) << args << ": " << r.out;
@@ -88,7 +75,7 @@ TEST_F(KerrGeodesicCli, RefusesBadKerrInput) {
                            "--metric kerr --spin 0.9 --chart xy --impact 6", "--spin 0.5 --impact 6",
                            "--metric kerr --spin 0.9 --position 0,1.3,1.2,0 --velocity -1,0,0"}) {
     const ToolRun r = run(args);
-    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.out;
+    EXPECT_EQ(r.status, 2) << args << ": " << r.out;
     EXPECT_TRUE(r.out.empty()) << args;
   }
 }

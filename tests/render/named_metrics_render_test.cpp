@@ -20,18 +20,16 @@
 #include "grtrace/tableau/dormand_prince54.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -515,60 +513,27 @@ TEST(NamedMetricsBadInput, CheckMetricSpecRefusesWhatMakesNoSpacetime) {
 // grtrace-render itself: the binary as in render_cli_input_test.cpp.
 fs::path render_binary() {
 #ifdef GRTRACE_RENDER_BINARY
-  return fs::path(GRTRACE_RENDER_BINARY);
+  return tool_tests::tool_path(GRTRACE_RENDER_BINARY, "render", "grtrace-render");
 #else
-  const fs::path self = fs::read_symlink("/proc/self/exe");
-  return self.parent_path().parent_path().parent_path() / "examples" / "render" / "grtrace-render";
+  return tool_tests::tool_path(nullptr, "render", "grtrace-render");
 #endif
 }
 
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct ToolRun {
-  int exit_code = -1;
-  std::string out, err;
-};
+using tool_tests::ToolRun;
 
 class NamedMetricsCli : public ::testing::Test {
  protected:
   void SetUp() override {
     binary_ = render_binary();
     if (!fs::exists(binary_)) GTEST_SKIP() << "grtrace-render not built at " << binary_;
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    base_ = fs::temp_directory_path() / ("grtrace_named_cli_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(base_);
     fs::create_directories(base_ / "out");
-  }
-  void TearDown() override {
-    std::error_code ec;
-    if (!base_.empty()) fs::remove_all(base_, ec);
   }
 
   /// Runs grtrace-render with args (stderr captured to a file outside the output directory).
-  ToolRun run(const std::vector<std::string>& args) const {
-    std::string cmd = quoted(binary_.string());
-    for (const auto& a : args) cmd += " " + quoted(a);
-    const fs::path err = base_ / "stderr.txt";
-    cmd += " 2>" + quoted(err.string());
-    ToolRun r;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.err = ss.str();
-    return r;
-  }
+  ToolRun run(const std::vector<std::string>& args) const { return tool_tests::run_tool(binary_, args, base_); }
 
-  fs::path binary_, base_;
+  tool_tests::ScratchDir scratch_{"grtrace_named_cli"};
+  fs::path binary_, base_ = scratch_.path();
 };
 
 TEST_F(NamedMetricsCli, RefusesBadMetricParametersWithExitTwoAMessageAndNoFile) {
@@ -600,7 +565,7 @@ TEST_F(NamedMetricsCli, RefusesBadMetricParametersWithExitTwoAMessageAndNoFile) 
     std::vector<std::string> args = b.args;
     args.insert(args.end(), {"--width", "8", "--height", "8", "--out", target});
     const ToolRun r = run(args);
-    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
     EXPECT_NE(r.err.find(b.words), std::string::npos) << r.err;
     EXPECT_TRUE(fs::is_empty(base_ / "out")) << "left a file behind";
@@ -608,14 +573,14 @@ TEST_F(NamedMetricsCli, RefusesBadMetricParametersWithExitTwoAMessageAndNoFile) 
   // Just inside the cosmological horizon is accepted.
   const ToolRun ok = run({"--metric", "sds", "--lambda", "1e-3", "--camera-r", "20", "--sky-radius", "53.5",
                           "--width", "8", "--height", "8", "--rtol", "1e-7", "--out", target});
-  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(ok.status, 0) << ok.err;
 }
 
 TEST_F(NamedMetricsCli, TheWormholeSkySceneShowsTheOtherUniverseThroughTheThroat) {
   const fs::path exr = base_ / "out" / "wormhole.exr";
   const ToolRun r = run({"--metric", "wormhole", "--scene", "checker", "--camera-r", "6", "--fov", "60", "--width",
                          "15", "--height", "15", "--rtol", "1e-8", "--out", exr.string()});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   const Image image = read_exr(exr);
   // The middle pixel looks radially through the throat: the far side's green-violet checker; the corners (30
   // degrees off axis, outside the throat's 9.5-degree radius at l = 6) see this side's orange-blue one.

@@ -6,17 +6,14 @@
 // <build>/examples/render/grtrace-render next to this test's <build>/tests/render/.
 #include "grtrace/render/exr_io.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,25 +21,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using grtrace::tool_tests::ToolRun;
+
 fs::path render_binary() {
 #ifdef GRTRACE_RENDER_BINARY
-  return fs::path(GRTRACE_RENDER_BINARY);
+  return grtrace::tool_tests::tool_path(GRTRACE_RENDER_BINARY, "render", "grtrace-render");
 #else
-  const fs::path self = fs::read_symlink("/proc/self/exe");
-  return self.parent_path().parent_path().parent_path() / "examples" / "render" / "grtrace-render";
+  return grtrace::tool_tests::tool_path(nullptr, "render", "grtrace-render");
 #endif
 }
-
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct ToolRun {
-  int exit_code = -1;
-  std::string out, err;
-};
 
 class RenderCliInput : public ::testing::Test {
  protected:
@@ -50,45 +37,20 @@ class RenderCliInput : public ::testing::Test {
     binary_ = render_binary();
     ASSERT_TRUE(fs::exists(binary_)) << "grtrace-render not found at " << binary_
                                      << "; build the grtrace-render target first";
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    base_ = fs::temp_directory_path() / ("grtrace_render_cli_input_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(base_);
     fs::create_directories(base_ / "out");
-    fs::create_directories(base_ / "log");
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(base_, ec);
   }
 
+  /// Runs the tool with args (stdout captured, stderr apart through a file outside out/).
   ToolRun run(const std::vector<std::string>& args) const {
-    std::string cmd = quoted(binary_.string());
-    for (const auto& a : args) cmd += " " + quoted(a);
-    const fs::path err = base_ / "log" / "stderr.txt";
-    cmd += " 2>" + quoted(err.string());
-    ToolRun r;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.err = ss.str();
-    return r;
+    return grtrace::tool_tests::run_tool(binary_, args, base_);
   }
 
-  std::vector<std::string> out_listing() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(base_ / "out")) names.push_back(e.path().filename().string());
-    return names;
-  }
+  std::vector<std::string> out_listing() const { return grtrace::tool_tests::files_in(base_ / "out"); }
 
   fs::path out(const std::string& name) const { return base_ / "out" / name; }
 
-  fs::path binary_, base_;
+  grtrace::tool_tests::ScratchDir scratch_{"grtrace_render_cli_input"};
+  fs::path binary_, base_ = scratch_.path();
 };
 
 /// Small, fast frames for the runs that should succeed.
@@ -169,7 +131,7 @@ TEST_F(RenderCliInput, RefusesEveryBadInputBeforeTracingAndLeavesNoFile) {
     for (const auto& a : args) shown += a + " ";
     SCOPED_TRACE(shown);
     const ToolRun r = run(full);
-    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_TRUE(r.out.empty()) << "stdout: " << r.out;
     EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
     EXPECT_TRUE(out_listing().empty()) << "left a file behind";
@@ -184,14 +146,14 @@ TEST_F(RenderCliInput, UnwritableDirectoryIsRefused) {
   fs::permissions(base_ / "out", fs::perms::owner_read | fs::perms::owner_exec);
   const ToolRun r = run(small({"--out", out("frame.exr").string()}));
   fs::permissions(base_ / "out", fs::perms::owner_all);
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(out_listing().empty());
 }
 
 TEST_F(RenderCliInput, GoodRunPrintsTheContractJsonAndRecordsTheParameters) {
   const fs::path exr = out("frame.exr");
   const ToolRun r = run(small({"--camera-r", "30", "--fov", "60", "--velocity", "0,0,0.3", "--out", exr.string()}));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   // ONE line of JSON on stdout, with every key of the contract and all six status names.
   ASSERT_FALSE(r.out.empty());
   EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;
@@ -224,8 +186,8 @@ TEST_F(RenderCliInput, OneAndTwoThreadsGiveIdenticalPixels) {
     SCOPED_TRACE(tracer);
     const ToolRun a = run(small({"--tracer", tracer, "--camera-r", "12", "--threads", "1", "--out", out("a.exr").string()}));
     const ToolRun b = run(small({"--tracer", tracer, "--camera-r", "12", "--threads", "2", "--out", out("b.exr").string()}));
-    ASSERT_EQ(a.exit_code, 0) << a.err;
-    ASSERT_EQ(b.exit_code, 0) << b.err;
+    ASSERT_EQ(a.status, 0) << a.err;
+    ASSERT_EQ(b.status, 0) << b.err;
     const grtrace::Image ia = grtrace::read_exr(out("a.exr")), ib = grtrace::read_exr(out("b.exr"));
     for (const char* c : grtrace::Image::kStandardChannels) {
       const auto& x = ia.channel(c);
@@ -238,7 +200,7 @@ TEST_F(RenderCliInput, OneAndTwoThreadsGiveIdenticalPixels) {
 
 TEST_F(RenderCliInput, FlatSpaceIsNeverIntegrated) {
   const ToolRun r = run(small({"--metric", "minkowski", "--velocity", "0,0,0.5", "--out", out("flat.exr").string()}));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"tracer\":\"straight-line\""), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"escaped\":384"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"mean_steps\":0"), std::string::npos) << r.out;

@@ -2,13 +2,14 @@
 // and every kind of bad input refused before any work, with exit code 2 and no file left behind.
 #include "grtrace/render/exr_io.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -16,33 +17,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code;
-  std::string output;
+using grtrace::tool_tests::ToolRun;
+
+/// Runs grtrace-render with `args` (shell words); stdout and stderr merged.
+ToolRun run(const std::string& args) {
+  return grtrace::tool_tests::run_command(grtrace::tool_tests::quoted(GRTRACE_RENDER_BINARY) + " " + args);
+}
+
+class RenderCli : public ::testing::Test {
+ protected:
+  /// Takes a file name; returns its path in this test's scratch directory.
+  fs::path scratch(const std::string& name) const { return scratch_ / name; }
+  grtrace::tool_tests::ScratchDir scratch_{"grtrace_render_cli"};
 };
 
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(GRTRACE_RENDER_BINARY) + " " + args + " 2>&1";
-  CliRun r{-1, {}};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  char buf[4096];
-  while (fgets(buf, sizeof buf, pipe)) r.output += buf;
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("grtrace_render_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
-
-TEST(RenderCli, WritesTheContractedJsonExrAndPng) {
+TEST_F(RenderCli, WritesTheContractedJsonExrAndPng) {
   const fs::path out = scratch("frame.exr");
-  const CliRun r = run("--width 48 --height 32 --camera-r 15 --tracer general --rtol 1e-8 --out " + out.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const ToolRun r = run("--width 48 --height 32 --camera-r 15 --tracer general --rtol 1e-8 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
   for (const char* key : {"\"width\":48", "\"height\":32", "\"seconds\"", "\"rays_per_second\"", "\"mean_steps\"",
                           "\"status_counts\"", "\"escaped\"", "\"captured\"", "\"hit\"", "\"max_steps\"",
                           "\"step_underflow\"", "\"non_finite\"", "\"tracer\":\"general\"", "\"tableau\"", "\"rtol\"",
@@ -60,10 +52,10 @@ TEST(RenderCli, WritesTheContractedJsonExrAndPng) {
 
 // Issue 6's target on the seed's main frame with the default settings: every escaped pixel's direction within
 // 1e-6 rad of the exact elliptic-integral answer (judged by --error-map, after the clock has stopped).
-TEST(RenderCli, DefaultsKeepTheMainFrameWithinOneMicroradian) {
+TEST_F(RenderCli, DefaultsKeepTheMainFrameWithinOneMicroradian) {
   const fs::path out = scratch("main.exr");
-  const CliRun r = run("--error-map --out " + out.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const ToolRun r = run("--error-map --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
   const auto value = [&](const std::string& key) {
     const auto at = r.output.find("\"" + key + "\":");
     EXPECT_NE(at, std::string::npos) << key << " missing in " << r.output;
@@ -82,19 +74,19 @@ TEST(RenderCli, DefaultsKeepTheMainFrameWithinOneMicroradian) {
 // A frame from the equator looking at the hole is mirror symmetric top-bottom and left-right: a quarter of its
 // pixels is traced and the rest reflected (render/mirror_symmetry.hpp); --no-mirrors traces them all, to the same
 // picture. The JSON and the EXR header say how many were traced and which mirrors were used.
-TEST(RenderCli, MirrorSymmetricFramesTraceAQuarterAndSayWhich) {
+TEST_F(RenderCli, MirrorSymmetricFramesTraceAQuarterAndSayWhich) {
   const std::string common = "--width 40 --height 30 --camera-r 15 --tracer general --rtol 1e-9 ";
   const fs::path mirrored = scratch("mirrored.exr"), full = scratch("full.exr"), tilted = scratch("tilted.exr");
-  const CliRun a = run(common + "--out " + mirrored.string());
-  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const ToolRun a = run(common + "--out " + mirrored.string());
+  ASSERT_EQ(a.status, 0) << a.output;
   EXPECT_NE(a.output.find("\"traced_rays\":300,"), std::string::npos) << a.output;
   EXPECT_NE(a.output.find("\"mirrors\":\"equator,meridian\""), std::string::npos) << a.output;
-  const CliRun b = run(common + "--no-mirrors --out " + full.string());
-  ASSERT_EQ(b.exit_code, 0) << b.output;
+  const ToolRun b = run(common + "--no-mirrors --out " + full.string());
+  ASSERT_EQ(b.status, 0) << b.output;
   EXPECT_NE(b.output.find("\"traced_rays\":1200,"), std::string::npos) << b.output;
   EXPECT_NE(b.output.find("\"mirrors\":\"none\""), std::string::npos) << b.output;
-  const CliRun c = run(common + "--camera-theta 80 --out " + tilted.string());  // off the equator: left-right only
-  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const ToolRun c = run(common + "--camera-theta 80 --out " + tilted.string());  // off the equator: left-right only
+  ASSERT_EQ(c.status, 0) << c.output;
   EXPECT_NE(c.output.find("\"traced_rays\":600,"), std::string::npos) << c.output;
   EXPECT_NE(c.output.find("\"mirrors\":\"meridian\""), std::string::npos) << c.output;
 
@@ -117,11 +109,11 @@ TEST(RenderCli, MirrorSymmetricFramesTraceAQuarterAndSayWhich) {
   EXPECT_GT(escaped, 600);
 }
 
-TEST(RenderCli, OneAndTwoThreadsGiveIdenticalPixels) {
+TEST_F(RenderCli, OneAndTwoThreadsGiveIdenticalPixels) {
   const fs::path a = scratch("t1.exr"), b = scratch("t2.exr");
   const std::string common = "--scene disk --camera-r 25 --camera-theta 80 --fov 60 --width 40 --height 30 --rtol 1e-7 ";
-  ASSERT_EQ(run(common + "--threads 1 --out " + a.string()).exit_code, 0);
-  ASSERT_EQ(run(common + "--threads 2 --out " + b.string()).exit_code, 0);
+  ASSERT_EQ(run(common + "--threads 1 --out " + a.string()).status, 0);
+  ASSERT_EQ(run(common + "--threads 2 --out " + b.string()).status, 0);
   const grtrace::Image x = grtrace::read_exr(a), y = grtrace::read_exr(b);
   for (const auto& name : x.channel_names()) {
     const auto &p = x.channel(name), &q = y.channel(name);
@@ -134,17 +126,17 @@ TEST(RenderCli, OneAndTwoThreadsGiveIdenticalPixels) {
 // --exr-compression changes how the EXR is stored, never what it holds: every choice reads back the same bits as
 // the default, and the file says which compression it uses (zips by default, issue 11: the fastest to write on
 // all cores among those that keep files small).
-TEST(RenderCli, EveryExrCompressionHoldsTheSamePixels) {
+TEST_F(RenderCli, EveryExrCompressionHoldsTheSamePixels) {
   const std::string common = "--width 40 --height 36 --camera-r 15 --scene disk --fov 60 --camera-theta 80 ";
   const fs::path reference = scratch("default-compression.exr");
-  ASSERT_EQ(run(common + "--out " + reference.string()).exit_code, 0);
+  ASSERT_EQ(run(common + "--out " + reference.string()).status, 0);
   EXPECT_EQ(Imf::InputFile(reference.c_str()).header().compression(), Imf::ZIPS_COMPRESSION);
   const grtrace::Image x = grtrace::read_exr(reference);
   for (const auto& [name, compression] : grtrace::kExrLosslessCompressions) {
     SCOPED_TRACE(std::string(name));
     const fs::path out = scratch("compression-" + std::string(name) + ".exr");
-    const CliRun r = run(common + "--exr-compression " + std::string(name) + " --out " + out.string());
-    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const ToolRun r = run(common + "--exr-compression " + std::string(name) + " --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(Imf::InputFile(out.c_str()).header().compression(), compression);
     const grtrace::Image y = grtrace::read_exr(out);
     ASSERT_EQ(x.channel_names(), y.channel_names());
@@ -158,7 +150,7 @@ TEST(RenderCli, EveryExrCompressionHoldsTheSamePixels) {
   }
 }
 
-TEST(RenderCli, RefusesBadInputBeforeAnyWork) {
+TEST_F(RenderCli, RefusesBadInputBeforeAnyWork) {
   const fs::path out = scratch("bad.exr");
   const std::string o = "--width 8 --height 8 --out " + out.string() + " ";  // the bad option comes last and wins
   const char* bad[] = {"--camera-r 2", "--camera-r 1.5", "--camera-r 500", "--fov 0", "--fov 180", "--fov nan",
@@ -166,13 +158,13 @@ TEST(RenderCli, RefusesBadInputBeforeAnyWork) {
                        "--scene nope", "--metric kerr --spin 1", "--tableau nope", "--control pi --tableau rk4",
                        "--angle-correction sometimes", "--camera-theta 0", "--threads -1", "--rtol 0"};
   for (const char* args : bad) {
-    const CliRun r = run(o + args);
-    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    const ToolRun r = run(o + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find("error"), std::string::npos) << args;
     EXPECT_FALSE(fs::exists(out)) << args;
   }
-  const CliRun r = run("--width 8 --height 8 --out /nonexistent-dir/x.exr");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const ToolRun r = run("--width 8 --height 8 --out /nonexistent-dir/x.exr");
+  EXPECT_EQ(r.status, 2) << r.output;
 }
 
 }  // namespace

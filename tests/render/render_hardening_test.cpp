@@ -11,6 +11,8 @@
 #include "grtrace/render/output_file.hpp"
 #include "grtrace/render/png_preview.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -44,12 +46,6 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-fs::path tool(const char* defined, const char* dir, const char* name) {
-  if (defined != nullptr && *defined != '\0') return fs::path(defined);
-  const fs::path self = fs::read_symlink("/proc/self/exe");
-  return self.parent_path().parent_path().parent_path() / "examples" / dir / name;
-}
-
 #ifdef GRTRACE_RENDER_BINARY
 constexpr const char* kRender = GRTRACE_RENDER_BINARY;
 #else
@@ -61,61 +57,30 @@ constexpr const char* kGeodesic = GRTRACE_GEODESIC_BINARY;
 constexpr const char* kGeodesic = "";
 #endif
 
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct ToolRun {
-  int exit_code = -1;
-  std::string out, err;
-};
+using grtrace::tool_tests::ToolRun;
 
 class Hardening : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("grtrace_hardening_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
     fs::create_directories(dir_ / "shared");
     fs::create_directories(dir_ / "outside");
     fs::create_directories(dir_ / "log");
     victim_ = dir_ / "outside" / "victim.txt";
     std::ofstream(victim_) << "precious";
   }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::vector<std::string> listing(const fs::path& d) const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
+  std::vector<std::string> listing(const fs::path& d) const { return grtrace::tool_tests::files_in(d); }
+  /// Runs `binary` with args after the environment prefix env (stdout captured, stderr apart through log/).
   ToolRun run(const fs::path& binary, const std::vector<std::string>& args, const std::string& env = "") const {
-    std::string cmd = env + (env.empty() ? "" : " ") + quoted(binary.string());
-    for (const auto& a : args) cmd += " " + quoted(a);
-    const fs::path err = dir_ / "log" / "stderr.txt";
-    cmd += " 2>" + quoted(err.string());
-    ToolRun r;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.err = slurp(err);
-    return r;
+    return grtrace::tool_tests::run_tool(binary, args, dir_ / "log", env);
   }
   /// A refusal: exit 2, nothing on stdout, a message containing `message`.
   void expect_refused(const ToolRun& r, const std::string& message) const {
-    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_TRUE(r.out.empty()) << "stdout: " << r.out;
     EXPECT_NE(r.err.find(message), std::string::npos) << "expected '" << message << "' in: " << r.err;
   }
-  fs::path dir_, victim_;
+  grtrace::tool_tests::ScratchDir scratch_{"grtrace_hardening"};
+  fs::path dir_ = scratch_.path(), victim_;
 };
 
 Image small_image(int w = 4, int h = 3) {
@@ -364,8 +329,8 @@ class HardeningCli : public Hardening {
  protected:
   void SetUp() override {
     Hardening::SetUp();
-    render_ = tool(kRender, "render", "grtrace-render");
-    geodesic_ = tool(kGeodesic, "geodesic", "grtrace-geodesic");
+    render_ = grtrace::tool_tests::tool_path(kRender, "render", "grtrace-render");
+    geodesic_ = grtrace::tool_tests::tool_path(kGeodesic, "geodesic", "grtrace-geodesic");
     ASSERT_TRUE(fs::exists(render_)) << render_;
     ASSERT_TRUE(fs::exists(geodesic_)) << geodesic_;
   }
@@ -382,7 +347,7 @@ TEST_F(HardeningCli, RenderThroughAPlantedLinkLeavesItsTargetUnchanged) {
   fs::create_symlink(victim_, out);
   fs::create_symlink(victim_, dir_ / "shared" / "frame.png");
   const ToolRun r = run(render_, small({"--out", out.string()}));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(slurp(victim_), "precious");
   EXPECT_FALSE(fs::is_symlink(out));
   EXPECT_FALSE(fs::is_symlink(dir_ / "shared" / "frame.png"));
@@ -429,13 +394,13 @@ TEST_F(HardeningCli, BooleanFlagValues) {
   const fs::path out = dir_ / "shared" / "frame.exr";
   for (const char* no : {"--status-map=no", "--status-map=false", "--status-map=0", "--status-map=OFF"}) {
     const ToolRun r = run(render_, small({no, "--out", out.string()}));
-    ASSERT_EQ(r.exit_code, 0) << no << r.err;
+    ASSERT_EQ(r.status, 0) << no << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "shared" / "frame-status.png")) << no;
   }
   for (const char* yes : {"--status-map=yes", "--status-map=true", "--status-map=1", "--status-map=On"}) {
     fs::remove(dir_ / "shared" / "frame-status.png");
     const ToolRun r = run(render_, small({yes, "--out", out.string()}));
-    ASSERT_EQ(r.exit_code, 0) << yes << r.err;
+    ASSERT_EQ(r.status, 0) << yes << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "shared" / "frame-status.png")) << yes;
   }
   fs::remove_all(dir_ / "shared");
@@ -490,7 +455,7 @@ TEST_F(HardeningCli, MeaninglessGeodesicParametersAndPathsAreRefused) {
   // --path through a planted link: replaced, not followed.
   fs::create_symlink(victim_, csv);
   const ToolRun ok = run(geodesic_, {"--impact", "10", "--path", csv.string()});
-  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  ASSERT_EQ(ok.status, 0) << ok.err;
   EXPECT_EQ(slurp(victim_), "precious");
   EXPECT_FALSE(fs::is_symlink(csv));
   EXPECT_EQ(slurp(csv).rfind("lambda,t,r", 0), 0u);

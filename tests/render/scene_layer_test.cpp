@@ -23,11 +23,11 @@
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/straight_line.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -462,16 +462,14 @@ TEST(Observers, TheZamoOfAStaticMetricIsTheStaticObserver) {
 
 // ---- 6. The example programs refuse bad input before any work ---------------------------------------------
 
-int run_quietly(const std::string& command) {
-  const int status = std::system((command + " > /dev/null 2>&1").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+/// The exit status of `command` (shell words); its output is not looked at.
+int run_quietly(const std::string& command) { return grtrace::tool_tests::run_command(command).status; }
 
 TEST(ExamplePrograms, RefuseBadInputWithExitTwoAndWriteNothing) {
 #ifdef GRTRACE_EXAMPLE_DIR
   const std::filesystem::path dir(GRTRACE_EXAMPLE_DIR);
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "grtrace_scene_layer_bad.exr";
-  std::filesystem::remove(out);
+  const grtrace::tool_tests::ScratchDir scratch("grtrace_scene_layer");
+  const std::filesystem::path out = scratch / "bad.exr";
   const std::string o = " --size 16 --out " + out.string();
   EXPECT_EQ(run_quietly((dir / "reissner_nordstrom").string() + " --charge 1" + o), 2);
   EXPECT_EQ(run_quietly((dir / "reissner_nordstrom").string() + " --charge nan" + o), 2);

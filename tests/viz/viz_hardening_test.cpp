@@ -7,13 +7,11 @@
 #include "grtrace/observer/tetrad.hpp"
 #include "grtrace/render/exr_io.hpp"
 
+#include "../common/tool_run.hpp"
+
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -24,50 +22,25 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct ToolRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using grtrace::tool_tests::ToolRun;
 
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
+/// Runs exe with args after the environment prefix env; stdout and stderr merged in output, and a status that
+/// tells a crash (minus the signal's number) from a refusal.
 ToolRun run(const std::string& env, const std::string& exe, const std::vector<std::string>& args) {
-  std::string cmd = env + " " + quoted(exe);
-  for (const auto& a : args) cmd += " " + quoted(a);
-  cmd += " 2>&1";
-  ToolRun r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), p)) r.output += buf.data();
-  const int w = ::pclose(p);
-  r.status = WIFEXITED(w) ? WEXITSTATUS(w) : -(WIFSIGNALED(w) ? WTERMSIG(w) : 1000);
-  return r;
+  return grtrace::tool_tests::run_command(grtrace::tool_tests::command_line(exe, args, env));
 }
 
 class VizHardening : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("grtrace_viz_hardening_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_ / "out");
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
+  void SetUp() override { fs::create_directories(dir_ / "out"); }
   bool out_empty() const { return fs::is_empty(dir_ / "out"); }
   void expect_refused(const ToolRun& r, const std::string& message) const {
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_NE(r.output.find(message), std::string::npos) << "expected '" << message << "' in: " << r.output;
     EXPECT_TRUE(out_empty()) << "a file was left in out/";
   }
-  fs::path dir_;
+  grtrace::tool_tests::ScratchDir scratch_{"grtrace_viz_hardening"};
+  fs::path dir_ = scratch_.path();
 };
 
 constexpr const char* kNoServer = "DISPLAY=:987";  // names a display no X server answers

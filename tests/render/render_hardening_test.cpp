@@ -420,7 +420,7 @@ TEST_F(HardeningCli, MeaninglessRenderParametersAreRefusedWithTheirRange) {
       {{"--rtol", "1"}, "--rtol must lie in (0, 1)"},
       {{"--atol", "1"}, "--atol must lie in [0, 1)"},
       {{"--atol", "-1e-9"}, "--atol must lie in [0, 1)"},
-      {{"--control", "fixed", "--step", "1e300"}, "longer than the sky's diameter"},
+      {{"--tableau", "rk4", "--control", "fixed", "--step", "1e300"}, "longer than the sky's diameter"},
       {{"--step", "1e300"}, "longer than the sky's diameter"},
       {{"--sky-radius", "1e155", "--camera-r", "200"}, "--sky-radius must lie in (0, 1e100]"},
       {{"--scene", "sky", "--sky-texture", nan_tex.string()}, "texel (x 5, y 2) of channel G is not finite"},

@@ -10,22 +10,22 @@ namespace grtrace::app {
 void check_frame_request(const FrameRequest& q) {
   check_tool_method(q.tableau, q.control);
   const std::string& metric = q.metric.name;
+  // The older sky-and-horizon table is the library's (trace/symmetric_scene_tracer.hpp), no longer the tools': the
+  // planar tracer draws every frame it drew, more accurately (tests/render/planar_tracer_test.cpp,
+  // DrawsEveryFrameTheSymmetricTracerDrew).
+  if (q.tracer == "symmetric")
+    throw std::invalid_argument("--tracer symmetric is retired: the planar tracer draws every frame it drew, with a "
+                                "smaller error; use --tracer planar (or auto, which picks it)");
   bool known_tracer = false;
   for (std::string_view name : kTracerNames) known_tracer = known_tracer || name == q.tracer;
   if (!known_tracer)
-    throw std::invalid_argument("unknown --tracer '" + q.tracer + "'; choose auto, general, planar or symmetric");
+    throw std::invalid_argument("unknown --tracer '" + q.tracer + "'; choose auto, general or planar");
   if (q.tracer == "planar" && metric != "schwarzschild" && metric != "rn")
     throw std::invalid_argument("--tracer planar needs a static spherically symmetric metric with a horizon "
                                 "(--metric schwarzschild or rn); use general");
   if (q.tracer == "planar" && q.control == "fixed")
     throw std::invalid_argument("--tracer planar integrates its table in swept angle, where a fixed --step would mean "
                                 "something else; use --control i, pi or doubling, or --tracer general");
-  if (q.tracer == "symmetric" && q.scene.name == "disk")
-    throw std::invalid_argument("--tracer symmetric cannot draw a disk (it breaks the spherical symmetry); use "
-                                "general");
-  if (q.tracer == "symmetric" && metric != "schwarzschild")
-    throw std::invalid_argument("--tracer symmetric needs --metric schwarzschild (its table assumes that metric); "
-                                "use general");
 }
 
 void with_frame_tracer(const FrameRequest& q, const Camera& camera, const FrameTracerUser& f) {
@@ -62,7 +62,6 @@ Frame render_frame(const FrameRequest& q, const Camera& camera, const RenderOpti
 FlightStats render_flight(const FrameRequest& q, const std::vector<Camera>& cameras, const FlightSkip& skip,
                           const FlightSink& sink, const RenderOptions& options) {
   check_frame_request(q);
-  if (q.tracer == "symmetric") throw std::invalid_argument("--tracer symmetric does not fly; use auto (or general)");
   return grtrace::render_flight(
       cameras,
       [&](const Camera& camera, auto&& f) {

@@ -1,6 +1,6 @@
 // The application layer's instantiations (private to grtrace_app): one function per group of metrics, each in its
 // own translation unit so that they compile in parallel:
-//   frame_tracers_schwarzschild.cpp  schwarzschild (auto/planar, general, symmetric), minkowski (straight lines)
+//   frame_tracers_schwarzschild.cpp  schwarzschild (auto/planar, general), minkowski (straight lines)
 //   frame_tracers_kerr.cpp           kerr in Boyer-Lindquist coordinates (auto/kerr-mino, general)
 //   frame_tracers_kerr_schild.cpp    kerr in Cartesian Kerr-Schild coordinates (general)
 //   frame_tracers_rn_sds.cpp         Reissner-Nordstrom, Schwarzschild-de Sitter (auto/planar, general)

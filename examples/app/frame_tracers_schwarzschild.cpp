@@ -2,12 +2,11 @@
 #include "frame_tracers.hpp"
 
 #include "grtrace/trace/straight_line.hpp"
-#include "grtrace/trace/symmetric_scene_tracer.hpp"
 
 namespace grtrace::app {
 
-/// Flat space by straight lines; Schwarzschild by auto's choice (the planar tracer), every pixel integrated
-/// (general), or the older sky-only table (symmetric: draws no objects).
+/// Flat space by straight lines; Schwarzschild by auto's choice (the planar tracer) or every pixel integrated
+/// (general).
 void with_schwarzschild_tracer(const FrameRequest& q, const Camera& camera, const FrameTracerUser& f) {
   if (q.metric.name == "minkowski") {
     with_standard_scene(q.scene, [&](auto scene) {
@@ -15,15 +14,7 @@ void with_schwarzschild_tracer(const FrameRequest& q, const Camera& camera, cons
     });
     return;
   }
-  const SchwarzschildMetric metric{q.metric.mass};
-  if (q.tracer != "symmetric") return with_integrating_tracer(q, metric, camera, f);
-  const bool known = dispatch_tool_method(q.tableau, q.control, [&]<class T, class C>() {
-    const BackgroundScene scene = background_scene(q.scene);
-    hand_over(SymmetricSceneTracer<T, C, BackgroundScene>(metric, q.settings, camera, q.correction, scene,
-                                                          q.table_rays),
-              f);
-  });
-  if (!known) check_tool_method(q.tableau, q.control);
+  with_integrating_tracer(q, SchwarzschildMetric{q.metric.mass}, camera, f);
 }
 
 }  // namespace grtrace::app

@@ -8,6 +8,7 @@
 #include "flight_options.hpp"
 #include "json_writer.hpp"
 #include "kerr_options.hpp"
+#include "method_options.hpp"
 #include "render_request.hpp"
 
 #include "grtrace/exact/kerr_exact.hpp"
@@ -70,25 +71,20 @@ CommandLine make_command_line() {
       .option("up", "0,-1,0", "up direction r,theta,phi in the observer's frame (default: the north pole)")
       .option("fov", "90", "horizontal field of view, degrees, in (0, 180)")
       .option("width", "1024", "image width in pixels")
-      .option("height", "1024", "image height in pixels")
-      .option("tableau", "rkf78", "Runge-Kutta tableau: " + app::tool_tableau_names() +
-                                      ". With --control, one of the offered methods: " + app::tool_methods_list() +
-                                      " (every pair: grtrace-work-precision, grtrace-geodesic)")
-      .option("control", "i", "step control: " + app::tool_control_names() + " (see --tableau for the pairs)")
-      .option("step", "0", "initial step (0 = automatic), or the step of --control fixed")
-      .option("rtol", "1e-9", "relative tolerance")
-      .option("atol", "1e-11", "absolute tolerance")
-      .option("sky-radius", "400", "radius of the sky sphere where rays are taken as escaped")
+      .option("height", "1024", "image height in pixels");
+  tools::declare_method_options(cli, "", {});  // rkf78 + I, rtol 1e-9, atol 1e-11
+  cli.option("sky-radius", "400", "radius of the sky sphere where rays are taken as escaped")
       .option("angle-correction", "exact", "escaped rays: none | flat (seed eq. 7-8) | exact (bending to infinity)")
       .option("max-steps", "100000", "step budget per ray")
-      .option("tracer", "auto", "auto | general | planar | symmetric. planar: one table of rays for the frame, every "
+      .option("tracer", "auto", "auto | general | planar. planar: one table of rays for the frame, every "
                                 "scene of a Schwarzschild hole, disk included (auto's choice there with an adaptive "
-                                "--control); symmetric: the older sky-and-horizon table; general: every pixel "
+                                "--control; it also draws every frame the retired symmetric table drew); general: "
+                                "every pixel "
                                 "integrated (any metric). auto picks kerr-mino for --metric kerr --chart bl with an "
                                 "adaptive --control: every pixel on Kerr's separated equations in Mino time, 3x "
                                 "cheaper per ray than general")
       .option("table-rays", std::to_string(grtrace::default_table_rays),
-              "planar and symmetric tracers: table rays on each side of the critical angle")
+              "planar tracer: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
       .option("checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)")
       .option("disk-inner", "6", tools::disk_inner_help())
@@ -167,7 +163,6 @@ void read_flight(const CommandLine& cli, Request& q) {
                        "path (its 4-velocity): leave it out");
   if (cli.flag_set("status-map") || q.error_map)
     throw UsageError("--status-map and --error-map are for single frames; leave them out with --flight");
-  if (q.tracer == "symmetric") throw UsageError("--tracer symmetric does not fly; use auto (or general)");
   if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
   const CameraView view{triple(cli, "look"), triple(cli, "up"), q.camera->width(), q.camera->height(),
                         q.camera->fov_degrees()};
@@ -207,25 +202,13 @@ Request read_request(const CommandLine& cli) {
   if (ms.name == "minkowski" && disk)
     throw UsageError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
 
-  q.tableau = cli.text("tableau");
-  q.control = cli.text("control");
-  try {  // one of the offered methods (grtrace/app/tool_methods.hpp), checked now, before any work
-    app::check_tool_method(q.tableau, q.control);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  // The method group (examples/common/method_options.hpp): one of the offered methods, its tolerances and step.
+  tools::MethodOptions method = tools::read_method_options(cli, "");
+  q.tableau = method.tableau;
+  q.control = method.control;
   TraceSettings& s = q.settings;
-  s.integrator.tolerance = {cli.number("rtol"), cli.number("atol")};
-  if (!(s.integrator.tolerance.rtol > 0.0 && s.integrator.tolerance.rtol < 1.0))
-    throw UsageError("--rtol must lie in (0, 1) (a relative error; e.g. 1e-9), got " + cli.text("rtol"));
-  if (!(s.integrator.tolerance.atol >= 0.0 && s.integrator.tolerance.atol < 1.0))
-    throw UsageError("--atol must lie in [0, 1) (e.g. 1e-11), got " + cli.text("atol"));
-  s.initial_step = cli.number("step");
-  if (s.initial_step < 0.0) throw UsageError("--step must be >= 0");
-  if (q.control == "fixed" && s.initial_step <= 0.0) throw UsageError("--control fixed needs --step H > 0");
-  const long max_steps = cli.integer("max-steps");
-  if (max_steps < 1 || max_steps > 100'000'000) throw UsageError("--max-steps must be in 1 .. 1e8");
-  s.max_steps = static_cast<int>(max_steps);
+  s = method.settings;
+  s.max_steps = tools::read_max_steps(cli);
   s.escape_radius = cli.number("sky-radius");
   if (!(s.escape_radius > 0.0 && s.escape_radius <= 1e100))
     throw UsageError("--sky-radius must lie in (0, 1e100] (r^2 must not overflow), got " + cli.text("sky-radius"));
@@ -236,10 +219,7 @@ Request read_request(const CommandLine& cli) {
                      JsonObject::number(2.0 * s.escape_radius) + "]");
 
   q.correction_name = cli.text("angle-correction");
-  if (q.correction_name == "none") q.correction = AngleCorrection::none;
-  else if (q.correction_name == "flat") q.correction = AngleCorrection::flat;
-  else if (q.correction_name == "exact") q.correction = AngleCorrection::exact;
-  else throw UsageError("unknown --angle-correction '" + q.correction_name + "'; choose none, flat or exact");
+  q.correction = tools::read_angle_correction(cli);
 
   const double r = cli.number("camera-r"), theta = cli.number("camera-theta"), phi = cli.number("camera-phi");
   // In the metric's own radius (Boyer-Lindquist r for Kerr in both charts, the areal radius r(l) of the wormhole):
@@ -579,7 +559,7 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
   json.add("first_frame", flight_exr_path(q, 0)).add("last_frame", flight_exr_path(q, frames - 1));
   if (!mp4.empty()) json.add("mp4", mp4);
-  if (table.name == "planar" || table.name == "symmetric-sky") {
+  if (table.name == "planar") {
     json.add("table_rays", table.table_rays).add("table_steps", table.table_steps).add("fallback_rays", table.fallback_rays);
     json.add("mean_steps", stats.rays > 0 ? static_cast<double>(table.table_steps) / static_cast<double>(stats.rays) : 0.0);
   }
@@ -602,7 +582,7 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     TracerReport table;
     std::optional<Frame> frame = render_request(q, where, table);
-    // The table (planar and symmetric tracers) is part of the frame's cost: time the whole thing.
+    // The table (planar tracer) is part of the frame's cost: time the whole thing.
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     Image& image = frame->image;
     RenderStats& st = frame->stats;
@@ -638,7 +618,7 @@ int main(int argc, char** argv) {
     JsonObject json;
     json.add("width", st.width).add("height", st.height).add("seconds", seconds);
     json.add("rays_per_second", st.rays_per_second);
-    const bool tabulated = tracer == "symmetric-sky" || tracer == "planar";
+    const bool tabulated = tracer == "planar";
     const double mean_steps = tabulated ? static_cast<double>(table.table_steps) / static_cast<double>(st.rays) : st.mean_steps;
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);

@@ -34,6 +34,7 @@
 #include "flight_options.hpp"
 #include "json_writer.hpp"
 #include "kerr_options.hpp"
+#include "method_options.hpp"
 #include "view_request.hpp"
 
 #include "grtrace/exact/kerr_exact.hpp"
@@ -50,7 +51,6 @@
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/app/tool_methods.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
-#include "grtrace/trace/symmetric_scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
 #include "grtrace/viz/camera_glyph.hpp"
 #include "grtrace/viz/charts.hpp"
@@ -122,14 +122,9 @@ CommandLine make_command_line() {
       .option("disk-outer", "20", "outer radius of the disk (scene disk)");
   tools::declare_disk_retrograde_flag(cli, "; also picks the ISCO ring drawn. With --frame: the frame's sense "
                                            "unless given");
-  cli.option("angle-correction", "exact", "sky direction of escaped rays: none | flat | exact")
-      .option("tableau", "dopri5", "Runge-Kutta tableau: " + app::tool_tableau_names() + "; with --control one of " +
-                                       app::tool_methods_list())
-      .option("control", "pi", "step control: " + app::tool_control_names() + " (see --tableau for the pairs)")
-      .option("step", "0", "initial step (0 = automatic), or the step of --control fixed")
-      .option("rtol", "1e-8", "relative tolerance")
-      .option("atol", "1e-10", "absolute tolerance")
-      .option("max-steps", "100000", "accepted steps before a ray ends as max_steps")
+  cli.option("angle-correction", "exact", "sky direction of escaped rays: none | flat | exact");
+  tools::declare_method_options(cli, "", {"dopri5", "pi", "1e-8", "1e-10", ""});
+  cli.option("max-steps", "100000", "accepted steps before a ray ends as max_steps")
       .option("threads", "0", "threads for the in-process frame (0: OpenMP default)")
       // frame / bundle
       .option("frame", "", "EXR written by grtrace-render to show on the right (default: render it here); its "
@@ -146,14 +141,10 @@ CommandLine make_command_line() {
       // orbit
       .flag("orbit", "show the timelike orbit (a tube) in the 3D view")
       .option("orbit-r", "100", "orbit: start radius (equatorial plane, phi = 0; velocity --orbit-dr, --orbit-dphi)")
-      .option("orbit-revolutions", "12", "orbit: turns in phi to trace")
-      .option("orbit-tableau", "rk4", "orbit: tableau (the seed used classic RK4 with step doubling)")
-      .option("orbit-control", "doubling", "orbit: step control: " + app::tool_control_names() +
-                                                " (the pairs: see --tableau)")
-      .option("orbit-rtol", "1e-7", "orbit: relative tolerance")
-      .option("orbit-atol", "1e-10", "orbit: absolute tolerance")
-      .option("orbit-step", "0", "orbit: initial step (0 = automatic; the step of --orbit-control fixed)")
-      // 3D view
+      .option("orbit-revolutions", "12", "orbit: turns in phi to trace");
+  // The orbit's method: the seed's classic RK4 with step doubling by default.
+  tools::declare_method_options(cli, "orbit-", {"rk4", "doubling", "1e-7", "1e-10", "orbit: "});
+  cli  // 3D view
       .option("hide", "", "comma-separated layers to hide: horizon,photon-sphere,isco,disk,sky,camera,rays,orbit,"
                           "colorbar,picks")
       .flag("checkerboard", "draw the horizon with the renderer's theta-phi checkerboard")
@@ -228,21 +219,11 @@ double positive(const Params& p, const std::string& name) {
   return v;
 }
 
+/// The method group (examples/common/method_options.hpp, shared with grtrace-render) with its escape radius.
 MethodChoice read_method(const Params& p, const std::string& prefix, double escape_radius) {
-  MethodChoice m{p.text(prefix + "tableau"), p.text(prefix + "control"), {}};
-  m.settings.integrator.tolerance.rtol = positive(p, prefix + "rtol");
-  if (!(m.settings.integrator.tolerance.rtol < 1.0))
-    throw UsageError("--" + prefix + "rtol must lie in (0, 1) (a relative error), got " + p.text(prefix + "rtol"));
-  m.settings.integrator.tolerance.atol = p.number(prefix + "atol");
-  if (!(m.settings.integrator.tolerance.atol >= 0.0 && m.settings.integrator.tolerance.atol < 1.0))
-    throw UsageError("--" + prefix + "atol must lie in [0, 1), got " + p.text(prefix + "atol"));
+  tools::MethodOptions m = tools::read_method_options(p, prefix);
   m.settings.escape_radius = escape_radius;
-  try {  // one of the methods the tools offer (grtrace/app/tool_methods.hpp)
-    app::check_tool_method(m.tableau, m.control);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("--" + prefix + "tableau / --" + prefix + "control: " + e.what());
-  }
-  return m;
+  return {m.tableau, m.control, m.settings};
 }
 
 Vec3 triple(const Params& p, const std::string& name) {
@@ -564,19 +545,9 @@ Request read_request(const CommandLine& cli) {
       throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer: need 3M < inner < outer)");
     }
   }
-  const std::string corr = p.text("angle-correction");
-  if (corr == "none") q.correction = AngleCorrection::none;
-  else if (corr == "flat") q.correction = AngleCorrection::flat;
-  else if (corr == "exact") q.correction = AngleCorrection::exact;
-  else throw UsageError("--angle-correction must be none, flat or exact, got '" + corr + "'");
+  q.correction = tools::read_angle_correction(p);
   q.rays = read_method(p, "", q.sky_radius);
-  q.rays.settings.initial_step = p.number("step");
-  if (q.rays.settings.initial_step < 0.0) throw UsageError("--step must be >= 0");
-  if (q.rays.control == "fixed" && q.rays.settings.initial_step <= 0.0)
-    throw UsageError("--control fixed needs --step H > 0");
-  const long max_steps = p.integer("max-steps");
-  if (max_steps < 1 || max_steps > 100'000'000) throw UsageError("--max-steps must be in 1 .. 1e8");
-  q.rays.settings.max_steps = static_cast<int>(max_steps);
+  q.rays.settings.max_steps = tools::read_max_steps(p);
   const long threads = cli.integer("threads");
   if (threads < 0 || threads > 4096) throw UsageError("--threads must be 0 .. 4096");
   q.threads = static_cast<int>(threads);
@@ -629,10 +600,6 @@ Request read_request(const CommandLine& cli) {
   if (!(q.orbit.r0 > 2.0 * q.mass * 1.01)) throw UsageError("--orbit-r must lie outside the horizon r = 2M");
   q.orbit_method = read_method(p, "orbit-", 1e6 * q.orbit.r0);
   q.orbit_method.settings.max_steps = 2'000'000;
-  q.orbit_method.settings.initial_step = cli.number("orbit-step");
-  if (q.orbit_method.settings.initial_step < 0.0) throw UsageError("--orbit-step must be >= 0");
-  if (q.orbit_method.control == "fixed" && q.orbit_method.settings.initial_step <= 0.0)
-    throw UsageError("--orbit-control fixed needs a step: add --orbit-step H (e.g. --orbit-step 50)");
 
   std::stringstream hide(cli.text("hide"));
   for (std::string item; std::getline(hide, item, ',');) {

@@ -173,7 +173,7 @@ TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
       {"--flight circular --metric kerr --spin 0.5 --chart ks", "a circular flight is stated in the spherical chart"},
       {"--flight seed --metric kerr --spin 0.5 --chart ks", "the automatic step of a seed flight counts a revolution"},
       {"--flight seed --status-map", "are for single frames"},
-      {"--flight seed --tracer symmetric", "--tracer symmetric does not fly"},
+      {"--flight seed --tracer symmetric", "--tracer symmetric is retired"},
   };
   for (const auto& [args, says] : cases) {
     const ToolRun r = render(kSmall + args + out);

@@ -8,12 +8,16 @@
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
+#include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/planar_scene_tracer.hpp"
+#include "grtrace/trace/symmetric_scene_tracer.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 namespace {
@@ -443,5 +447,67 @@ INSTANTIATE_TEST_SUITE_P(Cameras, PlanarFrame,
                                            FrameCase{1000.0, 80.0, Vec3::Zero(), 3.0},
                                            FrameCase{1000.0, 60.0, Vec3(-0.3, 0.0, 0.0), 3.0}),
                          case_name);
+
+// The rendering tools no longer offer the older sky-and-horizon table (--tracer symmetric, SymmetricSceneTracer):
+// the planar tracer draws every frame it drew. Those frames are Schwarzschild, a scene without objects (checker,
+// sky, redshift), any camera outside the horizon guard (static or moving, inside or outside the photon sphere, any
+// inclination) and an adaptive controller; with a fixed step neither table applies and auto draws with the general
+// tracer. On each such frame the planar tracer must say escaped or captured wherever the exact elliptic-integral
+// answer does, at least wherever the symmetric tracer did, and its largest sky-direction error against that answer
+// must be no larger than the symmetric tracer's (both at the tools' defaults: rkf78 + I, rtol 1e-9, 1024 table
+// rays per side, sky sphere at 400 M).
+TEST(PlanarTracer, DrawsEveryFrameTheSymmetricTracerDrew) {
+  static_assert(planar_tracer_applies<SchwarzschildMetric, BackgroundScene, IController> &&
+                planar_tracer_applies<SchwarzschildMetric, BackgroundScene, PIController> &&
+                planar_tracer_applies<SchwarzschildMetric, BackgroundScene, StepDoubling>);
+  const SchwarzschildMetric metric{1.0};
+  TraceSettings settings;
+  settings.integrator.tolerance = {1e-9, 1e-11};
+  settings.escape_radius = 400.0;
+  struct Case {
+    double r, theta_degrees;
+    Vec3 velocity;
+  };
+  for (const Case& c : {Case{200.0, 90.0, Vec3::Zero()}, Case{12.0, 60.0, Vec3::Zero()},
+                        Case{4.0, 90.0, Vec3::Zero()}, Case{30.0, 20.0, Vec3(0.0, 0.0, 0.5)},
+                        Case{8.0, 135.0, Vec3(-0.4, 0.1, 0.0)}}) {
+    SCOPED_TRACE("r " + std::to_string(c.r) + ", theta " + std::to_string(c.theta_degrees));
+    CameraSpec cs;
+    cs.position = Vec4(0.0, c.r, c.theta_degrees * pi / 180.0, 0.3);
+    cs.velocity = c.velocity;
+    cs.width = 40;
+    cs.height = 30;
+    const Camera camera = make_camera(metric, cs);
+    StandardSceneSpec spec;
+    spec.name = "checker";
+    const BackgroundScene scene = background_scene(spec);
+    const PlanarSceneTracer<SchwarzschildMetric, Fehlberg78, IController, BackgroundScene> planar(
+        metric, settings, camera, AngleCorrection::exact, scene, default_table_rays);
+    const SymmetricSceneTracer<Fehlberg78, IController, BackgroundScene> symmetric(
+        metric, settings, camera, AngleCorrection::exact, scene, default_table_rays);
+    double planar_max = 0.0, symmetric_max = 0.0;
+    long escaped = 0, captured = 0;
+    for (int row = 0; row < camera.height(); ++row)
+      for (int col = 0; col < camera.width(); ++col) {
+        const GeodesicState y0 = camera.pixel_state(col, row);
+        const RayOutcome p = planar.trace(y0), q = symmetric.trace(y0);
+        const std::optional<SkyDirection> truth = exact::asymptotic_direction(y0, 1.0);
+        ASSERT_FALSE(is_failure(p.status)) << col << "," << row;
+        const RayStatus exact_status = truth ? RayStatus::escaped : RayStatus::captured;
+        if (q.status == exact_status) EXPECT_EQ(p.status, exact_status) << col << "," << row;
+        if (p.status == RayStatus::escaped && truth) {
+          planar_max = std::max(planar_max, exact::angular_distance(p.where, *truth));
+          ++escaped;
+        }
+        if (q.status == RayStatus::escaped && truth)
+          symmetric_max = std::max(symmetric_max, exact::angular_distance(q.where, *truth));
+        captured += p.status == RayStatus::captured;
+        if (p.status == q.status) EXPECT_EQ(p.object, q.object) << col << "," << row;
+      }
+    EXPECT_GT(escaped, 0);
+    EXPECT_LE(planar_max, symmetric_max) << "captured pixels: " << captured;
+    EXPECT_LT(planar_max, 1e-7);
+  }
+}
 
 }  // namespace

@@ -167,4 +167,37 @@ TEST_F(RenderCli, RefusesBadInputBeforeAnyWork) {
   EXPECT_EQ(r.status, 2) << r.output;
 }
 
+// The rendering tools offer a declared list of methods (grtrace/app/tool_methods.hpp): --help lists it, every pair
+// on it renders and says so in the JSON and the header, and a valid pair outside it is refused before any work with
+// the list and the tools that have every pair.
+TEST_F(RenderCli, OffersTheDeclaredMethodsAndRefusesOthersWithTheList) {
+  const ToolRun help = run("--help");
+  ASSERT_EQ(help.status, 0) << help.output;
+  const std::string list = "rkf78 + i (default), rkf78 + pi, tsit5 + i, dopri5 + pi, vern6 + i, rk4 + fixed, "
+                           "rk4 + doubling";
+  EXPECT_NE(help.output.find(list), std::string::npos) << help.output;
+  for (const char* method : {"rkf78 --control i", "rkf78 --control pi", "tsit5 --control i", "dopri5 --control pi",
+                             "vern6 --control i", "rk4 --control fixed --step 2", "rk4 --control doubling"}) {
+    SCOPED_TRACE(method);
+    const fs::path out = scratch("m.exr");
+    const ToolRun r = run("--width 12 --height 8 --camera-r 30 --rtol 1e-7 --atol 1e-9 --tableau " +
+                          std::string(method) + " --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::string tableau = std::string(method).substr(0, std::string(method).find(' '));
+    EXPECT_NE(r.output.find("\"tableau\":\"" + tableau + "\""), std::string::npos) << r.output;
+    EXPECT_EQ(grtrace::read_exr(out).metadata.at("tableau"), tableau);
+  }
+  for (const char* pair :
+       {"--tableau dopri5 --control i", "--tableau rkf45 --control pi", "--tableau rkf78 --control fixed --step 1"}) {
+    SCOPED_TRACE(pair);
+    const fs::path out = scratch("refused.exr");
+    const ToolRun r = run("--width 8 --height 8 " + std::string(pair) + " --out " + out.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(list), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("grtrace-work-precision"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("grtrace-geodesic"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
 }  // namespace

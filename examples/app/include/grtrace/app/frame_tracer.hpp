@@ -42,15 +42,15 @@ struct FrameRequest {
   std::string tableau = "rkf78";     ///< with control: one of kToolMethods
   std::string control = "i";
   /// auto (the fastest tracer whose assumptions hold: trace/auto_tracer.hpp), general (every pixel integrated),
-  /// planar (auto's choice around a static spherical hole, asked for by name), symmetric (the older sky-only
-  /// table, Schwarzschild without objects). Flat space (minkowski) always draws straight lines.
+  /// planar (auto's choice around a static spherical hole, asked for by name). Flat space (minkowski) always draws
+  /// straight lines.
   std::string tracer = "auto";
   TraceSettings settings;
   AngleCorrection correction = AngleCorrection::exact;
-  int table_rays = grtrace::default_table_rays;  ///< planar and symmetric tracers: table rays per side
+  int table_rays = grtrace::default_table_rays;  ///< planar tracer: table rays per side
 };
 
-inline constexpr std::array<std::string_view, 4> kTracerNames = {"auto", "general", "planar", "symmetric"};
+inline constexpr std::array<std::string_view, 3> kTracerNames = {"auto", "general", "planar"};
 
 /// Refuses (std::invalid_argument, saying what to change) a request whose tracer cannot draw its metric, scene or
 /// method, or whose method is not offered (check_tool_method). Checked before any work.

@@ -1,0 +1,140 @@
+// The tools' application layer (examples/app, grtrace/app/frame_tracer.hpp): a frame it draws through a FrameTracer
+// is the frame the core draws with the concrete tracer, bit for bit, for each kind of tracer it hands over (planar,
+// kerr-mino, general with rays four at a time, straight line) and for a flight; and it refuses, before any work,
+// what its tracers cannot draw, saying what to use instead.
+#include "grtrace/app/frame_tracer.hpp"
+#include "grtrace/app/tool_methods.hpp"
+#include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/tableau/tsitouras54.hpp"
+#include "grtrace/trace/auto_tracer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace grtrace;
+
+/// Every standard channel of a and b holds the same bits, and the header names the same tracer.
+void expect_same_frame(const Frame& a, const Frame& b) {
+  ASSERT_EQ(a.image.width(), b.image.width());
+  ASSERT_EQ(a.image.height(), b.image.height());
+  for (const char* c : Image::kStandardChannels) {
+    const auto& x = a.image.channel(c);
+    const auto& y = b.image.channel(c);
+    EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << "channel " << c;
+  }
+  EXPECT_EQ(a.image.metadata.at("tracer"), b.image.metadata.at("tracer"));
+  EXPECT_EQ(a.image.metadata.at("mirrors"), b.image.metadata.at("mirrors"));
+  EXPECT_EQ(a.stats.traced_rays, b.stats.traced_rays);
+}
+
+template <class M>
+Camera small_camera(const M& metric, double r, double theta_degrees) {
+  CameraSpec cs;
+  cs.position = Vec4(0.0, r, theta_degrees * std::numbers::pi / 180.0, 0.0);
+  cs.spherical_position = true;
+  cs.width = 33;
+  cs.height = 21;
+  cs.fov_degrees = 60.0;
+  return make_camera(metric, cs);
+}
+
+app::FrameRequest request(const std::string& metric, const std::string& scene, const std::string& tableau,
+                          const std::string& control, const std::string& tracer) {
+  app::FrameRequest q;
+  q.metric.name = metric;
+  q.metric.spin = metric == "kerr" ? 0.9 : 0.0;
+  q.scene.name = scene;
+  q.tableau = tableau;
+  q.control = control;
+  q.tracer = tracer;
+  q.settings.integrator.tolerance = {1e-8, 1e-10};
+  q.settings.escape_radius = 400.0;
+  return q;
+}
+
+TEST(AppLayer, SchwarzschildFramesAreTheCoresBitForBit) {
+  const SchwarzschildMetric metric{1.0};
+  const Camera camera = small_camera(metric, 30.0, 80.0);
+  app::FrameRequest q = request("schwarzschild", "disk", "rkf78", "i", "auto");
+  const Frame erased = app::render_frame(q, camera);
+  const PlanarSceneTracer<SchwarzschildMetric, Fehlberg78, IController, DiskScene> planar(
+      metric, q.settings, camera, q.correction, disk_scene(q.scene), q.table_rays);
+  expect_same_frame(erased, render_frame(camera, planar));
+  EXPECT_EQ(erased.image.metadata.at("tracer"), "planar");
+
+  q = request("schwarzschild", "checker", "tsit5", "i", "general");
+  TracerReport report;
+  const Frame general = app::render_frame(q, camera, {}, nullptr, &report);
+  expect_same_frame(general, render_frame(camera, make_general_tracer<Tsitouras54, IController>(
+                                                      metric, q.settings, q.correction, background_scene(q.scene))));
+  EXPECT_EQ(report.name, "general");
+}
+
+TEST(AppLayer, KerrAndFlatFramesAreTheCoresBitForBit) {
+  const KerrMetric metric{1.0, 0.9};
+  const Camera camera = small_camera(metric, 50.0, 80.0);
+  const app::FrameRequest q = request("kerr", "disk", "rkf78", "i", "auto");
+  const Frame erased = app::render_frame(q, camera);
+  expect_same_frame(erased, render_frame(camera, make_kerr_mino_tracer<Fehlberg78, IController>(
+                                                     metric, q.settings, q.correction, disk_scene(q.scene))));
+  EXPECT_EQ(erased.image.metadata.at("tracer"), "kerr-mino");
+
+  const MinkowskiSpherical flat{};
+  const Camera flat_camera = small_camera(flat, 30.0, 90.0);
+  const app::FrameRequest f = request("minkowski", "checker", "rkf78", "i", "auto");
+  expect_same_frame(app::render_frame(f, flat_camera),
+                    render_frame(flat_camera, StraightLineTracer(flat, f.settings.escape_radius, f.correction,
+                                                                 background_scene(f.scene))));
+}
+
+TEST(AppLayer, FlightFramesAreItsSingleFrames) {
+  const SchwarzschildMetric metric{1.0};
+  const std::vector<Camera> cameras = {small_camera(metric, 30.0, 80.0), small_camera(metric, 20.0, 60.0)};
+  const app::FrameRequest q = request("schwarzschild", "disk", "tsit5", "i", "auto");
+  std::vector<Frame> frames(cameras.size());
+  const FlightStats stats = app::render_flight(
+      q, cameras, [](int) { return false; },
+      [&](int i, Frame&& frame, const TracerReport& report) {
+        EXPECT_EQ(report.name, "planar");
+        frames[static_cast<std::size_t>(i)] = std::move(frame);
+      });
+  EXPECT_EQ(stats.rendered, 2);
+  for (std::size_t i = 0; i < cameras.size(); ++i) expect_same_frame(frames[i], app::render_frame(q, cameras[i]));
+}
+
+TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
+  struct Case {
+    app::FrameRequest q;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {request("schwarzschild", "checker", "dopri5", "i", "auto"), "rkf78 + i (default)"},
+      {request("schwarzschild", "checker", "rk4", "pi", "auto"), "embedded error estimate"},
+      {request("kerr", "checker", "rkf78", "i", "planar"), "--tracer planar needs"},
+      {request("schwarzschild", "checker", "rk4", "fixed", "planar"), "fixed --step"},
+      {request("schwarzschild", "checker", "rkf78", "i", "symmetric"), "use --tracer planar"},
+      {request("schwarzschild", "checker", "rkf78", "i", "teapot"), "choose auto, general or planar"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.says);
+    try {
+      app::check_frame_request(c.q);
+      ADD_FAILURE() << "not refused";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(app::check_frame_request(request("rn", "disk", "vern6", "i", "planar")));
+  for (const app::ToolMethod& m : app::kToolMethods) EXPECT_TRUE(app::is_tool_method(m.tableau, m.control));
+  EXPECT_FALSE(app::is_tool_method("rkf45", "i"));
+}
+
+}  // namespace

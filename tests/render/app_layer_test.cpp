@@ -13,6 +13,7 @@
 
 #include <cstring>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -99,15 +100,18 @@ TEST(AppLayer, FlightFramesAreItsSingleFrames) {
   const SchwarzschildMetric metric{1.0};
   const std::vector<Camera> cameras = {small_camera(metric, 30.0, 80.0), small_camera(metric, 20.0, 60.0)};
   const app::FrameRequest q = request("schwarzschild", "disk", "tsit5", "i", "auto");
-  std::vector<Frame> frames(cameras.size());
+  std::vector<std::optional<Frame>> frames(cameras.size());
   const FlightStats stats = app::render_flight(
       q, cameras, [](int) { return false; },
       [&](int i, Frame&& frame, const TracerReport& report) {
         EXPECT_EQ(report.name, "planar");
-        frames[static_cast<std::size_t>(i)] = std::move(frame);
+        frames[static_cast<std::size_t>(i)].emplace(std::move(frame));
       });
   EXPECT_EQ(stats.rendered, 2);
-  for (std::size_t i = 0; i < cameras.size(); ++i) expect_same_frame(frames[i], app::render_frame(q, cameras[i]));
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    ASSERT_TRUE(frames[i].has_value());
+    expect_same_frame(*frames[i], app::render_frame(q, cameras[i]));
+  }
 }
 
 TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {

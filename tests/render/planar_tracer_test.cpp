@@ -494,7 +494,9 @@ TEST(PlanarTracer, DrawsEveryFrameTheSymmetricTracerDrew) {
         const std::optional<SkyDirection> truth = exact::asymptotic_direction(y0, 1.0);
         ASSERT_FALSE(is_failure(p.status)) << col << "," << row;
         const RayStatus exact_status = truth ? RayStatus::escaped : RayStatus::captured;
-        if (q.status == exact_status) EXPECT_EQ(p.status, exact_status) << col << "," << row;
+        if (q.status == exact_status) {
+          EXPECT_EQ(p.status, exact_status) << col << "," << row;
+        }
         if (p.status == RayStatus::escaped && truth) {
           planar_max = std::max(planar_max, exact::angular_distance(p.where, *truth));
           ++escaped;
@@ -502,7 +504,9 @@ TEST(PlanarTracer, DrawsEveryFrameTheSymmetricTracerDrew) {
         if (q.status == RayStatus::escaped && truth)
           symmetric_max = std::max(symmetric_max, exact::angular_distance(q.where, *truth));
         captured += p.status == RayStatus::captured;
-        if (p.status == q.status) EXPECT_EQ(p.object, q.object) << col << "," << row;
+        if (p.status == q.status) {
+          EXPECT_EQ(p.object, q.object) << col << "," << row;
+        }
       }
     EXPECT_GT(escaped, 0);
     EXPECT_LE(planar_max, symmetric_max) << "captured pixels: " << captured;

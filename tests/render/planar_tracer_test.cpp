@@ -466,15 +466,17 @@ TEST(PlanarTracer, DrawsEveryFrameTheSymmetricTracerDrew) {
   settings.escape_radius = 400.0;
   struct Case {
     double r, theta_degrees;
-    Vec3 velocity;
+    Vec3 velocity, look;
   };
-  for (const Case& c : {Case{200.0, 90.0, Vec3::Zero()}, Case{12.0, 60.0, Vec3::Zero()},
-                        Case{4.0, 90.0, Vec3::Zero()}, Case{30.0, 20.0, Vec3(0.0, 0.0, 0.5)},
-                        Case{8.0, 135.0, Vec3(-0.4, 0.1, 0.0)}}) {
+  const Vec3 inward(-1.0, 0.0, 0.0), outward(1.0, 0.0, 0.0);  // inside the photon sphere the hole fills the view
+  for (const Case& c : {Case{200.0, 90.0, Vec3::Zero(), inward}, Case{12.0, 60.0, Vec3::Zero(), inward},
+                        Case{4.0, 90.0, Vec3::Zero(), outward}, Case{30.0, 20.0, Vec3(0.0, 0.0, 0.5), inward},
+                        Case{8.0, 135.0, Vec3(-0.4, 0.1, 0.0), inward}}) {
     SCOPED_TRACE("r " + std::to_string(c.r) + ", theta " + std::to_string(c.theta_degrees));
     CameraSpec cs;
     cs.position = Vec4(0.0, c.r, c.theta_degrees * pi / 180.0, 0.3);
     cs.velocity = c.velocity;
+    cs.look = c.look;
     cs.width = 40;
     cs.height = 30;
     const Camera camera = make_camera(metric, cs);

@@ -18,7 +18,6 @@ std::string tool_methods_list() {
   std::string list;
   for (std::size_t i = 0; i < kToolMethods.size(); ++i) {
     list.append(i ? ", " : "").append(kToolMethods[i].tableau).append(" + ").append(kToolMethods[i].control);
-    if (i == 0) list.append(" (default)");
   }
   return list;
 }

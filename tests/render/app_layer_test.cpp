@@ -120,7 +120,7 @@ TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
     std::string says;
   };
   const std::vector<Case> cases = {
-      {request("schwarzschild", "checker", "dopri5", "i", "auto"), "rkf78 + i (default)"},
+      {request("schwarzschild", "checker", "dopri5", "i", "auto"), "rkf78 + i, rkf78 + pi"},
       {request("schwarzschild", "checker", "rk4", "pi", "auto"), "embedded error estimate"},
       {request("kerr", "checker", "rkf78", "i", "planar"), "--tracer planar needs"},
       {request("schwarzschild", "checker", "rk4", "fixed", "planar"), "fixed --step"},

@@ -90,7 +90,7 @@ bool dispatch_tool_method(std::string_view tableau, std::string_view control, F&
 /// True when (tableau, control) is one of the offered pairs.
 bool is_tool_method(std::string_view tableau, std::string_view control);
 
-/// "rkf78 + i (default), rkf78 + pi, ...": the list for --help and for messages.
+/// "rkf78 + i, rkf78 + pi, ...": the list for --help and for messages (each tool names its own default).
 std::string tool_methods_list();
 
 /// The tableau names the tools offer ("rkf78|tsit5|dopri5|vern6|rk4") and the controllers ("i|pi|fixed|doubling"),

@@ -28,12 +28,6 @@ struct MethodDefaults {
   std::string help_prefix;
 };
 
-/// The group's values: the offered (tableau, control) pair by name, and the settings they fill (tolerances,
-/// initial step; the caller sets the rest: escape radius, max steps).
-struct MethodOptions {
-  std::string tableau, control;
-  TraceSettings settings;
-};
 
 /// Declares --<prefix>tableau, --<prefix>control, --<prefix>step, --<prefix>rtol and --<prefix>atol.
 inline void declare_method_options(CommandLine& cli, const std::string& prefix, const MethodDefaults& d) {
@@ -49,11 +43,12 @@ inline void declare_method_options(CommandLine& cli, const std::string& prefix, 
       .option(prefix + "atol", d.atol, h + "absolute tolerance");
 }
 
-/// Reads the group declared with `prefix`; throws UsageError naming the option and what to change: a pair the tools
-/// do not offer, tolerances outside (0, 1) and [0, 1), a negative step, a fixed step without a step.
+/// Reads the group declared with `prefix` into the pair's names, tolerances and initial step (the caller sets the
+/// rest: escape radius, max steps); throws UsageError naming the option and what to change: a pair the tools do not
+/// offer, tolerances outside (0, 1) and [0, 1), a negative step, a fixed step without a step.
 template <class Source>
-MethodOptions read_method_options(const Source& p, const std::string& prefix) {
-  MethodOptions m{p.text(prefix + "tableau"), p.text(prefix + "control"), {}};
+app::MethodChoice read_method_options(const Source& p, const std::string& prefix) {
+  app::MethodChoice m{p.text(prefix + "tableau"), p.text(prefix + "control"), {}};
   try {
     app::check_tool_method(m.tableau, m.control);
   } catch (const std::invalid_argument& e) {

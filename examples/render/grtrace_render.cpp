@@ -20,7 +20,6 @@
 #include "grtrace/render/frame_files.hpp"
 #include "grtrace/render/png_preview.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
-#include "grtrace/app/tool_methods.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -79,8 +78,7 @@ CommandLine make_command_line() {
       .option("tracer", "auto", "auto | general | planar. planar: one table of rays for the frame, every "
                                 "scene of a Schwarzschild hole, disk included (auto's choice there with an adaptive "
                                 "--control; it also draws every frame the retired symmetric table drew); general: "
-                                "every pixel "
-                                "integrated (any metric). auto picks kerr-mino for --metric kerr --chart bl with an "
+                                "every pixel integrated (any metric). auto picks kerr-mino for --metric kerr --chart bl with an "
                                 "adaptive --control: every pixel on Kerr's separated equations in Mino time, 3x "
                                 "cheaper per ray than general")
       .option("table-rays", std::to_string(grtrace::default_table_rays),
@@ -203,7 +201,7 @@ Request read_request(const CommandLine& cli) {
     throw UsageError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
 
   // The method group (examples/common/method_options.hpp): one of the offered methods, its tolerances and step.
-  tools::MethodOptions method = tools::read_method_options(cli, "");
+  const app::MethodChoice method = tools::read_method_options(cli, "");
   q.tableau = method.tableau;
   q.control = method.control;
   TraceSettings& s = q.settings;

@@ -49,7 +49,6 @@
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/scene/thin_disk.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
-#include "grtrace/app/tool_methods.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
 #include "grtrace/viz/camera_glyph.hpp"
@@ -221,9 +220,9 @@ double positive(const Params& p, const std::string& name) {
 
 /// The method group (examples/common/method_options.hpp, shared with grtrace-render) with its escape radius.
 MethodChoice read_method(const Params& p, const std::string& prefix, double escape_radius) {
-  tools::MethodOptions m = tools::read_method_options(p, prefix);
+  MethodChoice m = tools::read_method_options(p, prefix);
   m.settings.escape_radius = escape_radius;
-  return {m.tableau, m.control, m.settings};
+  return m;
 }
 
 Vec3 triple(const Params& p, const std::string& name) {

@@ -7,6 +7,7 @@
 //   view_pick.cpp   pick_ray      one picked pixel's ray (--pick, clicks on the frame)
 #pragma once
 
+#include "grtrace/app/tool_methods.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -31,10 +32,7 @@
 
 namespace grtrace::view {
 
-struct MethodChoice {
-  std::string tableau, control;
-  TraceSettings settings;
-};
+using MethodChoice = app::MethodChoice;  ///< grtrace/app/tool_methods.hpp
 
 /// --flight: the camera's path and the frame the viewer looks through (its camera is Request::camera).
 struct FlightView {

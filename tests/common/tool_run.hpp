@@ -82,14 +82,15 @@ inline std::string read_all(FILE* p) {
   return s;
 }
 
-inline std::string slurp(const std::filesystem::path& file) {
+}  // namespace detail
+
+/// Takes a file; returns its bytes ("" if it cannot be read): what a tool wrote, or a file it must not have touched.
+inline std::string file_contents(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
 }
-
-}  // namespace detail
 
 /// Runs `command` (shell words) with stderr merged into stdout; ToolRun::output holds both, in the order written.
 inline ToolRun run_command(const std::string& command) {
@@ -119,7 +120,7 @@ inline ToolRun run_separated(const std::string& command, const std::filesystem::
     r.out = detail::read_all(p);
     r.status = decode_status(::pclose(p));
   }
-  r.err = detail::slurp(err_file);
+  r.err = file_contents(err_file);
   std::error_code ec;
   std::filesystem::remove(err_file, ec);
   r.output = r.out + r.err;

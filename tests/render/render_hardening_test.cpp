@@ -39,12 +39,7 @@ using grtrace::Image;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using grtrace::tool_tests::file_contents;
 
 #ifdef GRTRACE_RENDER_BINARY
 constexpr const char* kRender = GRTRACE_RENDER_BINARY;
@@ -104,7 +99,7 @@ void write_texture(const fs::path& file, int w, int h, int nan_x = -1, int nan_y
 /// A valid small EXR whose header is then patched to claim a `w` x `h` data window (a forged header).
 void write_forged_exr(const fs::path& file, int w, int h) {
   write_texture(file, 4, 4);
-  std::string bytes = slurp(file);
+  std::string bytes = file_contents(file);
   const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
   const auto at = bytes.find(key);
   ASSERT_NE(at, std::string::npos);
@@ -122,7 +117,7 @@ TEST_F(Hardening, LinkPlantedAtTheFinalNameIsReplacedNotFollowed) {
   const fs::path out = dir_ / "shared" / "frame.exr";
   fs::create_symlink(victim_, out);
   grtrace::write_exr(out, small_image());
-  EXPECT_EQ(slurp(victim_), "precious") << "the write went through the link";
+  EXPECT_EQ(file_contents(victim_), "precious") << "the write went through the link";
   EXPECT_FALSE(fs::is_symlink(out));
   EXPECT_EQ(grtrace::read_exr(out).width(), 4);
   EXPECT_EQ(listing(dir_ / "shared"), std::vector<std::string>{"frame.exr"});
@@ -145,13 +140,13 @@ TEST_F(Hardening, PredictableTemporaryNamesPlantedAsLinksAreNeverUsed) {
   grtrace::write_exr(shared / "frame.exr", image);
   grtrace::write_png_preview(shared / "frame.png", image);
   grtrace::write_file_atomically(shared / "data.csv", [](std::ostream& os) { os << "a,b\n1,2\n"; });
-  EXPECT_EQ(slurp(victim_), "precious");
+  EXPECT_EQ(file_contents(victim_), "precious");
   for (const auto& g : planted) EXPECT_TRUE(fs::is_symlink(shared / g)) << g << " was touched";
   std::vector<std::string> expected = planted;
   expected.insert(expected.end(), {"data.csv", "frame.exr", "frame.png"});
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(listing(shared), expected) << "a temporary was left behind";
-  EXPECT_EQ(slurp(shared / "data.csv"), "a,b\n1,2\n");
+  EXPECT_EQ(file_contents(shared / "data.csv"), "a,b\n1,2\n");
 }
 
 TEST_F(Hardening, TemporariesAreUnpredictableExclusiveAndHaveNormalPermissions) {
@@ -189,17 +184,17 @@ TEST_F(Hardening, OutputSetIsAllNewOrAllOld) {
                                                 }),
                  std::runtime_error);
   }  // never committed
-  EXPECT_EQ(slurp(a), "old a");
-  EXPECT_EQ(slurp(b), "old b");
+  EXPECT_EQ(file_contents(a), "old a");
+  EXPECT_EQ(file_contents(b), "old b");
   EXPECT_EQ(listing(dir_ / "shared"), (std::vector<std::string>{"a.txt", "b.txt"}));
 
   grtrace::OutputSet set;
   grtrace::write_file_atomically(set, a, [](std::ostream& os) { os << "new a"; });
   grtrace::write_png_preview(set, dir_ / "shared" / "c.png", small_image());
-  EXPECT_EQ(slurp(a), "old a") << "nothing is renamed before commit()";
+  EXPECT_EQ(file_contents(a), "old a") << "nothing is renamed before commit()";
   EXPECT_THROW(set.add(a), std::runtime_error) << "the same file twice in one set";
   set.commit();
-  EXPECT_EQ(slurp(a), "new a");
+  EXPECT_EQ(file_contents(a), "new a");
   EXPECT_EQ(listing(dir_ / "shared"), (std::vector<std::string>{"a.txt", "b.txt", "c.png"}));
 }
 
@@ -249,8 +244,8 @@ TEST_F(Hardening, SignalInAnotherThreadDuringCommitLeavesTheWholeNewSet) {
   int status = 0;
   ASSERT_EQ(::waitpid(child, &status, 0), child);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
-  EXPECT_EQ(slurp(a), "new");
-  EXPECT_EQ(slurp(b), "new");
+  EXPECT_EQ(file_contents(a), "new");
+  EXPECT_EQ(file_contents(b), "new");
   EXPECT_EQ(listing(dir_ / "shared"), (std::vector<std::string>{"a.exr", "a.png"}));
 }
 
@@ -348,7 +343,7 @@ TEST_F(HardeningCli, RenderThroughAPlantedLinkLeavesItsTargetUnchanged) {
   fs::create_symlink(victim_, dir_ / "shared" / "frame.png");
   const ToolRun r = run(render_, small({"--out", out.string()}));
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(slurp(victim_), "precious");
+  EXPECT_EQ(file_contents(victim_), "precious");
   EXPECT_FALSE(fs::is_symlink(out));
   EXPECT_FALSE(fs::is_symlink(dir_ / "shared" / "frame.png"));
   EXPECT_EQ(listing(dir_ / "shared"), (std::vector<std::string>{"frame.exr", "frame.png"}));
@@ -375,10 +370,10 @@ TEST_F(HardeningCli, ForgedSkyTextureAndHugeSizesAreRefusedBeforeAllocating) {
 TEST_F(HardeningCli, RenderRefusesAnOutputThatIsItsInputOrInTheWay) {
   const fs::path tex = dir_ / "shared" / "t.exr";
   write_texture(tex, 8, 4);
-  const std::string before = slurp(tex);
+  const std::string before = file_contents(tex);
   expect_refused(run(render_, small({"--scene", "sky", "--sky-texture", tex.string(), "--out", tex.string()})),
                  "is the input given as --sky-texture");
-  EXPECT_EQ(slurp(tex), before);
+  EXPECT_EQ(file_contents(tex), before);
   // A directory where a derived output (the PNG preview, the status map) would go.
   const fs::path out = dir_ / "shared" / "frame.exr";
   fs::create_directory(dir_ / "shared" / "frame.png");
@@ -456,7 +451,7 @@ TEST_F(HardeningCli, MeaninglessGeodesicParametersAndPathsAreRefused) {
   fs::create_symlink(victim_, csv);
   const ToolRun ok = run(geodesic_, {"--impact", "10", "--path", csv.string()});
   ASSERT_EQ(ok.status, 0) << ok.err;
-  EXPECT_EQ(slurp(victim_), "precious");
+  EXPECT_EQ(file_contents(victim_), "precious");
   EXPECT_FALSE(fs::is_symlink(csv));
-  EXPECT_EQ(slurp(csv).rfind("lambda,t,r", 0), 0u);
+  EXPECT_EQ(file_contents(csv).rfind("lambda,t,r", 0), 0u);
 }

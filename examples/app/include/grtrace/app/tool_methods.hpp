@@ -22,6 +22,7 @@
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
 #include "grtrace/tableau/verner65.hpp"
+#include "grtrace/trace/geodesic_tracer.hpp"
 
 #include <array>
 #include <string>
@@ -33,6 +34,13 @@ namespace grtrace::app {
 /// One offered pair: its names as the command line spells them, and why it is offered.
 struct ToolMethod {
   std::string_view tableau, control, purpose;
+};
+
+/// A method chosen by name, with the settings the tool read for it (tolerances, initial step, and whatever else the
+/// tool sets: escape radius, max steps). The option group examples/common/method_options.hpp reads it.
+struct MethodChoice {
+  std::string tableau, control;
+  TraceSettings settings;
 };
 
 template <class T, class C>

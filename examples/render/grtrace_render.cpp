@@ -620,6 +620,7 @@ int main(int argc, char** argv) {
     const double mean_steps = tabulated ? static_cast<double>(table.table_steps) / static_cast<double>(st.rays) : st.mean_steps;
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
+    json.add("sky_continuation", image.metadata["sky_continuation"]);
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
     json.add("out", q.out).add("png", png).add("threads", st.threads);
     json.add("traced_rays", st.traced_rays).add("mirrors", image.metadata["mirrors"]);

@@ -54,6 +54,7 @@
 #include "grtrace/trace/ray_outcome.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/scene_tracer_concept.hpp"
+#include "grtrace/trace/sky_continuation.hpp"
 #include "grtrace/trace/straight_line.hpp"
 #include "grtrace/trace/symmetric_scene_tracer.hpp"
 #include "grtrace/trace/symmetric_sky_table.hpp"

@@ -24,6 +24,7 @@
 #include "grtrace/render/mirror_symmetry.hpp"
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/trace/scene_tracer_concept.hpp"
+#include "grtrace/trace/sky_continuation_kind.hpp"
 
 #include <cstdio>
 #include <string>
@@ -160,6 +161,8 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
         options);
   }
   image.metadata["tracer"] = Tracer::name;
+  if constexpr (requires { tracer.sky_continuation(); })
+    image.metadata["sky_continuation"] = sky_continuation_name(tracer.sky_continuation());
   image.metadata["mirrors"] = mirrors.names();
   std::string names;
   for (const std::string& n : scene.object_names()) names += (names.empty() ? "" : ",") + n;

@@ -89,6 +89,23 @@ struct KerrMinoSystem {
     return dz;
   }
 
+  /// The Mino time from z to u = 0 along an outgoing leg (u' < 0; negative for a z beyond infinity, u < 0) in the
+  /// radial potential cut after u^2, R~(u) ~ E^2 - K' u^2 with K' = K - 2 E A: asin(sqrt(K') u / |E|) / sqrt(K')
+  /// (asinh for K' < 0). The first guess of trace/sky_continuation.hpp's iteration: unlike u / |u'| it stays on
+  /// the ray's way out where u' is small (a ray near its periapsis), where R~'s higher terms are O(M u) smaller.
+  double mino_time_to_infinity(const State& z) const {
+    const double k2 = k_ - 2.0 * energy * big_a_, x = z[0] / std::abs(energy);
+    if (k2 > 0.0) {
+      const double s = std::sqrt(k2);
+      return std::asin(std::clamp(s * x, -1.0, 1.0)) / s;
+    }
+    if (k2 < 0.0) {
+      const double s = std::sqrt(-k2);
+      return std::asinh(s * x) / s;
+    }
+    return x;
+  }
+
   double radius(const State& z) const { return 1.0 / z[0]; }
   /// -u = -1/r: increasing in r and smooth through infinity (u = 0), which a step towards the sky may cross.
   double radial_coordinate(const State& z) const { return -z[0]; }

@@ -11,6 +11,9 @@
 //          (scene/scene_object.hpp: the tracer does not follow t).
 // Returns: per ray a RayOutcome; its end state's t is NaN (not followed), everything else in Boyer-Lindquist.
 // Assumes: null camera rays from outside r_+ (a camera in the Boyer-Lindquist chart always is).
+// Sky:     an escaped ray is carried on from its last accepted step to u = 1/r = 0, where its (theta, phi) are its
+//          direction at infinity (trace/sky_continuation.hpp, exact_mino); the sky sphere only bounds where objects
+//          can be, and its crossing (on the step's interpolant) gives the sky's redshift.
 // trace/auto_tracer.hpp picks it for KerrMetric scenes it can draw.
 #pragma once
 
@@ -19,6 +22,7 @@
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/kerr_mino_system.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
+#include "grtrace/trace/sky_continuation.hpp"
 
 #include <tuple>
 #include <utility>
@@ -62,10 +66,25 @@ class KerrMinoSceneTracer {
         controller_(controller), correction_(correction), scene_(std::move(scene)) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
-    return scene_outcome(metric_, scene_, correction_, std::apply([&](const auto&... o) {
-                           return trace_kerr_mino<T>(metric_, settings_, controller_, y0, bind_to_metric(o, metric_)...);
-                         }, scene_.objects));
+    const KerrMinoSystem system(metric_, y0);
+    const TraceResult r = std::apply([&](const auto&... o) {
+      return trace_geodesic_system<T>(system, settings_, controller_, system.initial_state(y0),
+                                      metric_.horizon_radius(), false, NullObserver{}, bind_to_metric(o, metric_)...);
+    }, scene_.objects);
+    // The continuation starts from the last accepted step (which may lie beyond u = 0: it is then taken back),
+    // with the ray's own constants of motion; from the sky sphere's crossing if that step is not usable.
+    return scene_outcome(metric_, scene_, r, [&](const GeodesicState& from, const GeodesicState& at_sphere) {
+      if (correction_ == AngleCorrection::exact) {
+        const Tolerance& tol = settings_.integrator.tolerance;
+        for (const GeodesicState* y : {&from, &at_sphere})
+          if (auto d = kerr_direction_at_infinity<T>(system, tol, system.initial_state(*y))) return *d;
+      }
+      return continued_direction(metric_, at_sphere, at_sphere, correction_);
+    });
   }
+
+  /// Which continuation this tracer's escaped rays get (recorded in a frame's header: trace/tracer_report.hpp).
+  SkyContinuation sky_continuation() const { return sky_continuation_of<KerrMetric>(correction_); }
 
   const SceneT& scene() const { return scene_; }
   const KerrMetric& metric() const { return metric_; }

@@ -186,6 +186,8 @@ class PlanarSceneTracer {
   }
 
   const SceneT& scene() const { return fallback_.scene(); }  // the fallback tracer holds the one copy
+  /// Which continuation escaped rays get: the tabulated path to u = 0 where the metric has an exact one, else flat.
+  SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
   const Metric& metric() const { return metric_; }
   const PlanarPathTable<Metric, T, C>& table() const { return *table_; }
   /// Pixels traced by the general tracer instead (see the top of this file), since construction.

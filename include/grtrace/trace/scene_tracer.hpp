@@ -6,8 +6,8 @@
 // tracer instantiated for a scene contains only that scene's objects and no virtual call.
 //
 // Takes:   a metric, trace settings (tolerances, sky radius, horizon guard), a controller, how escaped rays are
-//          continued to the sky (AngleCorrection: the metric's exact continuation where it has one, detected at
-//          compile time, else flat), and the scene.
+//          continued to the sky (AngleCorrection: exact where the metric's has one or is Kerr, else flat;
+//          trace/sky_continuation.hpp), and the scene.
 // Returns: per ray a RayOutcome: status, scene position, direction, end state (x, k), redshift.
 // Redshift (seed eq. 9): f_obs / f_src = g(e_0, k_cam) / g(u_src, k_src) with g(e_0, k_cam) = -1 by the camera's
 // normalisation of the pixel momentum. u_src: the sky's and the horizon's emitters are at rest (static where the
@@ -20,6 +20,7 @@
 #include "grtrace/trace/batched_trace.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
+#include "grtrace/trace/sky_continuation.hpp"
 
 #include <span>
 #include <tuple>
@@ -75,9 +76,10 @@ inline constexpr bool scene_fits_metric = every_object_of<SceneT>([]<class O>() 
 
 /// What a scene tracer reports for a ray the tracing loop ended with r (trace/ray_outcome.hpp): the object, where,
 /// the end state and the redshift against the emitter there (the object's matter, or the rest frame for the sky
-/// and the horizon). Escaped rays are continued to the sky from the last accepted step (correction).
-template <MetricPolicy Metric, class SceneT>
-RayOutcome scene_outcome(const Metric& m, const SceneT& scene, AngleCorrection correction, const TraceResult& r) {
+/// and the horizon). An escaped ray is seen where escaped(from, at_sphere) says (trace/sky_continuation.hpp: from
+/// is the last accepted step, at_sphere the sky sphere's crossing).
+template <MetricPolicy Metric, class SceneT, class EscapedDirection>
+RayOutcome scene_outcome(const Metric& m, const SceneT& scene, const TraceResult& r, const EscapedDirection& escaped) {
   RayOutcome out;
   out.status = r.status;
   out.steps = r.accepted;
@@ -93,9 +95,7 @@ RayOutcome scene_outcome(const Metric& m, const SceneT& scene, AngleCorrection c
     scene.visit_object(out.object, [&](const auto& o) { u = o.emitter_velocity(m, x); });
   } else {
     out.object = r.status == RayStatus::escaped ? kSkyObject : kHorizonObject;
-    // The exact continuation holds from any point of the outgoing leg: start it from the last accepted step.
-    out.where = r.status == RayStatus::escaped ? continued_direction(m, r.step_end_state, y, correction)
-                                               : position_direction(m, x);
+    out.where = r.status == RayStatus::escaped ? escaped(r.step_end_state, y) : position_direction(m, x);
     u = rest_emitter_velocity(m, x);
   }
   out.redshift = redshift_at(m, u, y);
@@ -106,7 +106,7 @@ RayOutcome scene_outcome(const Metric& m, const SceneT& scene, AngleCorrection c
 /// from the sky sphere, so refining the sphere's crossing would buy nothing there (TraceSettings::refine_escape).
 template <MetricPolicy Metric>
 TraceSettings with_escape_refinement(TraceSettings s, AngleCorrection correction) {
-  if (HasExactContinuation<Metric> && correction == AngleCorrection::exact) s.refine_escape = false;
+  if (continues_exactly<Metric>(correction)) s.refine_escape = false;
   return s;
 }
 
@@ -126,8 +126,9 @@ class GeneralSceneTracer {
   RayOutcome trace(const GeodesicState& y0) const {
     const Metric& m = tracer_.metric();
     return scene_outcome(
-        m, scene_, correction_,
-        std::apply([&](const auto&... o) { return tracer_.trace(y0, bind_to_metric(o, m)...); }, scene_.objects));
+        m, scene_,
+        std::apply([&](const auto&... o) { return tracer_.trace(y0, bind_to_metric(o, m)...); }, scene_.objects),
+        escaped());
   }
 
   /// Many rays, kTraceLanes at a time (trace/batched_trace.hpp): out[i] is trace(y0[i]) bit for bit, for less
@@ -137,8 +138,11 @@ class GeneralSceneTracer {
     std::vector<TraceResult> results(y0.size());
     std::apply([&](const auto&... o) { trace_batched(tracer_, y0, std::span(results), bind_to_metric(o, m)...); },
                scene_.objects);
-    for (std::size_t i = 0; i < y0.size(); ++i) out[i] = scene_outcome(m, scene_, correction_, results[i]);
+    for (std::size_t i = 0; i < y0.size(); ++i) out[i] = scene_outcome(m, scene_, results[i], escaped());
   }
+
+  /// Which continuation this tracer's escaped rays get (recorded in a frame's header: trace/tracer_report.hpp).
+  SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
 
   const SceneT& scene() const { return scene_; }
   const Metric& metric() const { return tracer_.metric(); }
@@ -146,6 +150,14 @@ class GeneralSceneTracer {
   AngleCorrection correction() const { return correction_; }
 
  private:
+  /// Where an escaped ray is seen: trace/sky_continuation.hpp, with this tracer's own method.
+  auto escaped() const {
+    return [this](const GeodesicState& from, const GeodesicState& at_sphere) {
+      return escaped_direction<T>(tracer_.metric(), tracer_.settings().integrator.tolerance, correction_, from,
+                                  at_sphere);
+    };
+  }
+
   GeodesicTracer<Metric, T, C> tracer_;
   AngleCorrection correction_;
   SceneT scene_;

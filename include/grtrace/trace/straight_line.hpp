@@ -85,6 +85,8 @@ class StraightLineTracer {
   }
 
   const SceneT& scene() const { return scene_; }
+  /// The straight line is the ray: exact for any correction but none (trace/sky_continuation.hpp).
+  SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
   const Metric& metric() const { return metric_; }
 
  private:

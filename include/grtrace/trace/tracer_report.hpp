@@ -4,7 +4,10 @@
 //   static name                     every tracer: "general", "planar", "symmetric-sky", "straight-line", ...
 //   table().table_rays(), table().table_steps()   tracers that build a table of rays per frame (planar, symmetric)
 //   fallback_rays()                 tracers that hand some pixels to another tracer (planar -> general)
+//   sky_continuation()              how escaped rays are continued to infinity (trace/sky_continuation.hpp)
 #pragma once
+
+#include "grtrace/trace/sky_continuation_kind.hpp"
 
 #include <string>
 
@@ -15,6 +18,7 @@ struct TracerReport {
   long table_rays = 0;     ///< rays in the frame's table (0: no table)
   long table_steps = 0;    ///< accepted steps spent building it
   long fallback_rays = 0;  ///< pixels traced by a fallback tracer
+  std::string sky_continuation;  ///< sky_continuation_name of the tracer's continuation ("" if it does not say)
 };
 
 template <class Tracer>
@@ -26,6 +30,8 @@ TracerReport tracer_report(const Tracer& tracer) {
     r.table_steps = tracer.table().table_steps();
   }
   if constexpr (requires { tracer.fallback_rays(); }) r.fallback_rays = tracer.fallback_rays();
+  if constexpr (requires { tracer.sky_continuation(); })
+    r.sky_continuation = sky_continuation_name(tracer.sky_continuation());
   return r;
 }
 

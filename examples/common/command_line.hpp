@@ -207,7 +207,7 @@ class CommandLine {
     };
     h += built_in("  --config FILE", "read options from a TOML scene file (keys: the option names above, flags");
     h += built_in("", "true/false) or an EXR's header; options given here override it");
-    h += built_in("  --write-config FILE", "save the effective options as a TOML scene file and exit");
+    h += built_in("  --write-config FILE", "save the effective options as a TOML scene file and exit (-: print)");
     h += built_in("  --help", "print this help and exit");
     h += built_in("  --version", "print \"" + program_ + " <version>\" and exit");
     return h;
@@ -299,21 +299,24 @@ class CommandLine {
     }
   }
 
-  /// Writes the effective configuration to `path` as TOML, whole or not at all (output_file.hpp): the given
-  /// options as keys, the others as commented-out defaults (uncommenting one makes it given, which can change a
-  /// default some tool derives from other options). Refuses (UsageError) an unwritable path or the --config file.
+  /// Writes the effective configuration to `path` as TOML, whole or not at all (output_file.hpp), or to standard
+  /// output for "-": the given options as keys, the others as commented-out defaults (uncommenting one makes it
+  /// given, which can change a default some tool derives from other options). Refuses (UsageError) an unwritable
+  /// path, one that is not a regular file (a device, a FIFO), or the --config file.
   void write_config(const std::string& path, const std::optional<std::string>& config_path) const {
-    check_output_option(kWriteConfigOption, path);
-    if (config_path) check_not_input(kWriteConfigOption, path, kConfigOption, *config_path);
-    write_file_atomically(path, [&](std::ostream& os) {
+    auto write = [&](std::ostream& os) {
       os << "# " << program_ << " " << grtrace::kVersion << " scene file: " << program_ << " --config FILE\n"
          << "# Keys are option names (see --help); options on the command line override them.\n"
          << "# Commented lines are defaults: uncomment a line to set it.\n";
       for (const Spec& spec : specs_)
         os << (given(spec.name) ? "" : "# ") << spec.name << " = "
            << (spec.takes_value ? toml_value_text(text(spec.name)) : flag_set(spec.name) ? "true" : "false") << "\n";
-      if (!os) throw std::runtime_error("cannot write '" + path + "'");
-    });
+      if (!os.flush()) throw std::runtime_error("cannot write '" + path + "'");
+    };
+    if (path == "-") return write(std::cout);
+    check_output_option(kWriteConfigOption, path);
+    if (config_path) check_not_input(kWriteConfigOption, path, kConfigOption, *config_path);
+    write_file_atomically(path, write);
   }
 
   const Spec* find(const std::string& name) const {

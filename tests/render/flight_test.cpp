@@ -377,6 +377,28 @@ TEST(FlightFiles, CameraPathCsvRoundTripsAndRefusesBadRows) {
           "line 3: proper time tau must increase");
   refused("", "no camera states");
   EXPECT_THROW(read_worldline_csv(dir.path / "missing.csv"), std::invalid_argument);
+  // Bounded readers: a line, the rows (one per frame), the file, and no device (/dev/zero never ends).
+  refused(header + std::string(5000, '1') + "\n", "line 2: longer than 4096 bytes");
+  {
+    std::ofstream out(csv);
+    out << header;
+    for (std::size_t i = 0; i <= kMaxWorldlineRows; ++i) out << i << ",0,100,1.57,0,1.0101525445522108,0,0,0\n";
+  }
+  try {
+    (void)read_worldline_csv(csv);
+    ADD_FAILURE() << "100 001 rows accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("line 100002: more than 100000 camera states"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::resize_file(csv, kMaxWorldlineFileBytes + 1);
+  EXPECT_THROW(read_worldline_csv(csv), std::invalid_argument);
+  try {
+    (void)read_worldline_csv("/dev/zero");
+    ADD_FAILURE() << "/dev/zero accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

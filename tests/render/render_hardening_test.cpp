@@ -312,8 +312,15 @@ TEST_F(Hardening, MemoryLimitComesFromTheEnvironment) {
   EXPECT_NO_THROW((void)grtrace::read_exr(dir_ / "t.exr"));
   ::setenv("GRTRACE_MEMORY_LIMIT", "40K", 1);
   EXPECT_THROW((void)grtrace::read_exr(dir_ / "t.exr"), grtrace::MemoryLimitError);
-  ::setenv("GRTRACE_MEMORY_LIMIT", "garbage", 1);
-  EXPECT_EQ(grtrace::memory_limit_bytes(), std::size_t{4} << 30) << "an invalid value means the default";
+  for (const char* bad : {"garbage", "16Q", "-1G", "G", "1e30T"}) {
+    ::setenv("GRTRACE_MEMORY_LIMIT", bad, 1);
+    try {
+      (void)grtrace::memory_limit_bytes();
+      ADD_FAILURE() << "GRTRACE_MEMORY_LIMIT=" << bad << " was taken";
+    } catch (const grtrace::MemoryLimitError& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a memory size"), std::string::npos) << e.what();
+    }
+  }
   ::unsetenv("GRTRACE_MEMORY_LIMIT");
   EXPECT_EQ(grtrace::memory_limit_bytes(), std::size_t{4} << 30);
 }
@@ -364,6 +371,8 @@ TEST_F(HardeningCli, ForgedSkyTextureAndHugeSizesAreRefusedBeforeAllocating) {
   expect_refused(huge, "memory limit");
   EXPECT_NE(huge.err.find("GRTRACE_MEMORY_LIMIT"), std::string::npos) << huge.err;
   expect_refused(run(render_, small({"--out", out.string()}), "GRTRACE_MEMORY_LIMIT=1K"), "--width 12 --height 8");
+  expect_refused(run(render_, small({"--out", out.string()}), "GRTRACE_MEMORY_LIMIT=4GB"),
+                 "GRTRACE_MEMORY_LIMIT='4GB' is not a memory size");
   EXPECT_TRUE(listing(dir_ / "shared").empty());
 }
 

@@ -11,6 +11,7 @@
 #include "../common/tool_run.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -199,6 +200,33 @@ TEST_F(ConfigCli, BadConfigFilesAreRefusedNamingTheKeyAndWriteNothing) {
   // A flag's value is checked as on the command line, and --config needs a file.
   EXPECT_EQ(render("--config").status, 2);
   EXPECT_EQ(render("--write-config " + (dir_ / "no-dir" / "x.toml").string()).status, 2);
+}
+
+TEST_F(ConfigCli, OutputsThatAreNotRegularFilesAreRefusedAndDashPrintsTheConfig) {
+  // A device, a FIFO or a name longer than the directory allows: exit 2 before any work, the entry untouched.
+  const ToolRun null_config = render("--write-config /dev/null");
+  EXPECT_EQ(null_config.status, 2) << null_config.output;
+  EXPECT_NE(null_config.output.find("'/dev/null': it is a character device, not a regular file"), std::string::npos)
+      << null_config.output;
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  const fs::path fifo = at("pipe.exr");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const ToolRun to_fifo = render("--width 8 --height 8 --out " + fifo.string());
+  EXPECT_EQ(to_fifo.status, 2) << to_fifo.output;
+  EXPECT_NE(to_fifo.output.find("it is a FIFO (named pipe), not a regular file"), std::string::npos) << to_fifo.output;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  const ToolRun long_name = render("--width 8 --height 8 --out " + at(std::string(300, 'x') + ".exr").string());
+  EXPECT_EQ(long_name.status, 2) << long_name.output;
+  EXPECT_NE(long_name.output.find("its file name is 304 bytes long"), std::string::npos) << long_name.output;
+  EXPECT_EQ(listing(), std::vector<std::string>{"pipe.exr"}) << "nothing written beside the FIFO";
+  // "-" prints the scene file; it reads back as the same configuration.
+  const ToolRun printed = render("--width 12 --spin 0.5 --metric kerr --write-config -");
+  ASSERT_EQ(printed.status, 0) << printed.output;
+  EXPECT_NE(printed.output.find("\nwidth = 12\n"), std::string::npos) << printed.output;
+  write_text(at("printed.toml"), printed.output);
+  const ToolRun again = render("--config " + at("printed.toml").string() + " --write-config -");
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(again.output, printed.output);
 }
 
 TEST_F(ConfigCli, AnExrOfAnotherToolIsRefusedNamingTheKey) {

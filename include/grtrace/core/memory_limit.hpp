@@ -19,8 +19,9 @@ struct MemoryLimitError : std::runtime_error {
 };
 
 /// The most memory (bytes) one image or input file may claim: the environment variable GRTRACE_MEMORY_LIMIT
-/// (a number of bytes with an optional K, M, G or T suffix, powers of 1024: "16G") if set and valid, else 4 GiB.
+/// (a number of bytes with an optional K, M, G or T suffix, powers of 1024: "16G") if set, else 4 GiB.
 /// Checked before allocating, so a forged or mistyped size is refused with a message instead of std::bad_alloc.
+/// A value that is not such a size throws MemoryLimitError saying so (a mistyped limit is not silently 4 GiB).
 inline std::size_t memory_limit_bytes() {
   constexpr std::size_t kDefault = std::size_t{4} << 30;
   const char* env = std::getenv("GRTRACE_MEMORY_LIMIT");
@@ -35,7 +36,10 @@ inline std::size_t memory_limit_bytes() {
     case 't': case 'T': scale = 1024.0 * 1024.0 * 1024.0 * 1024.0; ++end; break;
     default: break;
   }
-  if (*end != '\0' || !(v > 0.0) || !(v * scale < 1.8e19)) return kDefault;
+  if (end == env || *end != '\0' || !(v > 0.0) || !(v * scale < 1.8e19))
+    throw MemoryLimitError("GRTRACE_MEMORY_LIMIT='" + std::string(env) +
+                           "' is not a memory size: give bytes with an optional K, M, G or T suffix (e.g. 16G), "
+                           "or unset it for the default of 4 GiB");
   return static_cast<std::size_t>(v * scale);
 }
 

@@ -10,6 +10,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,13 +21,31 @@
 
 namespace grtrace {
 
+/// Bounds on a camera-path file, checked before and while it is read: a row is a frame, and a flight has at most
+/// as many frames as --frames allows.
+inline constexpr std::size_t kMaxWorldlineRows = 100000;
+inline constexpr std::size_t kMaxWorldlineLineBytes = 4096;
+inline constexpr std::uintmax_t kMaxWorldlineFileBytes = std::uintmax_t{64} << 20;
+
 /// A camera path from a CSV file: a header line, then one row per frame with nine numbers
 ///   tau, t, r, theta, phi, u^t, u^r, u^theta, u^phi
 /// (proper time, the event in the metric's spherical chart, angles in radians, and the 4-velocity). Blank lines and
 /// lines starting with '#' are skipped. Throws std::invalid_argument naming the line and what is wrong: a missing
-/// file, no rows, a row without nine finite numbers, proper times that do not increase.
-/// The 4-velocities are checked against a metric by the caller (check_worldline below).
+/// file, one that is not a regular file (a device such as /dev/zero, a FIFO), larger than 64 MiB, a line longer
+/// than 4096 bytes, more than 100 000 rows, no rows, a row without nine finite numbers, proper times that do not
+/// increase. The 4-velocities are checked against a metric by the caller (check_worldline below).
 inline Worldline read_worldline_csv(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status))
+    throw std::invalid_argument("cannot read the camera path '" + path.string() + "': no such file");
+  if (!fs::is_regular_file(status))
+    throw std::invalid_argument("the camera path '" + path.string() + "' is not a regular file (a directory, device or "
+                                "pipe); name a CSV file");
+  if (const std::uintmax_t bytes = fs::file_size(path, ec); ec || bytes > kMaxWorldlineFileBytes)
+    throw std::invalid_argument("the camera path '" + path.string() + "' is larger than 64 MiB (at most " +
+                                std::to_string(kMaxWorldlineRows) + " rows of nine numbers are read)");
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("cannot read the camera path '" + path.string() + "'");
   Worldline w;
@@ -34,6 +54,9 @@ inline Worldline read_worldline_csv(const std::filesystem::path& path) {
   bool header = true;
   while (std::getline(in, line)) {
     ++number;
+    if (line.size() > kMaxWorldlineLineBytes)
+      throw std::invalid_argument(path.string() + " line " + std::to_string(number) + ": longer than " +
+                                  std::to_string(kMaxWorldlineLineBytes) + " bytes (a row is nine numbers)");
     if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos) continue;
     if (header) {  // the first non-blank line names the columns
       header = false;
@@ -67,6 +90,10 @@ inline Worldline read_worldline_csv(const std::filesystem::path& path) {
     if (!w.samples.empty() && !(v[0] > w.samples.back().tau))
       throw std::invalid_argument(path.string() + " line " + std::to_string(number) +
                                   ": proper time tau must increase from row to row");
+    if (w.samples.size() == kMaxWorldlineRows)
+      throw std::invalid_argument(path.string() + " line " + std::to_string(number) + ": more than " +
+                                  std::to_string(kMaxWorldlineRows) + " camera states (a flight has at most " +
+                                  std::to_string(kMaxWorldlineRows) + " frames)");
     w.samples.push_back({v[0], Vec4(v[1], v[2], v[3], v[4]), Vec4(v[5], v[6], v[7], v[8])});
   }
   if (w.samples.empty()) throw std::invalid_argument(path.string() + ": no camera states (a header line, then rows)");

@@ -20,7 +20,7 @@
 // - rename() replaces the final name itself: a symbolic link planted at the final name is replaced, never
 //   followed, so the file it points to is left unchanged.
 // - check_output_path() refuses, before anything is created: a missing or unwritable directory, a target that
-//   is a directory, an empty name.
+//   is a directory, a device, a FIFO or a socket, an empty name or one longer than the directory allows.
 // - A set is committed by writing every temporary first and then renaming them one after the other with
 //   SIGINT, SIGTERM, SIGHUP and SIGQUIT blocked in the committing thread and deferred by the handler in any
 //   other thread, so those signals see either the old set or the new one.
@@ -61,9 +61,25 @@ namespace grtrace {
 
 // ---- path checks ----------------------------------------------------------------------------------------
 
-/// Throws std::runtime_error with a message naming the path when `target` cannot be created: an empty name,
-/// its directory is missing, is not a directory, or is not writable, or `target` itself is a directory.
-/// Creates nothing.
+/// What kind of directory entry `s` is, for a message ("a character device", "a FIFO", ...).
+inline const char* entry_kind_name(const std::filesystem::file_status& s) {
+  namespace fs = std::filesystem;
+  switch (s.type()) {
+    case fs::file_type::directory: return "a directory";
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::fifo: return "a FIFO (named pipe)";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::symlink: return "a symbolic link";
+    case fs::file_type::regular: return "a regular file";
+    default: return "not a regular file";
+  }
+}
+
+/// Throws std::runtime_error with a message naming the path when `target` cannot be created: an empty name, a
+/// name longer than the directory allows, its directory is missing, is not a directory, or is not writable, or
+/// `target` exists as something other than a regular file or a symbolic link (a directory, a device, a FIFO, a
+/// socket: renaming a file over it would replace, say, /dev/null for the whole system). Creates nothing.
 inline void check_output_path(const std::filesystem::path& target) {
   namespace fs = std::filesystem;
   if (target.empty() || !target.has_filename() || target.filename() == "." || target.filename() == "..")
@@ -77,8 +93,19 @@ inline void check_output_path(const std::filesystem::path& target) {
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() +
                              "' is not writable");
+  const long dir_name_max = ::pathconf(dir.c_str(), _PC_NAME_MAX);
+  const std::size_t name_max = dir_name_max > 0 ? static_cast<std::size_t>(dir_name_max) : 255;
+  if (const std::size_t n = target.filename().string().size(); n > name_max)
+    throw std::runtime_error("cannot write '" + target.string() + "': its file name is " + std::to_string(n) +
+                             " bytes long, more than the " + std::to_string(name_max) +
+                             " its directory allows; choose a shorter name");
+  // The entry itself, not what a link there points to: a link is replaced by the rename, never followed.
+  const fs::file_status entry = fs::symlink_status(target, ec);
   if (fs::is_directory(target, ec))
     throw std::runtime_error("cannot write '" + target.string() + "': it is a directory");
+  if (fs::exists(entry) && !fs::is_regular_file(entry) && !fs::is_symlink(entry))
+    throw std::runtime_error("cannot write '" + target.string() + "': it is " + entry_kind_name(entry) +
+                             ", not a regular file; name a regular file (a new one, or one to replace)");
 }
 
 namespace detail {

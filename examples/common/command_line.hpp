@@ -29,6 +29,7 @@
 #include <new>
 #include <optional>
 #include <cstdlib>
+#include <initializer_list>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -338,6 +339,23 @@ class CommandLine {
   std::map<std::string, std::string> values_;    ///< given options (command line or config file); set flags: "1"
   std::map<std::string, std::string> defaults_;  ///< defaults recorded in an EXR given as --config (not given)
 };
+
+/// An option that means something only when the command's other options say so.
+struct OptionCondition {
+  const char* option;  ///< without the dashes
+  bool applies;        ///< the condition holds in this command
+  const char* needs;   ///< what makes it apply, for the message ("--metric kerr")
+};
+
+/// Refuses an option given (on the command line or in a config file) where it means nothing, instead of ignoring
+/// it silently (a spin without Kerr, a disk's radius without the disk): UsageError naming the option and what it
+/// needs, before any work.
+inline void refuse_inapplicable_options(const CommandLine& cli, std::initializer_list<OptionCondition> conditions) {
+  for (const OptionCondition& c : conditions)
+    if (!c.applies && cli.given(c.option))
+      throw UsageError(std::string("--") + c.option + " applies only with " + c.needs +
+                       ", which this command does not have; leave it out or add " + c.needs);
+}
 
 /// Runs a tool's body with the exit-code convention every grtrace tool shares: 0 when done (or after --help),
 /// 2 for bad input (UsageError, before any work; MemoryLimitError: a size from input above the memory limit),

@@ -48,7 +48,7 @@ inline void declare_flight_options(CommandLine& cli, const std::string& what_the
 /// Takes the command line (flight options declared by declare_flight_options, camera-r/-theta/-phi in degrees),
 /// the hole's mass, the sky sphere's radius and the tool's other options that only make sense with --flight.
 /// Returns the path's spec, or nothing without --flight. Throws UsageError naming the option for a flight option
-/// without --flight, an unknown kind, --flight csv without --flight-csv (or the reverse), --frames outside
+/// without --flight or with a kind that ignores it (a csv flight takes no --frames or --frame-dtau), an unknown kind, --flight csv without --flight-csv (or the reverse), --frames outside
 /// 1 .. 100000. What only the path can tell (a start that cannot exist, a path that ends early) is
 /// checked_flight_path's.
 inline std::optional<FlightPathSpec> read_flight_spec(const CommandLine& cli, double mass, double sky_radius,
@@ -65,6 +65,8 @@ inline std::optional<FlightPathSpec> read_flight_spec(const CommandLine& cli, do
     throw UsageError("unknown --flight '" + kind + "'; choose seed, circular, orbit, infall or csv");
   if ((kind == "csv") != !cli.text("flight-csv").empty())
     throw UsageError("--flight csv goes with --flight-csv FILE (and --flight-csv only with --flight csv)");
+  refuse_inapplicable_options(cli, {{"frames", kind != "csv", "a computed path (a csv flight has one frame per row)"},
+                                    {"frame-dtau", kind != "csv", "a computed path (a csv flight's rows give tau)"}});
   const long frames = cli.integer("frames");
   if (frames < 1 || frames > 100000) throw UsageError("--frames must be in 1 .. 100000");
   FlightPathSpec spec;

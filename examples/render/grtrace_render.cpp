@@ -152,8 +152,10 @@ Vec3 triple(const CommandLine& cli, const std::string& name) {
 void read_flight(const CommandLine& cli, Request& q) {
   FlightRequest& f = q.flight;
   const std::optional<FlightPathSpec> spec =
-      tools::read_flight_spec(cli, q.metric.mass, q.settings.escape_radius, {"fps", "mp4"});
+      tools::read_flight_spec(cli, q.metric.mass, q.settings.escape_radius, {"fps", "mp4", "orbit-dr", "orbit-dphi"});
   if (!spec) return;
+  refuse_inapplicable_options(cli, {{"orbit-dr", spec->kind == "orbit", "--flight orbit"},
+                                    {"orbit-dphi", spec->kind == "orbit", "--flight orbit"}});
   f.name = spec->kind;
   for (const char* name : {"velocity", "observer"})
     if (cli.given(name))
@@ -190,6 +192,13 @@ Request read_request(const CommandLine& cli) {
   ms.charge = cli.number("charge");
   ms.lambda = cli.number("lambda");
   ms.throat = cli.number("throat");
+  refuse_inapplicable_options(cli, {{"spin", ms.name == "kerr", "--metric kerr"},
+                                    {"charge", ms.name == "rn", "--metric rn"},
+                                    {"lambda", ms.name == "sds", "--metric sds"},
+                                    {"throat", ms.name == "wormhole", "--metric wormhole"},
+                                    {"disk-inner", disk, "--scene disk"},
+                                    {"disk-outer", disk, "--scene disk"},
+                                    {"disk-retrograde", disk, "--scene disk"}});
   try {
     check_metric_spec(ms);
   } catch (const std::invalid_argument& e) {

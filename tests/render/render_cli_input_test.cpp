@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -136,6 +137,30 @@ TEST_F(RenderCliInput, RefusesEveryBadInputBeforeTracingAndLeavesNoFile) {
     EXPECT_TRUE(r.out.empty()) << "stdout: " << r.out;
     EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
     EXPECT_TRUE(out_listing().empty()) << "left a file behind";
+  }
+}
+
+TEST_F(RenderCliInput, OptionsThatMeanNothingHereAreRefusedNamingWhatTheyNeed) {
+  const std::string csv = out("path.csv").string();
+  std::ofstream(csv) << "tau,t,r,theta,phi,ut,ur,utheta,uphi\n0,0,100,1.57,0,1.0101525445522108,0,0,0\n";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--spin", "0.5"}, "--spin applies only with --metric kerr"},
+      {{"--metric", "kerr", "--spin", "0.5", "--charge", "0.3"}, "--charge applies only with --metric rn"},
+      {{"--metric", "rn", "--lambda", "1e-4"}, "--lambda applies only with --metric sds"},
+      {{"--throat", "2"}, "--throat applies only with --metric wormhole"},
+      {{"--scene", "checker", "--disk-retrograde"}, "--disk-retrograde applies only with --scene disk"},
+      {{"--scene", "sky", "--disk-outer", "30"}, "--disk-outer applies only with --scene disk"},
+      {{"--orbit-dr", "0.01"}, "--orbit-dr needs --flight"},
+      {{"--flight", "seed", "--frames", "3", "--orbit-dphi", "0.001"}, "--orbit-dphi applies only with --flight orbit"},
+      {{"--flight", "csv", "--flight-csv", csv, "--frames", "3"}, "--frames applies only with a computed path"},
+  };
+  for (const auto& [args, says] : cases) {
+    std::vector<std::string> full = args;
+    full.insert(full.end(), {"--out", out("frame.exr").string(), "--width", "8", "--height", "8"});
+    const ToolRun r = run(full);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << "expected '" << says << "' in: " << r.err;
+    EXPECT_FALSE(fs::exists(out("frame.exr")));
   }
 }
 

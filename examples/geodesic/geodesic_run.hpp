@@ -325,8 +325,11 @@ JsonObject run_kerr(const Request& q, const Metric& metric, const Outputs& files
   GeodesicState start_bl = q.initial;
   double start_radius = 0.0;
   if (q.impact_run) {
-    // Start at half the escape radius (default 500 M), end on the escape sphere; the legs beyond are added exactly.
-    start_radius = 0.5 * settings.escape_radius;
+    // Start where Schwarzschild's --impact starts (impact_start_radius: max(50 M, 4 |b|), so the photon's state
+    // there is a null state for every b; a fixed sphere would be inside a large b's turning point), end on the same
+    // sphere on the way out; the legs beyond are added exactly.
+    start_radius = impact_start_radius(std::abs(q.impact));
+    settings.escape_radius = start_radius * (1.0 + 1e-9);
     start_bl = kerr_equatorial_photon(bl, q.impact, start_radius);  // grtrace/trace/deflection.hpp
   }
   const GeodesicState start = to_chart(metric, start_bl);

@@ -68,6 +68,12 @@ TEST_F(KerrGeodesicCli, EquatorialDeflectionMatchesIyerHansen) {
     EXPECT_GT(number(r.out, "deflection"), 0.3) << args;
     EXPECT_LT(std::abs(number(r.out, "deflection_error")), 1e-7) << args << ": " << r.out;
   }
+  // An impact parameter beyond the default escape sphere (1000 M): the photon starts where it can exist (4 |b|),
+  // so the deflection is measured, not reported as null from a state that is not null.
+  const ToolRun far = run("--metric kerr --spin 0.9 --rtol 1e-11 --atol 1e-13 --impact 2000");
+  ASSERT_EQ(far.status, 0) << far.out;
+  EXPECT_LT(std::abs(number(far.out, "deflection_error")), 1e-9) << far.out;
+  EXPECT_LT(std::abs(number(far.out, "constraint_drift")), 1e-9) << far.out;
 }
 
 TEST_F(KerrGeodesicCli, RefusesBadKerrInput) {

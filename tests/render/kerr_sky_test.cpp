@@ -18,6 +18,7 @@
 #include "grtrace/render/frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/trace/deflection.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/sky_continuation.hpp"
@@ -81,19 +82,6 @@ GeodesicState schwarzschild_state(double r, double theta, const Vec3& n) {
   const double f = 1.0 - 2.0 / r;
   GeodesicState y;
   y << 0.0, r, theta, 0.0, 1.0 / std::sqrt(f), std::sqrt(f) * n[0], n[1] / r, n[2] / (r * std::sin(theta));
-  return y;
-}
-
-/// A future-directed equatorial null state of Kerr at (r, pi/2, 0) with E = p_t = 1, L_z = -p_phi = b, moving
-/// inwards: p_r from g^{mn} p_m p_n = 0, then k = g^{-1} p.
-GeodesicState equatorial_state(const KerrMetric& m, double r, double b) {
-  const Vec4 x(0.0, r, kPi / 2.0, 0.0);
-  const Mat4 gi = m.metric(x).inverse();
-  Vec4 p(1.0, 0.0, 0.0, -b);
-  const double rest = p.dot(gi * p);  // p_r = 0 so far
-  p[1] = std::sqrt(-rest / gi(1, 1));   // g^rr < 0; k^r = g^rr p_r < 0: inwards
-  GeodesicState y;
-  y << x, gi * p;
   return y;
 }
 
@@ -214,7 +202,7 @@ TEST(KerrSky, EquatorialRaysReachTheSkyWhereTheExactDeflectionPutsThem) {
       const double swept = 2.0 * exact::equatorial_phi_to_turning_point(b, spin) -
                            exact::equatorial_phi_from_infinity(b, 1.0 / r_cam, spin);
       const SkyDirection expected{kPi / 2.0, azimuth_in_range(swept)};
-      const GeodesicState y0 = equatorial_state(metric, r_cam, b);
+      const GeodesicState y0 = kerr_equatorial_photon(metric, b, r_cam);  // trace/deflection.hpp
       for (const RayOutcome& o : {mino.trace(y0), general.trace(y0)}) {
         ASSERT_EQ(o.object, kSkyObject) << "a = " << spin << " b = " << b;
         const double err = angular_distance(o.where, expected);

@@ -557,6 +557,10 @@ TEST_F(NamedMetricsCli, RefusesBadMetricParametersWithExitTwoAMessageAndNoFile) 
       // The camera inside the black hole's horizon of SdS / RN (r_+ = 1.6 M for Q = 0.8).
       {{"--metric", "rn", "--charge", "0.8", "--camera-r", "1.5"}, "horizon"},
       {{"--metric", "sds", "--lambda", "1e-3", "--camera-r", "2", "--sky-radius", "40"}, "horizon"},
+      // Circular orbits of SdS end at the static radius (3 M / Lambda)^(1/3) = 14.42 M for Lambda = 1e-3: a disk
+      // out to 20 M would have matter where none can circle (its pixels were non_finite).
+      {{"--metric", "sds", "--lambda", "1e-3", "--scene", "disk", "--camera-r", "30", "--sky-radius", "50"},
+       "no timelike circular orbit exists at the outer radius r = 20.000000 in this metric (they end near r = 14.42"},
   };
   for (const Bad& b : bad) {
     std::string shown;

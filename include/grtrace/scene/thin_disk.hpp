@@ -90,7 +90,9 @@ struct ThinDisk {
 };
 
 /// Refuses (std::invalid_argument, saying what to change) radii that are not finite or not ordered, and a disk
-/// whose inner edge has no timelike circular orbit in the metric (for Schwarzschild: r_in <= 3M).
+/// whose inner edge (for Schwarzschild: r_in <= 3M) or outer edge (Schwarzschild-de Sitter: beyond the static
+/// radius (3M / Lambda)^(1/3), where gravity no longer holds matter on a circle) has no timelike circular orbit in
+/// the metric: its matter could not move there, and the rays hitting it would end as non_finite.
 template <MetricPolicy M>
 void check_disk_orbits(const M& metric, const ThinDisk& disk) {
   if constexpr (M::chart != Chart::spherical) {
@@ -108,6 +110,17 @@ void check_disk_orbits(const M& metric, const ThinDisk& disk) {
                                   std::to_string(disk.r_in) +
                                   " in this metric (Schwarzschild: circular orbits need r > 3M); raise the inner "
                                   "radius");
+    if (!circular_orbit_velocity(metric, disk.r_out, disk.sense)) {
+      // The last radius with an orbit, between the edges (the orbits of the metrics here fill one interval).
+      double lo = disk.r_in, hi = disk.r_out;
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (circular_orbit_velocity(metric, mid, disk.sense) ? lo : hi) = mid;
+      }
+      throw std::invalid_argument("disk: no timelike circular orbit exists at the outer radius r = " +
+                                  std::to_string(disk.r_out) + " in this metric (they end near r = " +
+                                  std::to_string(lo) + "); lower the outer radius below that");
+    }
   }
 }
 

@@ -141,6 +141,7 @@ class CommandLine {
     }
     values_.clear();
     defaults_.clear();
+    config_file_ = config_path.value_or("");
     if (config_path) apply_config(*config_path);
     for (const auto& [spec, value] : assignments) assign(*spec, value);
     if (write_path) {
@@ -151,6 +152,8 @@ class CommandLine {
   }
 
   bool given(const std::string& name) const { return values_.count(name) > 0; }
+  /// The file --config read ("" if none): an input every output of the command is checked against.
+  const std::string& config_file() const { return config_file_; }
   bool flag_set(const std::string& name) const { return given(name); }
 
   /// "true"/"yes"/"on"/"1" -> true, "false"/"no"/"off"/"0" -> false (any case), anything else -> nullopt.
@@ -335,10 +338,21 @@ class CommandLine {
   }
 
   std::string program_, summary_;
+  std::string config_file_;
   std::vector<Spec> specs_;
   std::map<std::string, std::string> values_;    ///< given options (command line or config file); set flags: "1"
   std::map<std::string, std::string> defaults_;  ///< defaults recorded in an EXR given as --config (not given)
 };
+
+/// The checks every output file of a command gets before any work: a writable regular file or new name
+/// (check_output_option), and not one of the command's inputs: the --config file, and each {option, path} of
+/// `inputs` (empty paths skipped). UsageError naming both options.
+inline void check_command_output(const CommandLine& cli, const std::string& option, const std::filesystem::path& path,
+                                 std::initializer_list<std::pair<const char*, std::string>> inputs) {
+  check_output_option(option, path);
+  check_not_input(option, path, "config", cli.config_file());
+  for (const auto& [input_option, input] : inputs) check_not_input(option, path, input_option, input);
+}
 
 /// An option that means something only when the command's other options say so.
 struct OptionCondition {

@@ -333,12 +333,11 @@ Request read_request(const CommandLine& cli) {
   if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
     throw UsageError("--out must name an .exr file, got '" + q.out + "'");
   read_flight(cli, q);
-  // Every file this run writes, checked before any work: writable, not a directory, not the input texture.
-  for (const std::string& path : output_paths(q, cli.flag_set("status-map"), cli.flag_set("mp4"))) {
-    tools::check_output_option("out", path);
-    tools::check_not_input("out", path, "sky-texture", cli.text("sky-texture"));
-    tools::check_not_input("out", path, "flight-csv", cli.text("flight-csv"));
-  }
+  // Every file this run writes, checked before any work: writable, not a directory or device, not an input (the
+  // texture, the camera path, the --config file).
+  for (const std::string& path : output_paths(q, cli.flag_set("status-map"), cli.flag_set("mp4")))
+    tools::check_command_output(cli, "out", path,
+                                {{"sky-texture", cli.text("sky-texture")}, {"flight-csv", cli.text("flight-csv")}});
   return q;
 }
 

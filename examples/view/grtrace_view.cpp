@@ -424,16 +424,21 @@ std::string read_plot(const CommandLine& cli) {
 Request read_request(const CommandLine& cli) {
   Request q;
   q.screenshot = cli.text("screenshot");
-  if (cli.given("screenshot")) {  // "" is refused, not taken as "interactive"
-    tools::check_output_option("screenshot", q.screenshot);
-    if (!cli.text("frame").empty()) tools::check_not_input("screenshot", q.screenshot, "frame", cli.text("frame"));
-  }
+  if (cli.given("screenshot"))  // "" is refused, not taken as "interactive"
+    tools::check_command_output(cli, "screenshot", q.screenshot, {{"frame", cli.text("frame")}});
   q.plot = read_plot(cli);
   const std::string plot_option = cli.given("plot") ? "--plot" : "--chart";
   if (cli.given("export")) {
     q.export_dir = cli.text("export");
     if (q.export_dir.empty()) throw UsageError("--export needs a directory name");
     if (!q.plot.empty()) throw UsageError("--export writes the 3D scene; not with " + plot_option + " " + q.plot);
+    // The export's files (viz/vtk_export.hpp: .vtp, .vti and scene.vtm) must not take the screenshot's place.
+    const std::filesystem::path shot(q.screenshot);
+    const std::string ext = shot.extension().string();
+    if (!q.screenshot.empty() && (ext == ".vtp" || ext == ".vti" || ext == ".vtm") &&
+        same_file(shot.parent_path().empty() ? std::filesystem::path(".") : shot.parent_path(), q.export_dir))
+      throw UsageError("--screenshot '" + q.screenshot + "' is a name --export writes VTK files under in '" +
+                       q.export_dir + "'; give the screenshot a .png name or another directory");
   }
   q.size = cli.given("size") ? parse_size("size", cli.text("size"))
                              : (q.plot.empty() ? std::array<int, 2>{1600, 800} : std::array<int, 2>{900, 800});

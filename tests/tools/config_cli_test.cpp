@@ -229,6 +229,31 @@ TEST_F(ConfigCli, OutputsThatAreNotRegularFilesAreRefusedAndDashPrintsTheConfig)
   EXPECT_EQ(again.output, printed.output);
 }
 
+TEST_F(ConfigCli, AnOutputIsNeverTheConfigItReadOrAnotherOutput) {
+  // grtrace-render: a frame rendered again from its own header into the same file would replace its input.
+  const fs::path frame = at("frame.exr");
+  ASSERT_EQ(render("--width 8 --height 8 --out " + frame.string()).status, 0);
+  const std::string before = slurp(frame);
+  const ToolRun again = render("--config " + frame.string() + " --out " + frame.string());
+  EXPECT_EQ(again.status, 2) << again.output;
+  EXPECT_NE(again.output.find("is the input given as --config"), std::string::npos) << again.output;
+  EXPECT_EQ(slurp(frame), before);
+  // grtrace-view: its screenshot over its --config, or over a file its --export writes.
+  const fs::path toml = at("view.toml");
+  ASSERT_EQ(tool("grtrace-view", "--write-config " + toml.string()).status, 0);
+  const std::string config = slurp(toml);
+  const ToolRun shot = tool("grtrace-view", "--config " + toml.string() + " --screenshot " + toml.string());
+  EXPECT_EQ(shot.status, 2) << shot.output;
+  EXPECT_NE(shot.output.find("is the input given as --config"), std::string::npos) << shot.output;
+  EXPECT_EQ(slurp(toml), config);
+  fs::create_directories(at("export"));
+  const ToolRun both = tool("grtrace-view", "--export " + at("export").string() + " --screenshot " +
+                                                (at("export") / "scene.vtm").string());
+  EXPECT_EQ(both.status, 2) << both.output;
+  EXPECT_NE(both.output.find("is a name --export writes VTK files under"), std::string::npos) << both.output;
+  EXPECT_TRUE(fs::is_empty(at("export")));
+}
+
 TEST_F(ConfigCli, AnExrOfAnotherToolIsRefusedNamingTheKey) {
   const fs::path exr = at("frame.exr");
   ASSERT_EQ(render("--width 8 --height 8 --out " + exr.string()).status, 0);

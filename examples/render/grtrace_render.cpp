@@ -629,6 +629,9 @@ int main(int argc, char** argv) {
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("sky_continuation", image.metadata["sky_continuation"]);
+    if (image.metadata.count("sky_continuation_error"))  // a flat continuation's estimated error (render_frame)
+      json.add("sky_continuation_error", std::stod(image.metadata["sky_continuation_error"]))
+          .add("sky_radius_for_rtol", std::stod(image.metadata["sky_radius_for_rtol"]));
     json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
     json.add("out", q.out).add("png", png).add("threads", st.threads);
     json.add("traced_rays", st.traced_rays).add("mirrors", image.metadata["mirrors"]);

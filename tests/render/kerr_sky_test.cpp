@@ -13,6 +13,7 @@
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
+#include "grtrace/metric/named_metrics.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/frame.hpp"
@@ -125,6 +126,47 @@ TEST(KerrSky, FlatContinuationErrorEstimateMatchesSchwarzschildsExactSky) {
       EXPECT_NEAR(flat / estimate, 1.0, 0.1) << "R = " << R << " b = " << b;
       EXPECT_NEAR(sky_radius_for_flat_error(1.0, b, estimate), R, 1e-9 * R);
     }
+}
+
+TEST(KerrSky, AFlatContinuationsFrameReportsItsEstimatedError) {
+  // Schwarzschild continued flat from R = 400 M against its exact continuation, per pixel: the frame's worst error
+  // is what the header's estimate (flat_continuation_error at the frame's largest escaped impact parameter) says.
+  constexpr int n = 16;
+  const BackgroundScene scene = background_scene({});
+  const SchwarzschildMetric m{1.0};
+  CameraSpec cs;
+  cs.position = Vec4(0.0, 50.0, 1.4, 0.0);
+  cs.spherical_position = true;
+  cs.width = cs.height = n;
+  cs.fov_degrees = 60.0;
+  const Camera cam = make_camera(m, cs);
+  const auto flat_tracer = make_general_tracer<Fehlberg78, IController>(m, settings(1e-12, 400.0), AngleCorrection::flat,
+                                                                        scene);
+  const auto flat = trace_pixels(flat_tracer, cam, n);
+  const auto exact = trace_pixels(
+      make_general_tracer<Fehlberg78, IController>(m, settings(1e-12, 400.0), AngleCorrection::exact, scene), cam, n);
+  int shared = 0;
+  const double worst = largest_sky_difference(flat, exact, &shared);
+  const auto estimate = flat_tracer.flat_continuation_estimate();
+  ASSERT_TRUE(estimate.has_value());
+  EXPECT_NEAR(estimate->error / worst, 1.0, 0.2) << "estimate " << estimate->error << ", measured " << worst;
+  EXPECT_NEAR(sky_radius_for_flat_error(1.0, estimate->impact, 1e-12), estimate->radius_for_tolerance, 1e-6);
+  const Frame frame = render_frame(cam, flat_tracer);
+  EXPECT_EQ(std::stod(frame.image.metadata.at("sky_continuation_error")), estimate->error);
+  std::printf("Schwarzschild, flat from 400 M: worst error %.3e rad, estimated %.3e (largest b %.2f M); sky radius "
+              "for 1e-12: %.0f M\n", worst, estimate->error, estimate->impact, estimate->radius_for_tolerance);
+  // Exact continuations and metrics without an estimate say nothing: de Sitter's g_tt falls without bound outside
+  // (not asymptotically flat), the Ellis wormhole has no mass; Reissner-Nordstrom and Eddington-Finkelstein have one.
+  const auto exact_tracer =
+      make_general_tracer<Fehlberg78, IController>(m, settings(1e-12, 400.0), AngleCorrection::exact, scene);
+  (void)trace_pixels(exact_tracer, cam, 2);
+  EXPECT_FALSE(exact_tracer.flat_continuation_estimate().has_value());
+  AutoSchwarzschildDeSitter sds;
+  sds.lambda = 1e-5;
+  EXPECT_FALSE(has_flat_continuation_estimate(sds, 400.0));
+  EXPECT_FALSE(has_flat_continuation_estimate(AutoEllisWormhole{}, 400.0));
+  EXPECT_TRUE(has_flat_continuation_estimate(AutoReissnerNordstrom{}, 400.0));
+  EXPECT_TRUE(has_flat_continuation_estimate(AutoEddingtonFinkelstein{}, 400.0));
 }
 
 // ---- (b) the sky radius only bounds where objects can be ---------------------------------------------------------

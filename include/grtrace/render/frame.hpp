@@ -163,6 +163,15 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
   image.metadata["tracer"] = Tracer::name;
   if constexpr (requires { tracer.sky_continuation(); })
     image.metadata["sky_continuation"] = sky_continuation_name(tracer.sky_continuation());
+  // A flat continuation's estimated error over this frame's escaped rays (trace/sky_continuation.hpp), and the sky
+  // radius that would bring it down to the tracer's rtol.
+  if constexpr (requires { tracer.flat_continuation_estimate(); }) {
+    if (const auto e = tracer.flat_continuation_estimate()) {
+      image.metadata["sky_continuation_error"] = exact_number(e->error);
+      image.metadata["sky_continuation_impact"] = exact_number(e->impact);
+      image.metadata["sky_radius_for_rtol"] = exact_number(e->radius_for_tolerance);
+    }
+  }
   image.metadata["mirrors"] = mirrors.names();
   std::string names;
   for (const std::string& n : scene.object_names()) names += (names.empty() ? "" : ",") + n;

@@ -178,6 +178,7 @@ class PlanarSceneTracer {
       // Flat beyond the sphere: the direction of dx/dlambda there, at angle beta from the radial with
       // tan beta = r dpsi/dlambda / (dr/dlambda) = (b / R) / sqrt((1 / A - b^2 / R^2) / B) (E = 1).
       const double rs = r_end, b = g.impact;
+      fallback_.note_flat_impact(b);  // for flat_continuation_estimate
       const double rdot2 = (1.0 / metric_.lapse_squared(rs) - b * b / (rs * rs)) / radial_scale_squared(metric_, rs);
       sweep += std::atan2(b / rs, std::sqrt(std::max(0.0, rdot2)));
     }
@@ -188,6 +189,10 @@ class PlanarSceneTracer {
   const SceneT& scene() const { return fallback_.scene(); }  // the fallback tracer holds the one copy
   /// Which continuation escaped rays get: the tabulated path to u = 0 where the metric has an exact one, else flat.
   SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
+  /// The flat continuation's error estimate over the rays of this frame, table and fallback together.
+  std::optional<FlatContinuationEstimate> flat_continuation_estimate() const {
+    return fallback_.flat_continuation_estimate();
+  }
   const Metric& metric() const { return metric_; }
   const PlanarPathTable<Metric, T, C>& table() const { return *table_; }
   /// Pixels traced by the general tracer instead (see the top of this file), since construction.

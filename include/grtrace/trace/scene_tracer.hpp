@@ -144,6 +144,17 @@ class GeneralSceneTracer {
   /// Which continuation this tracer's escaped rays get (recorded in a frame's header: trace/tracer_report.hpp).
   SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
 
+  /// For a flat continuation: the error estimate of the rays traced so far (trace/sky_continuation.hpp; recorded in
+  /// a frame's header), at the largest impact parameter among them; nothing for an exact one, or a metric without
+  /// an estimate. note_flat_impact is how a tracer that hands rays to this one (planar) adds its own.
+  std::optional<FlatContinuationEstimate> flat_continuation_estimate() const {
+    if (sky_continuation() != SkyContinuation::flat) return std::nullopt;
+    const TraceSettings& s = tracer_.settings();
+    return grtrace::flat_continuation_estimate(tracer_.metric(), s.escape_radius, flat_impact_.get(),
+                                               s.integrator.tolerance.rtol);
+  }
+  void note_flat_impact(double b) const { flat_impact_.raise(b); }
+
   const SceneT& scene() const { return scene_; }
   const Metric& metric() const { return tracer_.metric(); }
   const GeodesicTracer<Metric, T, C>& tracer() const { return tracer_; }
@@ -153,6 +164,8 @@ class GeneralSceneTracer {
   /// Where an escaped ray is seen: trace/sky_continuation.hpp, with this tracer's own method.
   auto escaped() const {
     return [this](const GeodesicState& from, const GeodesicState& at_sphere) {
+      if (sky_continuation() == SkyContinuation::flat)
+        note_flat_impact(flat_impact_parameter(tracer_.metric(), at_sphere));
       return escaped_direction<T>(tracer_.metric(), tracer_.settings().integrator.tolerance, correction_, from,
                                   at_sphere);
     };
@@ -161,6 +174,7 @@ class GeneralSceneTracer {
   GeodesicTracer<Metric, T, C> tracer_;
   AngleCorrection correction_;
   SceneT scene_;
+  ConcurrentMax flat_impact_;  ///< the largest impact parameter of the rays continued flat
 };
 
 /// Deduces the metric and the scene: make_general_tracer<Tsit5, IController>(metric, settings, correction, scene).

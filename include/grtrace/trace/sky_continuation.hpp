@@ -25,18 +25,20 @@
 #pragma once
 
 #include "grtrace/core/sky_direction.hpp"
+#include "grtrace/integrate/error_norm.hpp"
+#include "grtrace/integrate/runge_kutta_stepper.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/metric/metric_traits.hpp"
-#include "grtrace/integrate/error_norm.hpp"
-#include "grtrace/integrate/runge_kutta_stepper.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/kerr_mino_system.hpp"
 #include "grtrace/trace/sky_continuation_kind.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <concepts>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -81,6 +83,71 @@ inline double flat_continuation_error(double mass, double impact, double sky_rad
 /// The sky radius at which flat_continuation_error falls to `tolerance` (radians).
 inline double sky_radius_for_flat_error(double mass, double impact, double tolerance) {
   return std::pow(0.75 * mass * impact * impact * impact / tolerance, 0.25);
+}
+
+/// The impact parameter of the straight line a ray leaves the traced region on (flat continuation): the distance
+/// of the line through its embedded position with its embedded velocity from the centre of the embedding.
+template <MetricPolicy M>
+double flat_impact_parameter(const M& metric, const GeodesicState& y) {
+  const Vec3 p = metric.to_cartesian(y.template head<4>()), v = embedded_velocity_of(metric, y);
+  return p.cross(v).norm() / v.norm();
+}
+
+/// True when flat_continuation_error describes the metric's flat continuation: it has a mass (a `mass` member) and is
+/// flat far outside the sky sphere (|g_tt - 1| < 1e-2 at 100 R on the equator: not Schwarzschild-de Sitter, whose
+/// g_tt falls without bound). The estimate is the mass's leading term; a metric flat at infinity for other reasons
+/// (the massless Ellis wormhole) gets none.
+template <MetricPolicy M>
+bool has_flat_continuation_estimate(const M& metric, double sky_radius) {
+  if constexpr (requires { { metric.mass } -> std::convertible_to<double>; }) {
+    const Vec4 far = event_from_spherical(metric, Vec4(0.0, 100.0 * sky_radius, std::numbers::pi / 2.0, 0.0));
+    return std::abs(metric.metric(far)(0, 0) - 1.0) < 1e-2;
+  } else {
+    return false;
+  }
+}
+
+/// A largest value that threads raise concurrently while a frame is traced (relaxed: a statistic, not a
+/// synchronisation); a copy starts from the value copied. What a tracer keeps to report its frame's flat
+/// continuation error (the largest impact parameter of its escaped rays).
+class ConcurrentMax {
+ public:
+  ConcurrentMax() = default;
+  ConcurrentMax(const ConcurrentMax& o) : value_(o.get()) {}
+  ConcurrentMax& operator=(const ConcurrentMax& o) {
+    value_.store(o.get(), std::memory_order_relaxed);
+    return *this;
+  }
+  void raise(double v) const {
+    double seen = value_.load(std::memory_order_relaxed);
+    while (v > seen && !value_.compare_exchange_weak(seen, v, std::memory_order_relaxed)) {
+    }
+  }
+  double get() const { return value_.load(std::memory_order_relaxed); }
+  void reset() const { value_.store(0.0, std::memory_order_relaxed); }
+
+ private:
+  mutable std::atomic<double> value_{0.0};
+};
+
+/// The frame-level estimate a tracer with a flat continuation reports: flat_continuation_error at the largest impact
+/// parameter of the frame's escaped rays, and the sky radius that would bring it down to `tolerance`.
+struct FlatContinuationEstimate {
+  double error = 0.0;           ///< radians
+  double impact = 0.0;          ///< the largest impact parameter of the escaped rays
+  double radius_for_tolerance;  ///< sky radius at which the error would be `tolerance`
+};
+
+/// The estimate for a frame traced in `metric` with sky radius R, whose escaped rays reached impact parameters up to
+/// `largest_impact`; nothing when the metric has no such estimate (has_flat_continuation_estimate) or no ray escaped.
+template <MetricPolicy M>
+std::optional<FlatContinuationEstimate> flat_continuation_estimate(const M& metric, double sky_radius,
+                                                                   double largest_impact, double tolerance) {
+  if (!(largest_impact > 0.0) || !has_flat_continuation_estimate(metric, sky_radius)) return std::nullopt;
+  double mass = 0.0;
+  if constexpr (requires { { metric.mass } -> std::convertible_to<double>; }) mass = metric.mass;
+  return FlatContinuationEstimate{flat_continuation_error(mass, largest_impact, sky_radius), largest_impact,
+                                  sky_radius_for_flat_error(mass, largest_impact, tolerance)};
 }
 
 /// The asymptotic direction of an escaping Kerr ray (exact_mino above): its Mino-time system carried from z, a

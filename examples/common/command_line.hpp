@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -31,6 +32,7 @@
 #include <cstdlib>
 #include <initializer_list>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -179,8 +181,12 @@ class CommandLine {
   long integer(const std::string& name) const {
     const std::string t = text(name);
     char* end = nullptr;
+    errno = 0;
     const long v = std::strtol(t.c_str(), &end, 10);
     if (t.empty() || *end != '\0') throw UsageError("--" + name + " expects a whole number, got '" + t + "'");
+    if (errno == ERANGE)  // strtol saturates silently: say so instead of using LONG_MAX
+      throw UsageError("--" + name + " " + t + " is out of range (whole numbers up to " +
+                       std::to_string(std::numeric_limits<long>::max()) + ")");
     return v;
   }
 

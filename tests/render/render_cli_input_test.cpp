@@ -113,6 +113,7 @@ TEST_F(RenderCliInput, RefusesEveryBadInputBeforeTracingAndLeavesNoFile) {
       {"--angle-correction", "sideways"},
       {"--tracer", "symmetric"},  // retired from the tools: the planar tracer draws its frames
       {"--max-steps", "0"},
+      {"--max-steps", "99999999999999999999"},  // beyond a long: refused, not saturated
       {"--threads", "-1"},
       {"--no-such-option", "1"},
       {"--exr-compression", "dwaa"},         // lossy: the channels must read back bit for bit

@@ -164,6 +164,10 @@ void read_flight(const CommandLine& cli, Request& q) {
   if (cli.flag_set("status-map") || q.error_map)
     throw UsageError("--status-map and --error-map are for single frames; leave them out with --flight");
   if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
+  // The video's tool, before the first ray (not after the frames).
+  if (cli.flag_set("mp4") && !program_on_path("ffmpeg"))
+    throw UsageError("--mp4 needs ffmpeg, which is not on PATH; install it (apt-get install ffmpeg, or bash "
+                     "cmake/install-deps.sh) or leave --mp4 out");
   const CameraView view{triple(cli, "look"), triple(cli, "up"), q.camera->width(), q.camera->height(),
                         q.camera->fov_degrees()};
   // Kerr-Schild flights are flown in the ingoing slicing, regular where the falling camera crosses the horizon.

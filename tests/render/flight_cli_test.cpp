@@ -181,6 +181,12 @@ TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
     EXPECT_NE(r.output.find(says), std::string::npos) << args << "\n" << r.output;
     EXPECT_EQ(dir.files(), 0u) << args;
   }
+  // The video's tool is looked for before the first frame: without ffmpeg on PATH, nothing is traced or written.
+  const ToolRun no_ffmpeg = run_command("PATH=/nonexistent " + std::string(GRTRACE_RENDER_BINARY) + " " + kSmall +
+                                        "--flight seed --frames 3 --mp4" + out);
+  EXPECT_EQ(no_ffmpeg.status, 2) << no_ffmpeg.output;
+  EXPECT_NE(no_ffmpeg.output.find("--mp4 needs ffmpeg, which is not on PATH"), std::string::npos) << no_ffmpeg.output;
+  EXPECT_EQ(dir.files(), 0u);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include "grtrace/grtrace.hpp"
 #include "grtrace/render/frame.hpp"
 
+#include "common/trace_settings.hpp"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -25,18 +27,13 @@ bool same(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::b
 /// Bit for bit, or both NaN (a pixel without a redshift or direction).
 bool same_or_nan(double a, double b) { return same(a, b) || (std::isnan(a) && std::isnan(b)); }
 
-TraceSettings settings_for(double rtol, double escape_radius) {
-  TraceSettings settings;
-  settings.integrator.tolerance = {rtol, 1e-2 * rtol};
-  settings.escape_radius = escape_radius;
-  return settings;
-}
+using test_settings::settings_at;
 
 /// The disk scene's general tracer (tsit5, I), as grtrace-render builds it.
 auto disk_tracer(const SchwarzschildMetric& metric) {
   StandardSceneSpec spec;
   spec.name = "disk";
-  return make_general_tracer<Tsitouras54, IController>(metric, settings_for(2e-9, 400.0), AngleCorrection::exact,
+  return make_general_tracer<Tsitouras54, IController>(metric, settings_at(2e-9, 400.0), AngleCorrection::exact,
                                                        disk_scene(spec));
 }
 
@@ -107,7 +104,7 @@ int count(const Census& c, RayStatus s) { return c.statuses[static_cast<std::siz
 
 TEST(BatchedTrace, SchwarzschildTsit5RaysEndAsAlone) {
   const SchwarzschildMetric metric{1.0};
-  const TraceSettings settings = settings_for(2e-9, 400.0);
+  const TraceSettings settings = settings_at(2e-9, 400.0);
   const GeodesicTracer<SchwarzschildMetric, Tsitouras54, IController> tracer(metric, settings);
   const Census c = compare(tracer, pixel_states(metric, 50.0, 80.0, 24, 40.0));
   EXPECT_GT(count(c, RayStatus::captured), 0);
@@ -118,7 +115,7 @@ TEST(BatchedTrace, SchwarzschildTsit5RaysEndAsAlone) {
 TEST(BatchedTrace, ThroughThePolarAxisWithRkf78AndPi) {
   // A camera near the north pole: rays cross the axis (the chart wraps them) on their way round the hole.
   const SchwarzschildMetric metric{1.0};
-  const TraceSettings settings = settings_for(1e-9, 300.0);
+  const TraceSettings settings = settings_at(1e-9, 300.0);
   const GeodesicTracer<SchwarzschildMetric, Fehlberg78, PIController> tracer(metric, settings);
   const Census c = compare(tracer, pixel_states(metric, 30.0, 10.0, 21, 60.0));
   EXPECT_GT(c.wrapped, 0);
@@ -127,7 +124,7 @@ TEST(BatchedTrace, ThroughThePolarAxisWithRkf78AndPi) {
 
 TEST(BatchedTrace, MaxStepsAndStepUnderflowAreTheLoopsAsAlone) {
   const SchwarzschildMetric metric{1.0};
-  TraceSettings settings = settings_for(1e-10, 400.0);
+  TraceSettings settings = settings_at(1e-10, 400.0);
   settings.integrator.h_min = 0.05;  // rays that skim the horizon need shorter steps: they underflow
   settings.initial_step = 0.5;
   settings.max_steps = 200;
@@ -139,7 +136,7 @@ TEST(BatchedTrace, MaxStepsAndStepUnderflowAreTheLoopsAsAlone) {
 
 TEST(BatchedTrace, KerrWithoutALaneAccelerationEndsAsAlone) {
   const KerrMetric metric{1.0, 0.9};
-  const TraceSettings settings = settings_for(2e-9, 400.0);
+  const TraceSettings settings = settings_at(2e-9, 400.0);
   const GeodesicTracer<KerrMetric, Tsitouras54, IController> tracer(metric, settings);
   const Census c = compare(tracer, pixel_states(metric, 40.0, 75.0, 16, 40.0));
   EXPECT_GT(count(c, RayStatus::hit), 0);

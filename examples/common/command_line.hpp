@@ -82,6 +82,12 @@ inline void check_not_input(const std::string& option, const std::filesystem::pa
                      "; choose another output file");
 }
 
+class CommandLine;
+/// The checks every output file of a command gets before any work (defined below CommandLine).
+inline void check_command_output(const CommandLine& cli, const std::string& option,
+                                 const std::filesystem::path& path,
+                                 std::initializer_list<std::pair<const char*, std::string>> inputs);
+
 class CommandLine {
  public:
   CommandLine(std::string program, std::string summary) : program_(std::move(program)), summary_(std::move(summary)) {}
@@ -147,7 +153,7 @@ class CommandLine {
     if (config_path) apply_config(*config_path);
     for (const auto& [spec, value] : assignments) assign(*spec, value);
     if (write_path) {
-      write_config(*write_path, config_path);
+      write_config(*write_path);
       return false;
     }
     return true;
@@ -313,7 +319,7 @@ class CommandLine {
   /// output for "-": the given options as keys, the others as commented-out defaults (uncommenting one makes it
   /// given, which can change a default some tool derives from other options). Refuses (UsageError) an unwritable
   /// path, one that is not a regular file (a device, a FIFO), or the --config file.
-  void write_config(const std::string& path, const std::optional<std::string>& config_path) const {
+  void write_config(const std::string& path) const {
     auto write = [&](std::ostream& os) {
       os << "# " << program_ << " " << grtrace::kVersion << " scene file: " << program_ << " --config FILE\n"
          << "# Keys are option names (see --help); options on the command line override them.\n"
@@ -324,8 +330,7 @@ class CommandLine {
       if (!os.flush()) throw std::runtime_error("cannot write '" + path + "'");
     };
     if (path == "-") return write(std::cout);
-    check_output_option(kWriteConfigOption, path);
-    if (config_path) check_not_input(kWriteConfigOption, path, kConfigOption, *config_path);
+    check_command_output(*this, kWriteConfigOption, path, {});
     write_file_atomically(path, write);
   }
 

@@ -48,9 +48,9 @@ inline void declare_flight_options(CommandLine& cli, const std::string& what_the
 /// Takes the command line (flight options declared by declare_flight_options, camera-r/-theta/-phi in degrees),
 /// the hole's mass, the sky sphere's radius and the tool's other options that only make sense with --flight.
 /// Returns the path's spec, or nothing without --flight. Throws UsageError naming the option for a flight option
-/// without --flight or with a kind that ignores it (a csv flight takes no --frames or --frame-dtau), an unknown kind, --flight csv without --flight-csv (or the reverse), --frames outside
-/// 1 .. 100000. What only the path can tell (a start that cannot exist, a path that ends early) is
-/// checked_flight_path's.
+/// without --flight or with a kind that ignores it (a csv flight takes no --frames or --frame-dtau), an unknown
+/// kind, --flight csv without --flight-csv (or the reverse), --frames outside 1 .. 100000. What only the path can
+/// tell (a start that cannot exist, a path that ends early) is checked_flight_path's.
 inline std::optional<FlightPathSpec> read_flight_spec(const CommandLine& cli, double mass, double sky_radius,
                                                       std::initializer_list<const char*> needing_flight) {
   const std::string kind = cli.text("flight");

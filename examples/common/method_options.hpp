@@ -28,7 +28,6 @@ struct MethodDefaults {
   std::string help_prefix;
 };
 
-
 /// Declares --<prefix>tableau, --<prefix>control, --<prefix>step, --<prefix>rtol and --<prefix>atol.
 inline void declare_method_options(CommandLine& cli, const std::string& prefix, const MethodDefaults& d) {
   const std::string& h = d.help_prefix;

@@ -78,9 +78,9 @@ CommandLine make_command_line() {
       .option("tracer", "auto", "auto | general | planar. planar: one table of rays for the frame, every "
                                 "scene of a Schwarzschild hole, disk included (auto's choice there with an adaptive "
                                 "--control; it also draws every frame the retired symmetric table drew); general: "
-                                "every pixel integrated (any metric). auto picks kerr-mino for --metric kerr --chart bl with an "
-                                "adaptive --control: every pixel on Kerr's separated equations in Mino time, 3x "
-                                "cheaper per ray than general")
+                                "every pixel integrated (any metric). auto picks kerr-mino for --metric kerr --chart "
+                                "bl with an adaptive --control: every pixel on Kerr's separated equations in Mino "
+                                "time, 3x cheaper per ray than general")
       .option("table-rays", std::to_string(grtrace::default_table_rays),
               "planar tracer: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")

@@ -28,6 +28,8 @@
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
+#include "../common/trace_settings.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,12 +44,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-TraceSettings settings(double rtol, double sky = 2000.0) {
-  TraceSettings s;
-  s.integrator.tolerance = {rtol, 1e-2 * rtol};
-  s.escape_radius = sky;
-  return s;
-}
+TraceSettings settings(double rtol, double sky = 2000.0) { return test_settings::settings_at(rtol, sky); }
 
 struct CameraCase {
   double spin, r, theta_deg;

@@ -25,6 +25,8 @@
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
+#include "../common/trace_settings.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -39,12 +41,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-TraceSettings settings(double rtol) {
-  TraceSettings s;
-  s.integrator.tolerance = {rtol, 1e-2 * rtol};
-  s.escape_radius = 400.0;
-  return s;
-}
+TraceSettings settings(double rtol) { return test_settings::settings_at(rtol, 400.0); }
 
 CameraSpec camera_spec(double r, double theta_deg, int width, int height, double fov = 60.0) {
   CameraSpec cs;

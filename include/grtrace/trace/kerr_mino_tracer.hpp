@@ -38,11 +38,17 @@ inline constexpr bool kerr_mino_supports_scene =
 /// One ray of a Kerr metric on the separated equations: the TraceResult of GeodesicTracer<KerrMetric>::trace for
 /// the same ray and events (within the integration's tolerance), lambda in Mino time, t not followed (NaN).
 template <ExplicitTableau T, StepController C, class... Events>
+TraceResult trace_kerr_mino(const KerrMinoSystem& system, const TraceSettings& settings, const C& controller,
+                            const GeodesicState& y0, const Events&... events) {
+  return trace_geodesic_system<T>(system, settings, controller, system.initial_state(y0),
+                                  system.metric.horizon_radius(), false, NullObserver{}, events...);
+}
+
+/// The same, the ray's system built here (a caller that needs the system afterwards builds it and passes it).
+template <ExplicitTableau T, StepController C, class... Events>
 TraceResult trace_kerr_mino(const KerrMetric& metric, const TraceSettings& settings, const C& controller,
                             const GeodesicState& y0, const Events&... events) {
-  const KerrMinoSystem system(metric, y0);
-  return trace_geodesic_system<T>(system, settings, controller, system.initial_state(y0), metric.horizon_radius(),
-                                  false, NullObserver{}, events...);
+  return trace_kerr_mino<T>(KerrMinoSystem(metric, y0), settings, controller, y0, events...);
 }
 
 template <ExplicitTableau T, StepController C, class SceneT>
@@ -68,8 +74,7 @@ class KerrMinoSceneTracer {
   RayOutcome trace(const GeodesicState& y0) const {
     const KerrMinoSystem system(metric_, y0);
     const TraceResult r = std::apply([&](const auto&... o) {
-      return trace_geodesic_system<T>(system, settings_, controller_, system.initial_state(y0),
-                                      metric_.horizon_radius(), false, NullObserver{}, bind_to_metric(o, metric_)...);
+      return trace_kerr_mino<T>(system, settings_, controller_, y0, bind_to_metric(o, metric_)...);
     }, scene_.objects);
     // The continuation starts from the last accepted step (which may lie beyond u = 0: it is then taken back),
     // with the ray's own constants of motion; from the sky sphere's crossing if that step is not usable.

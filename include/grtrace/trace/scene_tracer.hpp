@@ -153,7 +153,9 @@ class GeneralSceneTracer {
     return grtrace::flat_continuation_estimate(tracer_.metric(), s.escape_radius, flat_impact_.get(),
                                                s.integrator.tolerance.rtol);
   }
-  void note_flat_impact(double b) const { flat_impact_.raise(b); }
+  void note_flat_impact(double b) const {
+    if constexpr (HasMass<Metric>) flat_impact_.raise(b);
+  }
 
   const SceneT& scene() const { return scene_; }
   const Metric& metric() const { return tracer_.metric(); }
@@ -164,8 +166,11 @@ class GeneralSceneTracer {
   /// Where an escaped ray is seen: trace/sky_continuation.hpp, with this tracer's own method.
   auto escaped() const {
     return [this](const GeodesicState& from, const GeodesicState& at_sphere) {
-      if (sky_continuation() == SkyContinuation::flat)
-        note_flat_impact(flat_impact_parameter(tracer_.metric(), at_sphere));
+      // Only where an estimate can come of it: a metric without a mass has none to report.
+      if constexpr (HasMass<Metric>) {
+        if (sky_continuation() == SkyContinuation::flat)
+          note_flat_impact(flat_impact_parameter(tracer_.metric(), at_sphere));
+      }
       return escaped_direction<T>(tracer_.metric(), tracer_.settings().integrator.tolerance, correction_, from,
                                   at_sphere);
     };

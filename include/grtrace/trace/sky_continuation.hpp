@@ -93,13 +93,19 @@ double flat_impact_parameter(const M& metric, const GeodesicState& y) {
   return p.cross(v).norm() / v.norm();
 }
 
+/// A metric that names its mass (a `mass` member): what flat_continuation_error needs.
+template <class M>
+concept HasMass = requires(const M m) {
+  { m.mass } -> std::convertible_to<double>;
+};
+
 /// True when flat_continuation_error describes the metric's flat continuation: it has a mass (a `mass` member) and is
 /// flat far outside the sky sphere (|g_tt - 1| < 1e-2 at 100 R on the equator: not Schwarzschild-de Sitter, whose
 /// g_tt falls without bound). The estimate is the mass's leading term; a metric flat at infinity for other reasons
 /// (the massless Ellis wormhole) gets none.
 template <MetricPolicy M>
 bool has_flat_continuation_estimate(const M& metric, double sky_radius) {
-  if constexpr (requires { { metric.mass } -> std::convertible_to<double>; }) {
+  if constexpr (HasMass<M>) {
     const Vec4 far = event_from_spherical(metric, Vec4(0.0, 100.0 * sky_radius, std::numbers::pi / 2.0, 0.0));
     return std::abs(metric.metric(far)(0, 0) - 1.0) < 1e-2;
   } else {
@@ -124,7 +130,6 @@ class ConcurrentMax {
     }
   }
   double get() const { return value_.load(std::memory_order_relaxed); }
-  void reset() const { value_.store(0.0, std::memory_order_relaxed); }
 
  private:
   mutable std::atomic<double> value_{0.0};
@@ -135,7 +140,7 @@ class ConcurrentMax {
 struct FlatContinuationEstimate {
   double error = 0.0;           ///< radians
   double impact = 0.0;          ///< the largest impact parameter of the escaped rays
-  double radius_for_tolerance;  ///< sky radius at which the error would be `tolerance`
+  double radius_for_tolerance = 0.0;  ///< sky radius at which the error would be `tolerance`
 };
 
 /// The estimate for a frame traced in `metric` with sky radius R, whose escaped rays reached impact parameters up to
@@ -143,11 +148,13 @@ struct FlatContinuationEstimate {
 template <MetricPolicy M>
 std::optional<FlatContinuationEstimate> flat_continuation_estimate(const M& metric, double sky_radius,
                                                                    double largest_impact, double tolerance) {
-  if (!(largest_impact > 0.0) || !has_flat_continuation_estimate(metric, sky_radius)) return std::nullopt;
-  double mass = 0.0;
-  if constexpr (requires { { metric.mass } -> std::convertible_to<double>; }) mass = metric.mass;
-  return FlatContinuationEstimate{flat_continuation_error(mass, largest_impact, sky_radius), largest_impact,
-                                  sky_radius_for_flat_error(mass, largest_impact, tolerance)};
+  if constexpr (HasMass<M>) {
+    if (!(largest_impact > 0.0) || !has_flat_continuation_estimate(metric, sky_radius)) return std::nullopt;
+    return FlatContinuationEstimate{flat_continuation_error(metric.mass, largest_impact, sky_radius), largest_impact,
+                                    sky_radius_for_flat_error(metric.mass, largest_impact, tolerance)};
+  } else {
+    return std::nullopt;
+  }
 }
 
 /// The asymptotic direction of an escaping Kerr ray (exact_mino above): its Mino-time system carried from z, a

@@ -2,6 +2,7 @@
 // nullopt, never a NaN direction, for input that is not a ray; a ray started exactly on the polar axis of the
 // spherical chart (theta = 0) ends as non_finite (its right-hand side has cot(theta) = inf), not as a step-size
 // problem.
+#include "grtrace/core/number_text.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/observer/initial_data.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
@@ -74,4 +75,28 @@ TEST(HardeningCore, RayStartedOnThePolarAxisEndsAsNonFinite) {
   // Just off the axis the same ray is traced normally.
   const TraceResult near = tracer.trace(null_ray(20.0, 1e-3, 0.0, -1.0, 0.02, 0.01));
   EXPECT_TRUE(near.status == RayStatus::escaped || near.status == RayStatus::captured) << to_string(near.status);
+}
+
+// One reading of user-written numbers for options, scene files and camera-path CSVs (core/number_text.hpp).
+TEST(HardeningCore, NumbersFromTextFollowOneSetOfRules) {
+  using grtrace::NumberText;
+  const auto number = [](const char* t) { return grtrace::parse_finite_number(t); };
+  EXPECT_EQ(number(" 1.5e-3\t").value, 1.5e-3);
+  EXPECT_EQ(number("0x1p3").value, 8.0);
+  EXPECT_EQ(number("-2").result, NumberText::ok);
+  EXPECT_EQ(number("1e-320").result, NumberText::ok);  // subnormal: read as strtod gives it
+  EXPECT_EQ(number("1e-400").value, 0.0);
+  for (const char* not_finite : {"1e400", "-1e400", "inf", "nan", "Infinity"})
+    EXPECT_EQ(number(not_finite).result, NumberText::not_finite) << not_finite;
+  for (const char* bad : {"", " ", "1,5", "1.5x", "x", "1 2", "\n1", "--1", "1e"})
+    EXPECT_EQ(number(bad).result, NumberText::not_a_number) << "'" << bad << "'";
+  const auto whole = [](const char* t) { return grtrace::parse_whole_number(t); };
+  EXPECT_EQ(whole(" 12 ").value, 12);
+  EXPECT_EQ(whole("-7").value, -7);
+  EXPECT_EQ(whole("9223372036854775807").result, NumberText::ok);
+  EXPECT_EQ(whole("9223372036854775808").result, NumberText::out_of_range);
+  EXPECT_EQ(whole("-99999999999999999999").result, NumberText::out_of_range);
+  for (const char* bad : {"", "1.5", "1e3", "0x10", "12a", "\n3"})
+    EXPECT_EQ(whole(bad).result, NumberText::not_a_number) << "'" << bad << "'";
+  EXPECT_NE(grtrace::number_text_problem(NumberText::out_of_range).find("9223372036854775807"), std::string::npos);
 }

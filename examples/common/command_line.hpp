@@ -9,7 +9,8 @@
 // from a TOML file (keys = option names, flags take booleans) or from the header of an EXR written by
 // grtrace-render; options on the command line override it. `--write-config FILE` saves the effective
 // configuration as TOML (given options as keys, the others as commented defaults) and exits 0 without the
-// tool's work, like --help.
+// tool's work, after the tool has checked the options as for a run: a configuration the tool would refuse is
+// refused, not saved.
 // Why the hand tokenizer and not CLI11 (Debian 12's 2.1.2; measured, see the session notes): CLI11 refuses the
 // explicit empty value `--out=`, takes the next option as the value in `--out= --camera-r 3`, and turns
 // `--status-map=` into true; this parser's contract (kept by tests and the fuzz corpus) is the opposite for all
@@ -18,6 +19,7 @@
 
 #include "config_file.hpp"
 #include "grtrace/core/memory_limit.hpp"
+#include "grtrace/core/number_text.hpp"
 #include "grtrace/render/output_file.hpp"
 #include "grtrace/version.hpp"
 
@@ -102,8 +104,9 @@ class CommandLine {
     return *this;
   }
 
-  /// Takes the tool's arguments; returns false when --help, --version or --write-config was asked for (the help
-  /// text or "<program> <version>" is then printed to stdout, or the configuration written; the tool exits 0).
+  /// Takes the tool's arguments; returns false when --help or --version was asked for (the help text or
+  /// "<program> <version>" is then printed to stdout; the tool exits 0). --write-config FILE is only noted here:
+  /// the tool checks the options first and then saves them (write_config_if_asked).
   /// Throws UsageError for anything malformed on the command line or in the --config file, before any work.
   /// Assumes every option was declared before.
   bool parse(int argc, char** argv) {
@@ -152,12 +155,24 @@ class CommandLine {
     config_file_ = config_path.value_or("");
     if (config_path) apply_config(*config_path);
     for (const auto& [spec, value] : assignments) assign(*spec, value);
-    if (write_path) {
-      write_config(*write_path);
-      return false;
-    }
+    write_config_path_ = write_path;
+    write_config_done_ = false;
     return true;
   }
+
+  /// True when --write-config FILE was given: the tool then checks its options as for a run and calls
+  /// write_config_if_asked() before any work (run_tool makes sure it did).
+  bool write_config_asked() const { return write_config_path_.has_value(); }
+  /// Saves the effective options to the --write-config FILE, if one was given, and returns true (the tool then
+  /// exits 0 without its work); false otherwise. Call it after every check of the options and before any work or
+  /// side effect, so that only a configuration the tool would run is saved.
+  bool write_config_if_asked() {
+    if (!write_config_path_) return false;
+    write_config(*write_config_path_);
+    write_config_done_ = true;
+    return true;
+  }
+  bool write_config_done() const { return write_config_done_; }
 
   bool given(const std::string& name) const { return values_.count(name) > 0; }
   /// The file --config read ("" if none): an input every output of the command is checked against.
@@ -184,17 +199,7 @@ class CommandLine {
 
   double number(const std::string& name) const { return parse_number(name, text(name)); }
 
-  long integer(const std::string& name) const {
-    const std::string t = text(name);
-    char* end = nullptr;
-    errno = 0;
-    const long v = std::strtol(t.c_str(), &end, 10);
-    if (t.empty() || *end != '\0') throw UsageError("--" + name + " expects a whole number, got '" + t + "'");
-    if (errno == ERANGE)  // strtol saturates silently: say so instead of using LONG_MAX
-      throw UsageError("--" + name + " " + t + " is out of range (whole numbers up to " +
-                       std::to_string(std::numeric_limits<long>::max()) + ")");
-    return v;
-  }
+  long integer(const std::string& name) const { return parse_integer(name, text(name)); }
 
   /// A comma-separated list of exactly `count` numbers (count 0: any length).
   std::vector<double> numbers(const std::string& name, std::size_t count) const {
@@ -340,16 +345,34 @@ class CommandLine {
     return nullptr;
   }
 
-  static double parse_number(const std::string& name, const std::string& t) {
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    if (t.empty() || *end != '\0') throw UsageError("--" + name + " expects a number, got '" + t + "'");
-    if (!std::isfinite(v)) throw UsageError("--" + name + " must be finite, got '" + t + "'");
-    return v;
+
+ public:
+  /// The number in `t` (grtrace/core/number_text.hpp: the same rules as scene files and camera-path CSVs), or
+  /// UsageError naming --name. `from` is added to the message (e.g. " (from the frame's header)").
+  static double parse_number(const std::string& name, const std::string& t, const std::string& from = "") {
+    const grtrace::ParsedNumber n = grtrace::parse_finite_number(t);
+    if (n.result == grtrace::NumberText::not_finite)
+      throw UsageError("--" + name + " must be finite, got '" + t + "'" + from);
+    if (n.result != grtrace::NumberText::ok)
+      throw UsageError("--" + name + " expects a number, got '" + t + "'" + from);
+    return n.value;
   }
+  /// The whole number in `t` (the same rules), or UsageError naming --name.
+  static long parse_integer(const std::string& name, const std::string& t, const std::string& from = "") {
+    const grtrace::ParsedWholeNumber n = grtrace::parse_whole_number(t);
+    if (n.result == grtrace::NumberText::out_of_range)
+      throw UsageError("--" + name + " " + t + " " + grtrace::number_text_problem(n.result) + from);
+    if (n.result != grtrace::NumberText::ok)
+      throw UsageError("--" + name + " expects a whole number, got '" + t + "'" + from);
+    return n.value;
+  }
+
+ private:
 
   std::string program_, summary_;
   std::string config_file_;
+  std::optional<std::string> write_config_path_;
+  bool write_config_done_ = false;
   std::vector<Spec> specs_;
   std::map<std::string, std::string> values_;    ///< given options (command line or config file); set flags: "1"
   std::map<std::string, std::string> defaults_;  ///< defaults recorded in an EXR given as --config (not given)
@@ -357,9 +380,12 @@ class CommandLine {
 
 /// The checks every output file of a command gets before any work: a writable regular file or new name
 /// (check_output_option), and not one of the command's inputs: the --config file, and each {option, path} of
-/// `inputs` (empty paths skipped). UsageError naming both options.
+/// `inputs` (empty paths skipped). UsageError naming both options. A command that only saves its options
+/// (--write-config) writes none of its other outputs, so only that file is checked then: a configuration read
+/// from a frame's header names the frame itself as --out, and saving it is fine.
 inline void check_command_output(const CommandLine& cli, const std::string& option, const std::filesystem::path& path,
                                  std::initializer_list<std::pair<const char*, std::string>> inputs) {
+  if (cli.write_config_asked() && option != "write-config") return;
   check_output_option(option, path);
   check_not_input(option, path, "config", cli.config_file());
   for (const auto& [input_option, input] : inputs) check_not_input(option, path, input_option, input);
@@ -385,12 +411,17 @@ inline void refuse_inapplicable_options(const CommandLine& cli, std::initializer
 /// Runs a tool's body with the exit-code convention every grtrace tool shares: 0 when done (or after --help),
 /// 2 for bad input (UsageError, before any work; MemoryLimitError: a size from input above the memory limit),
 /// 1 for any other failure (std::bad_alloc included, with a message instead of an abort); errors go to stderr as
-/// "<program>: error: <what to change>". The body returns the exit code.
+/// "<program>: error: <what to change>". The body returns the exit code; it checks every option, then calls
+/// cli.write_config_if_asked() (returning 0 when it saved) before any work.
 template <class Body>
 int run_tool(CommandLine& cli, int argc, char** argv, Body&& body) {
   try {
     if (!cli.parse(argc, argv)) return 0;
-    return body();
+    const int code = body();
+    if (cli.write_config_asked() && !cli.write_config_done())  // a tool that forgot: its work ran unasked
+      throw std::logic_error(cli.program() + " ran its work instead of saving --write-config (a bug: it must call "
+                                             "write_config_if_asked() after its checks)");
+    return code;
   } catch (const UsageError& e) {
     std::cerr << cli.program() << ": error: " << e.what() << "\n";
     return 2;

@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
     const Request q = read_request(cli);
+    const std::string tableau = cli.text("tableau"), control = cli.text("control");
+    const auto error = dispatch_method(tableau, control, []<class T, class C>() {});  // names checked, nothing run
+    if (error != DispatchError::none) throw UsageError(describe(error, tableau, control));
+    if (cli.write_config_if_asked()) return 0;  // checked as for a run (output paths: at the run)
     const Outputs files{cli.text("path"), cli.text("vtp")};
     if (cli.given("path")) tools::check_output_option("path", files.path);  // --path "" is refused
     if (cli.given("vtp")) {
@@ -36,9 +40,6 @@ int main(int argc, char** argv) {
       if (!files.path.empty() && same_file(files.vtp, files.path))
         throw UsageError("--vtp and --path name the same file '" + files.vtp + "'");
     }
-    const std::string tableau = cli.text("tableau"), control = cli.text("control");
-    const auto error = dispatch_method(tableau, control, []<class T, class C>() {});  // names checked, nothing run
-    if (error != DispatchError::none) throw UsageError(describe(error, tableau, control));
     std::optional<JsonObject> json = run_low_order(q, files, tableau, control);
     if (!json) json = run_fifth_order(q, files, tableau, control);
     if (!json) json = run_high_order(q, files, tableau, control);

@@ -470,12 +470,15 @@ int main(int argc, char** argv) {
       .flag("no-png", "skip the chart (no display needed)");
   return tools::run_tool(cli, argc, argv, [&] {
     const Setup s = read_setup(cli);
+    if (cli.write_config_if_asked()) return 0;  // checked as for a run (output paths and display: at the run)
     const std::filesystem::path csv = cli.text("csv"), png = cli.text("png");
     const bool draw = !cli.flag_set("no-png");
     tools::check_output_option("csv", csv);
     if (draw) {
       tools::check_output_option("png", png);
       if (same_file(csv, png)) throw UsageError("--csv and --png name the same file '" + csv.string() + "'");
+    }
+    if (draw) {
       try {
         viz::require_display("grtrace-orbit-drift", "pass --no-png");
       } catch (const viz::NoDisplayError& e) {

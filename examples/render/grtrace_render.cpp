@@ -4,6 +4,7 @@
 //   {"width","height","seconds","rays_per_second","mean_steps","status_counts":{...},"tracer","tableau","rtol",
 //    "atol","out", ...}
 // All input is checked before any ray is traced; bad input exits with code 2 and leaves no file behind.
+#include "camera_options.hpp"
 #include "command_line.hpp"
 #include "flight_options.hpp"
 #include "json_writer.hpp"
@@ -60,16 +61,10 @@ CommandLine make_command_line() {
       .option("lambda", "1e-5", "sds: cosmological constant, 0 < Lambda < 1/(9 M^2); the sky sphere must lie "
                                 "inside the cosmological horizon")
       .option("throat", "1", "wormhole: throat radius b0 (--camera-r is then the proper distance l; l < 0 is "
-                             "the other side, whose sky is drawn differently: green-violet checker, orange stars)")
-      .option("camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)")
-      .option("camera-theta", "90", "camera polar angle, degrees, strictly between 0 and 180")
-      .option("camera-phi", "0", "camera azimuth, degrees");
-  tools::declare_observer_option(cli);
-  cli.option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)")
-      .option("look", "-1,0,0", "look direction r,theta,phi in the observer's frame (default: at the hole)")
-      .option("up", "0,-1,0", "up direction r,theta,phi in the observer's frame (default: the north pole)")
-      .option("fov", "90", "horizontal field of view, degrees, in (0, 180)")
-      .option("width", "1024", "image width in pixels")
+                             "the other side, whose sky is drawn differently: green-violet checker, orange stars)");
+  tools::declare_camera_options(cli, {"200", "90", "90",
+                                      "camera radius (must be outside the horizon guard and inside --sky-radius)"});
+  cli.option("width", "1024", "image width in pixels")
       .option("height", "1024", "image height in pixels");
   tools::declare_method_options(cli, "", {});  // rkf78 + I, rtol 1e-9, atol 1e-11
   cli.option("sky-radius", "400", "radius of the sky sphere where rays are taken as escaped")
@@ -139,11 +134,6 @@ std::vector<std::string> output_paths(const Request& q, bool status_map, bool mp
   return out;
 }
 
-Vec3 triple(const CommandLine& cli, const std::string& name) {
-  const auto v = cli.numbers(name, 3);
-  return Vec3(v[0], v[1], v[2]);
-}
-
 /// The camera path of --flight (checked, before any work): the start (a preset, or --camera-r/-theta/-phi with
 /// --orbit-dr/--orbit-dphi), the proper-time step (--frame-dtau, or automatic: one revolution over the frames, or
 /// the fall to 1.1 r_h), the path sampled (observer/worldline.hpp) and one camera per frame pointed by
@@ -168,8 +158,8 @@ void read_flight(const CommandLine& cli, Request& q) {
   if (cli.flag_set("mp4") && !program_on_path("ffmpeg"))
     throw UsageError("--mp4 needs ffmpeg, which is not on PATH; install it (apt-get install ffmpeg, or bash "
                      "cmake/install-deps.sh) or leave --mp4 out");
-  const CameraView view{triple(cli, "look"), triple(cli, "up"), q.camera->width(), q.camera->height(),
-                        q.camera->fov_degrees()};
+  const CameraView view{tools::read_option_triple(cli, "look"), tools::read_option_triple(cli, "up"),
+                        q.camera->width(), q.camera->height(), q.camera->fov_degrees()};
   // Kerr-Schild flights are flown in the ingoing slicing, regular where the falling camera crosses the horizon.
   if (q.metric.chart == "ks") q.metric.slicing = KerrSchildSlicing::ingoing;
   Worldline path;
@@ -232,25 +222,20 @@ Request read_request(const CommandLine& cli) {
   q.correction_name = cli.text("angle-correction");
   q.correction = tools::read_angle_correction(cli);
 
-  const double r = cli.number("camera-r"), theta = cli.number("camera-theta"), phi = cli.number("camera-phi");
+  const tools::CameraOptions cam = tools::read_camera_options(cli, cli, ms.name);
   // In the metric's own radius (Boyer-Lindquist r for Kerr in both charts, the areal radius r(l) of the wormhole):
   // outside the horizon guard and inside the sky sphere.
   const auto [camera_radius, guard, sky_ok] = with_named_metric(ms, [&](const auto& m) {
-    const Vec4 x = event_from_spherical(m, Vec4(0.0, r, std::numbers::pi / 2.0, 0.0));
+    const Vec4 x = event_from_spherical(m, Vec4(0.0, cam.r, std::numbers::pi / 2.0, 0.0));
     const double rh = ms.name == "kerr" ? KerrMetric{ms.mass, ms.spin}.horizon_radius() : m.horizon_radius();
     const Vec4 sky_event(0.0, s.escape_radius, std::numbers::pi / 2.0, 0.0);  // emitters at rest must exist there
     const bool ok = static_velocity(m.metric(event_from_spherical(m, sky_event))).has_value();
     return std::tuple{m.radius(x), (1.0 + s.horizon_epsilon) * rh, ok};
   });
-  if (!(camera_radius > guard))
-    throw UsageError("--camera-r " + cli.text("camera-r") + " is at or inside the horizon (guard r = " +
-                     std::to_string(guard) + "); move the camera out");
-  if (!(camera_radius < s.escape_radius)) throw UsageError("--camera-r must be inside --sky-radius");
+  tools::check_camera_radius(cli.text("camera-r"), camera_radius, guard, s.escape_radius);
   if (!sky_ok)
     throw UsageError("--sky-radius " + cli.text("sky-radius") +
                      " lies beyond a horizon of this metric (no emitter can be at rest there); lower it");
-  if (!(theta > 0.0 && theta < 180.0))
-    throw UsageError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
   const long width = cli.integer("width"), height = cli.integer("height");
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw UsageError("--width and --height must be between 1 and 16384 pixels");
@@ -274,16 +259,7 @@ Request read_request(const CommandLine& cli) {
   if (nodes < 8 || nodes > 1'000'000) throw UsageError("--table-rays must be in 8 .. 1e6");
   q.table_nodes = static_cast<int>(nodes);
 
-  CameraSpec spec;
-  spec.position = Vec4(0.0, r, theta * std::numbers::pi / 180.0, phi * std::numbers::pi / 180.0);
-  spec.spherical_position = true;  // Boyer-Lindquist (t, r, theta, phi) and (r, theta, phi) axes in every chart
-  spec.observer = tools::read_observer(cli, ms.name);
-  spec.velocity = triple(cli, "velocity");
-  spec.look = triple(cli, "look");
-  spec.up = triple(cli, "up");
-  spec.width = static_cast<int>(width);
-  spec.height = static_cast<int>(height);
-  spec.fov_degrees = cli.number("fov");
+  const CameraSpec spec = cam.spec(static_cast<int>(width), static_cast<int>(height));
   try {
     q.camera.emplace(with_named_metric(ms, [&](const auto& m) { return make_camera(m, spec); }));
   } catch (const std::invalid_argument& e) {
@@ -585,6 +561,7 @@ int main(int argc, char** argv) {
   return tools::run_tool(cli, argc, argv, [&] {
     Request q = read_request(cli);
     const ExrWriteOptions exr = exr_options(cli, q.threads);
+    if (cli.write_config_if_asked()) return 0;  // checked as for a run: saved, nothing traced
     phase("input");
     if (!q.flight.cameras.empty()) return run_flight(q, cli, argc, argv, exr);
     SkyDirections directions;  // --error-map only

@@ -24,7 +24,7 @@ ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
   ExampleArgs a = defaults;
   a.out = cli.text("out");
   if (a.out.size() <= 4 || !a.out.ends_with(".exr")) throw std::invalid_argument("--out must name an .exr file, got '" + a.out + "'");
-  const double size = cli.number("size");
+  const long size = cli.integer("size");
   if (!(size >= 8 && size <= 4096)) throw std::invalid_argument("--size must be 8 .. 4096 pixels, got " + cli.text("size"));
   a.size = static_cast<int>(size);
   for (auto& [name, value] : a.numbers) value = cli.number(name);
@@ -35,6 +35,7 @@ ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
       throw std::invalid_argument(e.what());
     }
   }
+  if (cli.write_config_if_asked()) throw NothingMoreToDo{};  // checked as for a run: saved, nothing rendered
   return a;
 }
 

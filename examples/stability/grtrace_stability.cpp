@@ -297,6 +297,7 @@ int main(int argc, char** argv) {
     if (size < 400 || size > 4000) throw UsageError("--size must be in 400 .. 4000, got " + cli.text("size"));
     const std::filesystem::path dir = cli.text("out-dir");
     if (dir.empty()) throw UsageError("--out-dir must not be empty");
+    if (cli.write_config_if_asked()) return 0;
     if (!json_only) {
       std::error_code ec;
       if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))

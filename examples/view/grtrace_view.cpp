@@ -30,6 +30,7 @@
 // method are read from the EXR's header (as grtrace-render writes it), so the bundle is traced through the frame's
 // own camera; options given on the command line override the method and scene settings, never the camera.
 // Bad input: a message on stderr and exit status 2. Other failures: exit status 1.
+#include "camera_options.hpp"
 #include "command_line.hpp"
 #include "flight_options.hpp"
 #include "json_writer.hpp"
@@ -105,16 +106,10 @@ CommandLine make_command_line() {
       .option("mass", "1", "black-hole mass M (G = c = 1)")
       .option("metric", "schwarzschild", "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, "
                                          "the ergosphere and the ISCO of the disk's sense)")
-      .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)")
-      .option("camera-r", "35", "camera radius r (Schwarzschild or Boyer-Lindquist r, units of M; both charts)")
-      .option("camera-theta", "84", "camera polar angle theta in degrees (90 = equatorial plane)")
-      .option("camera-phi", "0", "camera azimuth phi in degrees");
-  tools::declare_observer_option(cli);
-  cli.option("velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)")
-      .option("look", "-1,0,0", "look direction r,theta,phi in the observer's frame (-1,0,0: at the hole)")
-      .option("up", "0,-1,0", "up direction r,theta,phi in the observer's frame (0,-1,0: the north pole)")
-      .option("fov", "55", "horizontal field of view in degrees, in (0, 180)")
-      .option("width", "320", "frame width in pixels (with --frame: the EXR's)")
+      .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)");
+  tools::declare_camera_options(
+      cli, {"35", "84", "55", "camera radius r (Schwarzschild or Boyer-Lindquist r, units of M; both charts)"});
+  cli.option("width", "320", "frame width in pixels (with --frame: the EXR's)")
       .option("height", "240", "frame height in pixels (with --frame: the EXR's)")
       .option("sky-radius", "400", "radius of the sky sphere where rays escape")
       .option("disk-inner", "6", tools::disk_inner_help())
@@ -172,20 +167,10 @@ class Params {
     return cli_.text(name);
   }
   double number(const std::string& name) const {
-    const std::string t = text(name);
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    if (t.empty() || *end != '\0' || !std::isfinite(v))
-      throw UsageError("--" + name + " expects a finite number, got '" + t + "'" +
-                       (from_frame(name) ? " (from the frame's header)" : ""));
-    return v;
+    return CommandLine::parse_number(name, text(name), from_frame(name) ? " (from the frame's header)" : "");
   }
   long integer(const std::string& name) const {
-    const std::string t = text(name);
-    char* end = nullptr;
-    const long v = std::strtol(t.c_str(), &end, 10);
-    if (t.empty() || *end != '\0') throw UsageError("--" + name + " expects a whole number, got '" + t + "'");
-    return v;
+    return CommandLine::parse_integer(name, text(name), from_frame(name) ? " (from the frame's header)" : "");
   }
 
  private:
@@ -225,54 +210,22 @@ MethodChoice read_method(const Params& p, const std::string& prefix, double esca
   return m;
 }
 
-Vec3 triple(const Params& p, const std::string& name) {
-  std::stringstream ss(p.text(name));
-  std::vector<double> v;
-  for (std::string item; std::getline(ss, item, ',');) {
-    char* end = nullptr;
-    const double d = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(d)) v.clear(), v.push_back(NAN);
-    else v.push_back(d);
-  }
-  if (v.size() != 3 || !std::isfinite(v[0]))
-    throw UsageError("--" + name + " expects 3 comma-separated numbers, got '" + p.text(name) + "'");
-  return {v[0], v[1], v[2]};
-}
-
 /// The camera of grtrace-render's options: event (r, theta, phi in degrees), velocity in the observer's frame,
 /// look, up, the observer (--observer: kerr_options.hpp). Takes the request read so far (metric, chart, sky radius)
 /// and the frame size (width/height < 0: from --width/--height). As grtrace-render, the event and the observer are
 /// given in Boyer-Lindquist (t, r, theta, phi) for both Kerr charts (spherical_position) and mapped into Kerr-Schild
 /// coordinates by the library; a static observer inside the ergosphere is the library's refusal (UsageError here).
 Camera camera_from_options(const CommandLine& cli, const Params& p, const Request& q, int width, int height) {
-  const double mass = q.mass, spin = q.spin, sky_radius = q.sky_radius;
-  const double r = p.number("camera-r"), theta = p.number("camera-theta"), phi = p.number("camera-phi");
-  const double r_h = q.kerr ? KerrMetric{mass, spin}.outer_horizon() : 2.0 * mass;
-  const double guard = r_h * (1.0 + TraceSettings{}.horizon_epsilon);
-  if (!(r > guard))
-    throw UsageError("--camera-r " + p.text("camera-r") + " is at or inside the horizon (guard r = " +
-                     tools::JsonObject::number(guard) + "); move the camera out");
-  if (!(r < sky_radius)) throw UsageError("--camera-r must be inside --sky-radius");
-  if (!(theta > 0.0 && theta < 180.0))
-    throw UsageError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+  const tools::CameraOptions cam = tools::read_camera_options(p, cli, q.kerr ? "kerr" : "schwarzschild");
+  const double r_h = q.kerr ? KerrMetric{q.mass, q.spin}.outer_horizon() : 2.0 * q.mass;
+  tools::check_camera_radius(p.text("camera-r"), cam.r, r_h * (1.0 + TraceSettings{}.horizon_epsilon), q.sky_radius);
   if (width < 0) {
     const long w = p.integer("width"), h = p.integer("height");
     if (w < 2 || h < 2 || w > 8192 || h > 8192) throw UsageError("--width and --height must be 2 .. 8192 pixels");
     width = static_cast<int>(w);
     height = static_cast<int>(h);
   }
-  const double fov = p.number("fov");
-  if (!(fov > 0.0 && fov < 180.0)) throw UsageError("--fov must lie in (0, 180) degrees, got " + p.text("fov"));
-  CameraSpec spec;
-  spec.position = Vec4(0.0, r, theta * kDeg, phi * kDeg);
-  spec.spherical_position = true;  // Boyer-Lindquist (t, r, theta, phi) and (r, theta, phi) axes in both charts
-  spec.observer = tools::read_observer(cli, q.kerr ? "kerr" : "schwarzschild");
-  spec.velocity = triple(p, "velocity");
-  spec.look = triple(p, "look");
-  spec.up = triple(p, "up");
-  spec.width = width;
-  spec.height = height;
-  spec.fov_degrees = fov;
+  const CameraSpec spec = cam.spec(width, height);
   std::optional<Camera> camera;
   try {
     view::with_metric(q, [&](const auto& metric) { camera.emplace(make_camera(metric, spec)); });
@@ -383,8 +336,8 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
   view::FlightView f;
   f.kind = spec.kind;
   f.frame = static_cast<int>(frame);
-  const CameraView look{triple(p, "look"), triple(p, "up"), q.camera->width(), q.camera->height(),
-                        q.camera->fov_degrees()};
+  const CameraView look{tools::read_option_triple(p, "look"), tools::read_option_triple(p, "up"), q.camera->width(),
+                        q.camera->height(), q.camera->fov_degrees()};
   // Kerr-Schild flights are flown in the ingoing slicing (the falling camera crosses the future horizon), as
   // grtrace-render's; the frame, the rays and the surfaces are then drawn in that chart too.
   if (q.kerr && q.chart == "ks") q.ks_slicing = KerrSchildSlicing::ingoing;
@@ -810,6 +763,7 @@ int main(int argc, char** argv) {
   try {
     if (!cli.parse(argc, argv)) return 0;
     const Request q = read_request(cli);
+    if (cli.write_config_if_asked()) return 0;  // checked as for a run; the display is needed for a run only
     if (q.export_dir.empty() || !q.screenshot.empty()) {  // --export alone draws nothing: no display needed
       try {
         viz::require_display(cli.program(), "");

@@ -363,6 +363,7 @@ int main(int argc, char** argv) {
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
     const Plan plan = read_plan(cli);
+    if (cli.write_config_if_asked()) return 0;
     const bool quiet = cli.flag_set("quiet");
     const auto t_start = std::chrono::steady_clock::now();
 

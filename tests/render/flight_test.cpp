@@ -322,7 +322,8 @@ TEST(FlightFiles, NumberedNamesAndPattern) {
   EXPECT_EQ(flight_png_pattern("o.png", 300), "o-%04d.png");
 }
 
-// A frame counts as done only when its EXR reads back whole with the same signature and its PNG exists.
+// A frame counts as done only when its EXR reads back whole with the same signature and its PNG is whole, of the
+// same size.
 TEST(FlightFiles, DoneOnlyWhenWholeWithTheSameSignature) {
   TempDir dir;
   const auto exr = dir.path / "f-0000.exr", png = dir.path / "f-0000.png";
@@ -336,9 +337,22 @@ TEST(FlightFiles, DoneOnlyWhenWholeWithTheSameSignature) {
   set.commit();
   EXPECT_TRUE(flight_frame_done(exr, png, sig));
   EXPECT_FALSE(flight_frame_done(exr, png, flight_signature({{"scene", "sky"}})));
+  std::string whole_png(static_cast<std::size_t>(std::filesystem::file_size(png)), '\0');
+  std::ifstream(png, std::ios::binary).read(whole_png.data(), static_cast<std::streamsize>(whole_png.size()));
+  ASSERT_EQ(grtrace::whole_png_size(png), (std::array<int, 2>{8, 4}));
   std::filesystem::remove(png);
   EXPECT_FALSE(flight_frame_done(exr, png, sig));
   std::ofstream(png) << "x";
+  EXPECT_FALSE(flight_frame_done(exr, png, sig)) << "not a PNG";
+  for (const std::size_t cut : {std::size_t{20}, whole_png.size() / 2, whole_png.size() - 1}) {
+    std::ofstream(png, std::ios::binary | std::ios::trunc) << whole_png.substr(0, cut);
+    EXPECT_FALSE(flight_frame_done(exr, png, sig)) << "a PNG cut at byte " << cut;
+  }
+  std::ofstream(png, std::ios::binary | std::ios::trunc) << whole_png << "trailing";
+  EXPECT_FALSE(flight_frame_done(exr, png, sig)) << "bytes after IEND";
+  write_png_preview(png, Image(8, 5));
+  EXPECT_FALSE(flight_frame_done(exr, png, sig)) << "another frame's size";
+  std::ofstream(png, std::ios::binary | std::ios::trunc) << whole_png;
   EXPECT_TRUE(flight_frame_done(exr, png, sig));
   std::filesystem::resize_file(exr, std::filesystem::file_size(exr) / 2);  // a damaged EXR is not done
   EXPECT_FALSE(flight_frame_done(exr, png, sig));
@@ -361,7 +375,9 @@ TEST(FlightFiles, CameraPathCsvRoundTripsAndRefusesBadRows) {
   auto refused = [&](const std::string& text, const std::string& says) {
     std::ofstream(csv) << text;
     try {
-      check_worldline(metric, read_worldline_csv(csv));
+      WorldlineSource source;
+      const Worldline read = read_worldline_csv(csv, &source);
+      check_worldline(metric, read, &source);
       ADD_FAILURE() << "accepted: " << text;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
@@ -371,8 +387,19 @@ TEST(FlightFiles, CameraPathCsvRoundTripsAndRefusesBadRows) {
   refused(header, "no camera states");
   refused(header + "0,0,100,1.5707963267948966,0,1.0,0,0\n", "line 2: need 9 numbers");
   refused(header + "0,0,100,1.57,0,x,0,0,0\n", "line 2: 'x' is not a number");
-  refused(header + "0,0,100,1.57,0,1.2,0,0,0\n", "camera state 0: g(u, u)");  // not unit timelike
-  refused(header + "0,0,1.5,1.57,0,1,0,0,0\n", "camera state 0");            // inside the horizon
+  // Errors found after reading name the file's line too (comments and blank lines counted).
+  const std::string at_line_4 = csv.string() + " line 4: ";
+  const std::string first = "0,0,100,1.57,0,1.0101525445522108,0,0,0\n";
+  refused(header + "# comment\n" + "0,0,100,1.57,0,1.2,0,0,0\n", csv.string() + " line 3: g(u, u)");  // not unit
+  refused(header + first + "\n" + "1,0,1.5,1.57,0,1,0,0,0\n", at_line_4 + "r = 1.5");        // inside the horizon
+  refused(header + first + "\n" + "1,0,100,0,0,1.0101525445522108,0,0,0\n", at_line_4 + "theta = 0");  // the axis
+  refused(header + first + "\n" + "1,0,100,3.1415926535897931,0,1.0101525445522108,0,0,0\n",
+          at_line_4 + "theta = 3.14");
+  // The numbers the command line takes (blanks around, hexadecimal, a subnormal), and its refusals' wording.
+  refused(header + first + "1,0,100,1.57,0,1.0101525445522108,0,0,1e400\n", "line 3: '1e400' is not finite");
+  refused(header + first + "1,0,100,1.57,0,1.0101525445522108,0,0,nan\n", "line 3: 'nan' is not finite");
+  std::ofstream(csv) << header << " 0x0p0 , 0,100, 1.57,0,1.0101525445522108,0,0,1e-320\n";
+  EXPECT_EQ(read_worldline_csv(csv).samples.at(0).u[3], 1e-320);
   refused(header + "1,0,100,1.57,0,1.0101525445522108,0,0,0\n0,0,100,1.57,0,1.0101525445522108,0,0,0\n",
           "line 3: proper time tau must increase");
   refused("", "no camera states");

@@ -13,13 +13,17 @@
 
 #include "../common/tool_run.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -33,6 +37,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 using grtrace::Image;
@@ -90,16 +96,20 @@ Image small_image(int w = 4, int h = 3) {
 }
 
 /// An RGB texture EXR (not a render), optionally with a NaN at (nan_x, nan_y) in G.
-void write_texture(const fs::path& file, int w, int h, int nan_x = -1, int nan_y = -1) {
+void write_texture(const fs::path& file, int w, int h, int nan_x = -1, int nan_y = -1,
+                   Imf::Compression compression = Imf::NO_COMPRESSION) {
   Image tex = Image::with_channels(w, h, {"R", "G", "B"}, 0.5f);
   if (nan_x >= 0) tex.channel("G")[static_cast<std::size_t>(nan_y * w + nan_x)] = std::numeric_limits<float>::quiet_NaN();
-  grtrace::write_exr(file, tex, {Imf::NO_COMPRESSION});
+  grtrace::write_exr(file, tex, {compression});
 }
 
-/// A valid small EXR whose header is then patched to claim a `w` x `h` data window (a forged header).
-void write_forged_exr(const fs::path& file, int w, int h) {
-  write_texture(file, 4, 4);
+/// A valid small EXR whose header is then patched to claim a `w` x `h` data window (a forged header), followed by
+/// `padding` zero bytes (room for the offset table the claimed window needs, but no pixels).
+void write_forged_exr(const fs::path& file, int w, int h, Imf::Compression compression = Imf::NO_COMPRESSION,
+                      std::size_t padding = 0) {
+  write_texture(file, 4, 4, -1, -1, compression);
   std::string bytes = file_contents(file);
+  bytes.append(padding, '\0');
   const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
   const auto at = bytes.find(key);
   ASSERT_NE(at, std::string::npos);
@@ -284,6 +294,79 @@ TEST_F(Hardening, ForgedExrHeaderIsRefusedBeforeAllocating) {
   }
 }
 
+TEST_F(Hardening, ForgedHeaderIsCheckedAgainstTheDataTheFileCanHold) {
+  const fs::path forged = dir_ / "forged.exr";
+  // Uncompressed, every pixel is in the file: 12000 x 12000 x 3 floats = 1.7 GB, not 100 kB.
+  write_forged_exr(forged, 12000, 12000, Imf::NO_COMPRESSION, 100000);
+  try {
+    (void)grtrace::read_exr(forged);
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("uncompressed pixels"), std::string::npos) << e.what();
+  }
+  // 50 000 000 x 1 pixels (600 MB, inside the memory limit) in one ZIP chunk of 16 scanlines: 9.6 GB to decode.
+  write_forged_exr(forged, 50000000, 1, Imf::ZIP_COMPRESSION);
+  try {
+    (void)grtrace::read_exr(forged);
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("one chunk"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(Hardening, ForgedCompressedHeaderCostsOneBandNotTheClaimedImage) {
+  // 12000 x 12000 ZIP pixels need 750 offsets (6 kB): an 8 kB file passes every header check, and only the
+  // missing chunks give it away. The reader used to allocate the claimed 1.7 GB first; now it reads bands of
+  // ~16 MB and fails at the first. Measured in a child process: its peak resident memory above the parent's.
+  const fs::path forged = dir_ / "forged.exr";
+  write_forged_exr(forged, 12000, 12000, Imf::ZIP_COMPRESSION, 8000);
+  ASSERT_LT(fs::file_size(forged), 9000u);
+  rusage self{};
+  ::getrusage(RUSAGE_SELF, &self);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    int code = 1;  // accepted
+    try {
+      (void)grtrace::read_exr(forged);
+    } catch (const grtrace::MemoryLimitError&) {
+      code = 3;
+    } catch (const std::runtime_error&) {
+      code = 0;
+    } catch (...) {
+      code = 2;
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  rusage usage{};
+  ASSERT_EQ(::wait4(child, &status, 0, &usage), child);
+  ASSERT_TRUE(WIFEXITED(status)) << status;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: accepted, 2: another exception, 3: the memory limit";
+  const long grown_kb = usage.ru_maxrss - self.ru_maxrss;
+  EXPECT_LT(grown_kb, 64 * 1024) << "the reader's peak grew by " << grown_kb << " kB for an 8 kB file";
+}
+
+TEST_F(Hardening, ImagesReadInBandsAreTheImagesWritten) {
+  // Several bands (a band is ~16 MB of floats: 1200 lines of 1200 pixels x 3 channels is 17 MB), every
+  // compression grtrace and OpenEXR write, a data window's last band shorter than the others.
+  Image image = Image::with_channels(1200, 1203, {"R", "G", "B"});
+  for (std::size_t c = 0; c < 3; ++c) {
+    std::vector<float>& plane = image.channel(image.channel_names()[c]);
+    for (std::size_t i = 0; i < plane.size(); ++i) plane[i] = static_cast<float>((i * 7919 + c * 104729) % 65536);
+  }
+  for (const Imf::Compression compression :
+       {Imf::NO_COMPRESSION, Imf::ZIP_COMPRESSION, Imf::ZIPS_COMPRESSION, Imf::PIZ_COMPRESSION, Imf::RLE_COMPRESSION}) {
+    SCOPED_TRACE(static_cast<int>(compression));
+    const fs::path file = dir_ / "bands.exr";
+    grtrace::write_exr(file, image, {compression});
+    const Image back = grtrace::read_exr(file);
+    ASSERT_EQ(back.width(), 1200);
+    ASSERT_EQ(back.height(), 1203);
+    for (const char* name : {"R", "G", "B"}) EXPECT_EQ(back.channel(name), image.channel(name)) << name;
+  }
+}
+
 TEST_F(Hardening, HeaderAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
   // Found by tests/fuzz/exr_fuzz (corpus/exr/hang_huge_string_attribute.exr): OpenEXR allocated the 1.7 GB a
   // 201-byte file's string attribute claimed before noticing the file ends.
@@ -343,6 +426,42 @@ class HardeningCli : public Hardening {
   }
   fs::path render_, geodesic_;
 };
+
+TEST_F(HardeningCli, SigtermDuringAFastFlightLeavesNoTemporary) {
+  // Tiny frames: the flight's writer and preview threads create two temporaries every few hundred microseconds
+  // while the render threads trace the next frame, and the signal may land in any of them. A temporary created
+  // while another thread was removing them used to survive in a few runs of thirty. Thirty runs, killed at
+  // different moments from 30 to 320 ms (each run starts the flight afresh).
+  const fs::path dir = dir_ / "shared";
+  const std::string out = (dir / "f.exr").string();
+  std::vector<std::string> args = {render_.string(), "--flight", "seed", "--frames", "20000", "--width", "4",
+                                   "--height", "4", "--threads", "2", "--rtol", "1e-6", "--atol", "1e-8",
+                                   "--out", out};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  int killed = 0;
+  for (int run = 0; run < 30; ++run) {
+    SCOPED_TRACE(run);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    std::this_thread::sleep_for(std::chrono::milliseconds(30 + 10 * run));
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) ++killed;
+    for (const std::string& name : listing(dir))
+      ASSERT_EQ(name.find(".tmp-"), std::string::npos) << "left behind: " << name << " (killed after "
+                                                           << 30 + 10 * run << " ms)";
+    for (const std::string& name : listing(dir)) fs::remove(dir / name);
+  }
+  EXPECT_GE(killed, 25) << "the flight ended before most kills: the test no longer tests the race";
+}
 
 TEST_F(HardeningCli, RenderThroughAPlantedLinkLeavesItsTargetUnchanged) {
   const fs::path out = dir_ / "shared" / "frame.exr";

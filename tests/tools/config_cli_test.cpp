@@ -202,6 +202,31 @@ TEST_F(ConfigCli, BadConfigFilesAreRefusedNamingTheKeyAndWriteNothing) {
   EXPECT_EQ(render("--write-config " + (dir_ / "no-dir" / "x.toml").string()).status, 2);
 }
 
+TEST_F(ConfigCli, WriteConfigSavesOnlyWhatTheToolWouldRun) {
+  // The options are checked as for a run before anything is saved: a value the tool would refuse, an option that
+  // means nothing in the command, or a fractional whole number is refused with the run's message, nothing written.
+  const fs::path toml = at("saved.toml");
+  const std::pair<const char*, const char*> refused[] = {
+      {"--width abc", "--width expects a whole number, got 'abc'"},
+      {"--width 12.5", "--width expects a whole number, got '12.5'"},
+      {"--spin 0.5", "--spin applies only with"},
+      {"--metric kerr --spin 2", "--spin"},
+      {"--rtol -1", "--rtol"},
+  };
+  for (const auto& [args, says] : refused) {
+    SCOPED_TRACE(args);
+    const ToolRun r = render(std::string(args) + " --write-config " + toml.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(toml));
+  }
+  const ToolRun print = render("--width 1e400 --write-config -");
+  EXPECT_EQ(print.status, 2) << print.output;
+  EXPECT_EQ(print.output.find("width ="), std::string::npos) << "nothing printed: " << print.output;
+  ASSERT_EQ(render("--metric kerr --spin 0.5 --write-config " + toml.string()).status, 0);
+  EXPECT_NE(slurp(toml).find("\nspin = 0.5\n"), std::string::npos) << slurp(toml);
+}
+
 TEST_F(ConfigCli, OutputsThatAreNotRegularFilesAreRefusedAndDashPrintsTheConfig) {
   // A device, a FIFO or a name longer than the directory allows: exit 2 before any work, the entry untouched.
   const ToolRun null_config = render("--write-config /dev/null");
@@ -276,7 +301,15 @@ TEST_F(ConfigCli, EveryToolWritesAndReadsItsConfig) {
     EXPECT_EQ(help.status, 0);
     EXPECT_NE(help.output.find("--config FILE"), std::string::npos);
     EXPECT_NE(help.output.find("--write-config FILE"), std::string::npos);
-    const ToolRun w = tool(name, "--write-config " + one.string());
+    // A configuration is saved only when the tool would run it: grtrace-geodesic needs its ray.
+    const std::string needs = name == "grtrace-geodesic" ? "--impact 7 " : "";
+    if (!needs.empty()) {
+      const ToolRun refused = tool(name, "--write-config " + one.string());
+      EXPECT_EQ(refused.status, 2) << refused.output;
+      EXPECT_NE(refused.output.find("give --impact B"), std::string::npos) << refused.output;
+      EXPECT_FALSE(fs::exists(one));
+    }
+    const ToolRun w = tool(name, needs + "--write-config " + one.string());
     ASSERT_EQ(w.status, 0) << w.output;
     ASSERT_TRUE(fs::exists(one));
     const ToolRun r = tool(name, "--config " + one.string() + " --write-config " + two.string());
@@ -333,9 +366,12 @@ TEST_F(ConfigCli, ConfigValuesCountAsGivenAndTheCommandLineClearsFlags) {
   ASSERT_EQ(values.size(), 3u);
   EXPECT_EQ(values[2], (std::pair<std::string, std::string>{"json", "false"}));
   // Any text survives a written config, a line break and a quote too (one-line TOML strings, never multi-line).
-  bool went_on = true;
-  parsed({"--width", "4\n8 \"x\"", "--write-config", at("w.toml").string()}, &went_on);
-  EXPECT_FALSE(went_on) << "--write-config does not go on to the work";
+  bool went_on = false;
+  auto saving = parsed({"--width", "4\n8 \"x\"", "--write-config", at("w.toml").string()}, &went_on);
+  EXPECT_TRUE(went_on) << "--write-config is only noted: the tool checks its options first";
+  EXPECT_TRUE(saving.write_config_asked());
+  EXPECT_FALSE(fs::exists(at("w.toml"))) << "nothing saved before the tool's checks";
+  EXPECT_TRUE(saving.write_config_if_asked());
   EXPECT_EQ(parsed({"--config", at("w.toml").string()}).text("width"), "4\n8 \"x\"") << slurp(at("w.toml"));
 }
 

@@ -101,6 +101,7 @@ TEST_F(VizHardening, OutputPathsAreCheckedBeforeAnyWork) {
   const fs::path out = dir_ / "out";
   fs::create_directory(out / "a-dir.csv");
   std::ofstream(dir_ / "plain-file") << "x";
+  fs::create_directories(dir_ / "export" / "rays.vtp");  // a directory where the export writes a file
   const std::string missing = (dir_ / "missing" / "x").string();
   struct Case {
     const char* exe;
@@ -120,6 +121,7 @@ TEST_F(VizHardening, OutputPathsAreCheckedBeforeAnyWork) {
       {GRTRACE_VIEW_EXE, {"--screenshot", (out / "a-dir.csv").string()}, "it is a directory"},
       {GRTRACE_VIEW_EXE, {"--screenshot", missing + ".png"}, "does not exist"},
       {GRTRACE_VIEW_EXE, {"--json=maybe"}, "unknown option"},
+      {GRTRACE_VIEW_EXE, {"--export", (dir_ / "export").string()}, "rays.vtp': it is a directory"},
   };
   for (const Case& c : cases) {
     std::string shown = c.exe;
@@ -167,7 +169,7 @@ TEST_F(VizHardening, ViewRefusesForgedFrameHeaders) {
       {"five numbers", [](auto& m) { m["camera_position"] = "0,25,1.4,0.5,9"; }, "'camera_position' is not 4"},
       {"fov abc", [](auto& m) { m["fov_degrees"] = "abc"; }, "'fov_degrees' must be a number in (0, 180)"},
       {"fov 500", [](auto& m) { m["fov_degrees"] = "500"; }, "'fov_degrees' must be a number in (0, 180)"},
-      {"mass abc", [](auto& m) { m["mass"] = "abc"; }, "--mass expects a finite number"},
+      {"mass abc", [](auto& m) { m["mass"] = "abc"; }, "--mass expects a number, got 'abc' (from the frame's header)"},
       {"not a grtrace frame", [](auto& m) { m.erase("camera_position"); m.erase("tetrad_e0"); },
        "is not a grtrace-render frame: its header has no camera_position, tetrad_e0"},
   };

@@ -286,6 +286,21 @@ void prepare_export_directory(const std::filesystem::path& dir) {
   }
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     throw ExportPathError("the directory '" + dir.string() + "' is not writable");
+  // Every name the export may write (<piece>.vtp, frame.vti, scene.vtm) is checked now, not after the rays: an
+  // entry with such a name that is not a regular file (a directory, a device, a FIFO) would fail the export at
+  // its end. Bounded: a directory of more entries than any export writes is only scanned that far.
+  std::size_t seen = 0;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end && seen < 100000; it.increment(ec), ++seen) {
+    const fs::path& entry = it->path();
+    const std::string ext = entry.extension().string();
+    if (ext != ".vtp" && ext != ".vti" && ext != ".vtm") continue;
+    try {
+      check_output_path(entry);
+    } catch (const std::runtime_error& e) {
+      throw ExportPathError(std::string(e.what()) + " (the export writes its " + ext +
+                            " files there: move it away or choose another directory)");
+    }
+  }
 }
 
 namespace {

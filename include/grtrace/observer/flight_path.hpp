@@ -76,8 +76,9 @@ Worldline flight_path(const M& metric, const FlightPathSpec& spec) {
                                 "infall)");
   if (spec.kind == "csv") {
     if constexpr (spherical) {
-      path = read_worldline_csv(spec.csv);
-      check_worldline(metric, path);
+      WorldlineSource source;
+      path = read_worldline_csv(spec.csv, &source);
+      check_worldline(metric, path, &source);
     }
   } else {
     if (spec.frames < 1 || spec.frames > 100000) throw std::invalid_argument("--frames must be in 1 .. 100000");

@@ -1,10 +1,13 @@
 // grtrace/observer/worldline_csv.hpp
 // A camera path (observer/worldline.hpp) as a CSV file of (tau, x, u) rows, read, checked and written:
 //   read_worldline_csv(path)      the rows, or std::invalid_argument naming the line and what is wrong
-//   check_worldline(metric, w)    every u future-directed unit timelike, every event outside the horizon
+//   read_worldline_csv(path, &source)   the same, and where each row came from (file and line)
+//   check_worldline(metric, w [, &source])   every u future-directed unit timelike, every event outside the
+//                                            horizon and off the polar axis; errors name the file's line
 //   worldline_csv(w)              the text (%.17g: reads back to the same doubles)
 #pragma once
 
+#include "grtrace/core/number_text.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/observer/worldline.hpp"
 
@@ -15,9 +18,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace grtrace {
 
@@ -27,14 +32,27 @@ inline constexpr std::size_t kMaxWorldlineRows = 100000;
 inline constexpr std::size_t kMaxWorldlineLineBytes = 4096;
 inline constexpr std::uintmax_t kMaxWorldlineFileBytes = std::uintmax_t{64} << 20;
 
+/// Where each sample of a camera path read from a file came from, so that errors found later (check_worldline)
+/// name the line to change.
+struct WorldlineSource {
+  std::filesystem::path file;
+  std::vector<int> lines;  ///< lines[i]: the 1-based line of sample i
+  /// "<file> line <n>" for sample i (or "camera state i" when the line is unknown).
+  std::string where(std::size_t i) const {
+    if (i < lines.size()) return file.string() + " line " + std::to_string(lines[i]);
+    return "camera state " + std::to_string(i);
+  }
+};
+
 /// A camera path from a CSV file: a header line, then one row per frame with nine numbers
 ///   tau, t, r, theta, phi, u^t, u^r, u^theta, u^phi
 /// (proper time, the event in the metric's spherical chart, angles in radians, and the 4-velocity). Blank lines and
 /// lines starting with '#' are skipped. Throws std::invalid_argument naming the line and what is wrong: a missing
 /// file, one that is not a regular file (a device such as /dev/zero, a FIFO), larger than 64 MiB, a line longer
 /// than 4096 bytes, more than 100 000 rows, no rows, a row without nine finite numbers, proper times that do not
-/// increase. The 4-velocities are checked against a metric by the caller (check_worldline below).
-inline Worldline read_worldline_csv(const std::filesystem::path& path) {
+/// increase. Numbers are read as the tools read their options (core/number_text.hpp). The 4-velocities are checked
+/// against a metric by the caller (check_worldline below); `source`, when given, receives each row's line for it.
+inline Worldline read_worldline_csv(const std::filesystem::path& path, WorldlineSource* source = nullptr) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
@@ -71,16 +89,12 @@ inline Worldline read_worldline_csv(const std::filesystem::path& path) {
         n = 10;
         break;
       }
-      try {
-        std::size_t used = 0;
-        v[static_cast<std::size_t>(n)] = std::stod(cell, &used);
-        if (cell.find_first_not_of(" \t\r", used) != std::string::npos) throw std::invalid_argument(cell);
-      } catch (const std::exception&) {
-        throw std::invalid_argument(path.string() + " line " + std::to_string(number) + ": '" + cell +
-                                    "' is not a number (columns: tau,t,r,theta,phi,ut,ur,utheta,uphi)");
-      }
-      if (!std::isfinite(v[static_cast<std::size_t>(n)]))
-        throw std::invalid_argument(path.string() + " line " + std::to_string(number) + ": non-finite number");
+      const ParsedNumber parsed = parse_finite_number(cell);
+      if (parsed.result != NumberText::ok)
+        throw std::invalid_argument(path.string() + " line " + std::to_string(number) + ": '" + cell + "' " +
+                                    number_text_problem(parsed.result) + " (column " + std::to_string(n + 1) +
+                                    " of tau,t,r,theta,phi,ut,ur,utheta,uphi)");
+      v[static_cast<std::size_t>(n)] = parsed.value;
       ++n;
     }
     if (n != 9)
@@ -95,25 +109,35 @@ inline Worldline read_worldline_csv(const std::filesystem::path& path) {
                                   std::to_string(kMaxWorldlineRows) + " camera states (a flight has at most " +
                                   std::to_string(kMaxWorldlineRows) + " frames)");
     w.samples.push_back({v[0], Vec4(v[1], v[2], v[3], v[4]), Vec4(v[5], v[6], v[7], v[8])});
+    if (source) source->lines.push_back(number);
   }
+  if (source) source->file = path;
   if (w.samples.empty()) throw std::invalid_argument(path.string() + ": no camera states (a header line, then rows)");
   return w;
 }
 
-/// Checks every sample of a camera path against the metric: u future-directed with |g(u, u) - 1| <= 1e-6, the
-/// event outside the horizon. Throws std::invalid_argument naming the first bad sample (0-based).
+/// Checks every sample of a camera path against the metric (spherical chart): theta strictly between 0 and pi
+/// (the chart, and so a camera's frame, is singular on the polar axis), the event outside the horizon, u
+/// future-directed with |g(u, u) - 1| <= 1e-6. Throws std::invalid_argument naming the first bad sample: its file and
+/// line when `source` says (read_worldline_csv), else "camera state i" (0-based).
 template <MetricPolicy M>
-void check_worldline(const M& metric, const Worldline& w) {
+void check_worldline(const M& metric, const Worldline& w, const WorldlineSource* source = nullptr) {
+  const WorldlineSource unknown;
+  const WorldlineSource& from = source ? *source : unknown;
   for (std::size_t i = 0; i < w.samples.size(); ++i) {
     const WorldlineSample& s = w.samples[i];
+    if (!(s.x[2] > 0.0 && s.x[2] < std::numbers::pi))
+      throw std::invalid_argument(from.where(i) + ": theta = " + std::to_string(s.x[2]) +
+                                  " rad is on or beyond the polar axis, where the spherical chart is singular; a "
+                                  "camera needs 0 < theta < pi (radians)");
+    if (const double rh = metric.horizon_radius(); rh > 0.0 && !(metric.radius(s.x) > rh))
+      throw std::invalid_argument(from.where(i) + ": r = " + std::to_string(metric.radius(s.x)) +
+                                  " is on or inside the horizon");
     const double norm = inner_product(metric, s.x, s.u, s.u);
     if (!(std::abs(norm - 1.0) <= 1e-6) || !(s.u[0] > 0.0))
-      throw std::invalid_argument("camera state " + std::to_string(i) + ": g(u, u) = " + std::to_string(norm) +
+      throw std::invalid_argument(from.where(i) + ": g(u, u) = " + std::to_string(norm) +
                                   ", u^t = " + std::to_string(s.u[0]) +
                                   "; a camera's 4-velocity must be future-directed with g(u, u) = 1");
-    if (const double rh = metric.horizon_radius(); rh > 0.0 && !(metric.radius(s.x) > rh))
-      throw std::invalid_argument("camera state " + std::to_string(i) + ": r = " + std::to_string(metric.radius(s.x)) +
-                                  " is on or inside the horizon");
   }
 }
 

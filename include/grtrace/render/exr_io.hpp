@@ -34,8 +34,11 @@
 // - Limits, checked before any pixel is allocated: the channels (as floats) must fit memory_limit_bytes()
 //   (image.hpp: 4 GiB unless GRTRACE_MEMORY_LIMIT says otherwise; MemoryLimitError, which names the limit and
 //   the variable), and the file must be large enough for the offset table its data window needs (a forged
-//   header claiming 12000 x 12000 pixels in a few kB is refused as "forged or truncated header"); before
+//   header claiming 12000 x 12000 pixels in a few kB is refused as "forged or truncated header"), for all its
+//   pixels when uncompressed, and one chunk may not decode to more than max(64 MB, 100 x the file); before
 //   OpenEXR parses the header, every attribute's byte count must fit in the file (OpenEXR allocates it first).
+//   The pixels are then read in bands of chunks (about 16 MB), each channel growing as they arrive: a file whose
+//   chunks are missing costs about one band before it is refused, not the image its header claims.
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
@@ -434,6 +437,9 @@ inline Imf::Header read_exr_header(const std::filesystem::path& path) {
   return header;
 }
 
+/// The largest chunk (decoded) a file smaller than a 100th of it may claim: see check_exr_header.
+inline constexpr double kMaxExrChunkBytes = 64.0 * 1024 * 1024;
+
 /// The limits every read_exr() applies before allocating pixels: the data window's size, its channels (as
 /// floats) against memory_limit_bytes(), and the smallest file that can hold that window (one 8-byte
 /// offset-table entry per chunk).
@@ -458,11 +464,36 @@ inline void check_exr_header(const std::filesystem::path& path, const Imf::Heade
   }
   std::error_code size_ec;
   const auto file_size = static_cast<double>(std::filesystem::file_size(path, size_ec));
-  if (!size_ec && file_size < 8.0 * chunks)
+  if (size_ec) return;
+  if (file_size < 8.0 * chunks)
     throw std::runtime_error("the header claims " + size_text + " pixels, which needs at least " +
                              describe_bytes(8.0 * chunks) + " of chunk offsets, but the file has only " +
                              describe_bytes(file_size) + ": forged or truncated header");
+  double pixel_bytes = 0.0;  // one pixel of every channel as stored (HALF 2 bytes, FLOAT and UINT 4)
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+    pixel_bytes += it.channel().type == Imf::HALF ? 2.0 : 4.0;
+  const double stored = static_cast<double>(w) * static_cast<double>(h) * pixel_bytes;
+  if (header.compression() == Imf::NO_COMPRESSION && file_size < stored)
+    throw std::runtime_error("the header claims " + size_text + " uncompressed pixels (" + describe_bytes(stored) +
+                             ") but the file has only " + describe_bytes(file_size) + ": forged or truncated header");
+  // One chunk is decoded whole (by OpenEXR, into a buffer of its own): a chunk larger than any real image needs
+  // (64 MB is 16 scanlines 1M pixels wide), and larger than 100 times the whole file, is a forged header.
+  double chunk_pixels = 0.0;
+  if (header.hasTileDescription()) {
+    const Imf::TileDescription& t = header.tileDescription();
+    chunk_pixels = static_cast<double>(t.xSize) * static_cast<double>(t.ySize);
+  } else {
+    chunk_pixels = static_cast<double>(w) * exr_lines_per_chunk(header.compression());
+  }
+  const double chunk_bytes = chunk_pixels * std::max(pixel_bytes, static_cast<double>(channel_count) * 4.0);
+  if (chunk_bytes > std::max(kMaxExrChunkBytes, 100.0 * file_size))
+    throw std::runtime_error("one chunk of the header's " + size_text + " pixels would decode to " +
+                             describe_bytes(chunk_bytes) + ", more than " + describe_bytes(kMaxExrChunkBytes) +
+                             " and 100 times the " + describe_bytes(file_size) + " file: forged header");
 }
+
+/// Scanlines read at a time by read_exr(): whole chunks, about this many bytes of float channels per band.
+inline constexpr double kExrBandBytes = 16.0 * 1024 * 1024;
 
 }  // namespace detail
 
@@ -511,11 +542,41 @@ inline Image read_exr(const std::filesystem::path& path) {
       if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
 
-    Image image = Image::with_channels(static_cast<int>(w), static_cast<int>(h), names);
-    Imf::FrameBuffer frame;
-    for (const auto& name : names) frame.insert(name, Imf::Slice::Make(Imf::FLOAT, image.channel(name).data(), window));
-    in.setFrameBuffer(frame);
-    in.readPixels(window.min.y, window.max.y);
+    // The pixels arrive in bands of whole chunks, and each channel grows only as its band arrives: a header that
+    // claims more pixels than the file holds fails at the first missing chunk, having cost about one band, not the
+    // claimed image (a forged 8 kB file claiming 12000 x 12000 pixels cost 1.7 GB before it was refused).
+    const long chunk_lines = header.hasTileDescription()
+                                 ? std::max(1L, static_cast<long>(header.tileDescription().ySize))
+                                 : static_cast<long>(detail::exr_lines_per_chunk(header.compression()));
+    const double line_bytes = 4.0 * static_cast<double>(w) * static_cast<double>(names.size());
+    const long band_chunks =
+        std::max(1L, static_cast<long>(detail::kExrBandBytes / (line_bytes * static_cast<double>(chunk_lines))));
+    const long band_lines = band_chunks * chunk_lines;
+    const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    std::vector<std::vector<float>> planes(names.size());
+    const std::size_t band_values = static_cast<std::size_t>(std::min(band_lines, h)) * static_cast<std::size_t>(w);
+    std::vector<std::vector<float>> band_planes(names.size(), std::vector<float>(band_values));
+    // Bands start on chunk boundaries of the data window (which starts a chunk).
+    for (long y0 = window.min.y; y0 <= window.max.y; y0 += band_lines) {
+      const long y1 = std::min<long>(window.max.y, y0 + band_lines - 1);
+      const Imath::Box2i band_window(Imath::V2i(window.min.x, static_cast<int>(y0)),
+                                     Imath::V2i(window.max.x, static_cast<int>(y1)));
+      Imf::FrameBuffer frame;
+      for (std::size_t c = 0; c < names.size(); ++c)
+        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, band_planes[c].data(), band_window));
+      in.setFrameBuffer(frame);
+      in.readPixels(static_cast<int>(y0), static_cast<int>(y1));
+      const auto values = static_cast<std::size_t>(y1 - y0 + 1) * static_cast<std::size_t>(w);
+      for (std::size_t c = 0; c < names.size(); ++c) {
+        std::vector<float>& plane = planes[c];
+        if (plane.capacity() < plane.size() + values)  // doubling, never past the whole channel
+          plane.reserve(std::min(pixels, std::max(plane.size() + values, 2 * plane.capacity())));
+        plane.insert(plane.end(), band_planes[c].begin(),
+                     band_planes[c].begin() + static_cast<std::ptrdiff_t>(values));
+      }
+    }
+    band_planes.clear();
+    Image image = Image::from_planes(static_cast<int>(w), static_cast<int>(h), names, std::move(planes));
 
     for (auto it = header.begin(); it != header.end(); ++it)
       if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))

@@ -5,9 +5,10 @@
 //   flight_frame_path("out/orbit.exr", 7, 300)  -> "out/orbit-0007.exr" (at least 4 digits, more for long flights)
 //   flight_signature(options)                    -> a hash of everything that decides the frames' content
 //   flight_frame_done(exr, png, signature)       -> true when the EXR reads back whole with that signature and its
-//                                                   PNG exists (frames are written with OutputSet: temp + rename,
-//                                                   so a frame on disk was written whole; a killed run leaves
-//                                                   only its own temporaries, which are removed)
+//                                                   PNG's chunks are whole, of the same size (frames are written
+//                                                   with OutputSet: temp + rename, so a frame on disk was written
+//                                                   whole; a killed run leaves only its own temporaries, which
+//                                                   are removed; a frame damaged later is rendered again)
 //   assemble_mp4(set, pattern, frames, fps, mp4) -> ffmpeg (H.264, yuv420p) into a temporary committed with `set`
 // (Camera paths as CSV files: observer/worldline_csv.hpp.)
 #pragma once
@@ -15,6 +16,7 @@
 #include "grtrace/observer/worldline_csv.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/output_file.hpp"
+#include "grtrace/render/png_preview.hpp"
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -115,10 +117,11 @@ inline std::optional<Imf::Header> whole_scanline_exr_header(const std::filesyste
   return header;
 }
 
-/// True when the frame was written whole by a flight with this signature: the PNG exists, and the EXR holds every
-/// chunk of pixels its header promises with a "flight_signature" attribute equal to it (a truncated or damaged
-/// file, or another flight's frame, is rendered again). Reads the header and the offset table only: a resumed
-/// 300-frame flight checks its frames in well under a second instead of decompressing each one.
+/// True when the frame was written whole by a flight with this signature: the EXR holds every chunk of pixels its
+/// header promises with a "flight_signature" attribute equal to it, and the PNG's chunks are whole (whole_png_size)
+/// with the EXR's size (a truncated or damaged file, or another flight's frame, is rendered again). Reads headers
+/// and chunk tables only: a resumed 300-frame flight checks its frames in well under a second instead of decoding
+/// each one.
 inline bool flight_frame_done(const std::filesystem::path& exr, const std::filesystem::path& png,
                               const std::string& signature) {
   std::error_code ec;
@@ -126,7 +129,11 @@ inline bool flight_frame_done(const std::filesystem::path& exr, const std::files
   try {
     const std::optional<Imf::Header> header = whole_scanline_exr_header(exr);
     const auto* recorded = header ? header->findTypedAttribute<Imf::StringAttribute>("flight_signature") : nullptr;
-    return recorded && recorded->value() == signature;
+    if (!recorded || recorded->value() != signature) return false;
+    const Imath::Box2i window = header->dataWindow();
+    const std::optional<std::array<int, 2>> png_size = whole_png_size(png);
+    return png_size && (*png_size)[0] == window.max.x - window.min.x + 1 &&
+           (*png_size)[1] == window.max.y - window.min.y + 1;
   } catch (const std::exception&) {
     return false;  // unreadable: rendered again
   }

@@ -108,6 +108,27 @@ class Image {
     return image;
   }
 
+  /// An image that takes `planes` as its channels: planes[i] holds channel names[i], width * height floats in row
+  /// order. Used by read_exr(), which grows the planes as the file's pixels arrive instead of allocating what a
+  /// header claims. Throws std::invalid_argument when the counts or sizes disagree or a name repeats.
+  static Image from_planes(int width, int height, const std::vector<std::string>& names,
+                           std::vector<std::vector<float>> planes) {
+    Image image(width, height, NoChannels{});
+    if (planes.size() != names.size())
+      throw std::invalid_argument("Image::from_planes: " + std::to_string(names.size()) + " names but " +
+                                  std::to_string(planes.size()) + " planes");
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      if (planes[c].size() != image.pixel_count())
+        throw std::invalid_argument("Image::from_planes: channel '" + names[c] + "' has " +
+                                    std::to_string(planes[c].size()) + " values, not width * height = " +
+                                    std::to_string(image.pixel_count()));
+      if (!image.channels_.try_emplace(names[c], std::move(planes[c])).second)
+        throw std::invalid_argument("Image::from_planes: channel '" + names[c] + "' named twice");
+      image.order_.push_back(names[c]);
+    }
+    return image;
+  }
+
   int width() const { return width_; }
   int height() const { return height_; }
   std::size_t pixel_count() const { return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_); }

@@ -29,8 +29,9 @@
 //   fails (it should not: the targets were checked), the ones before it are already new (the error says which).
 // - Temporaries are removed on SIGINT, SIGTERM, SIGHUP and SIGQUIT: while any exists, a handler (installed
 //   only where the signal's disposition is the default) unlinks every registered temporary and re-raises the
-//   signal with its default action, so the exit status still says "killed by signal". Programs with their own
-//   handlers can call remove_registered_temporaries() (async-signal-safe) from them. At most
+//   signal with its default action, so the exit status still says "killed by signal". Temporaries other threads
+//   are creating at that moment are waited for and removed too, and none is created after it (the creator throws).
+//   Programs with their own handlers can call remove_registered_temporaries() (async-signal-safe) from them. At most
 //   kMaxRegisteredTemporaries temporaries at a time are registered (more still work, but are not removed on a
 //   signal). SIGKILL cannot be caught: after one, "*.tmp-*" siblings may remain.
 #pragma once
@@ -38,6 +39,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/random.h>
+#include <time.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -148,14 +150,36 @@ inline constexpr std::array<int, 4> kCleanupSignals = {SIGINT, SIGTERM, SIGHUP, 
 // (removal, re-raise) once the whole set is in place.
 inline std::atomic<int> g_committing{0};
 inline std::atomic<int> g_pending_signal{0};
+// Set once the temporaries are being removed for good (a signal is ending the process): no thread creates another.
+inline std::atomic<int> g_ending{0};
+// Threads between "decided to create a temporary" and "registered it" (signals blocked in them). The removal
+// waits for them, so a temporary created while another thread handles the signal is registered before the scan.
+// Sequentially consistent on both sides (Dekker): either the creator sees g_ending and creates nothing, or the
+// remover sees the creator and waits until its temporary is registered.
+inline std::atomic<int> g_creating{0};
+
+/// Waits (spinning; at most ~2 s) until no thread is between creating and registering a temporary.
+/// Async-signal-safe: atomics and clock_gettime() only.
+inline void wait_for_temporary_creations() noexcept {
+  timespec start{}, now{};
+  ::clock_gettime(CLOCK_MONOTONIC, &start);
+  while (g_creating.load() != 0) {
+    ::clock_gettime(CLOCK_MONOTONIC, &now);
+    if (now.tv_sec - start.tv_sec > 2) return;  // a creator stuck in open() (a hung network file system)
+  }
+}
 
 }  // namespace detail
 
-/// Unlinks every registered temporary. Async-signal-safe (only atomics and unlink()).
+/// Unlinks every registered temporary, for good: from the first call on, no thread creates another temporary
+/// (TemporaryOutput throws), and temporaries other threads are creating at that moment are waited for and removed
+/// too. For a process about to end on a signal. Async-signal-safe (atomics, clock_gettime() and unlink()).
 inline void remove_registered_temporaries() noexcept {
   const int saved = errno;
+  detail::g_ending.store(1);
+  detail::wait_for_temporary_creations();
   for (auto& slot : detail::g_temporary_slots)
-    if (slot.state.load(std::memory_order_acquire) == 2) ::unlink(slot.path.data());
+    if (slot.state.load() == 2) ::unlink(slot.path.data());
   errno = saved;
 }
 
@@ -172,15 +196,26 @@ inline void install_cleanup_handler(int sig) {
   ::sigaction(sig, &sa, nullptr);
 }
 
-extern "C" inline void grtrace_temporary_cleanup_handler(int sig) {
-  if (g_committing.load(std::memory_order_acquire) != 0) {  // a set is being renamed: finish it first
-    g_pending_signal.store(sig, std::memory_order_release);
-    install_cleanup_handler(sig);  // SA_RESETHAND removed it
-    return;
-  }
+/// Removes every temporary and ends the process with `sig`'s default action (delivered when the calling thread
+/// unblocks it: at the handler's return, or at the end of OutputSet::commit()). Async-signal-safe.
+inline void remove_temporaries_and_raise(int sig) noexcept {
   remove_registered_temporaries();
-  // SA_RESETHAND restored the default action; the signal is blocked until we return, then it kills us.
+  struct sigaction dfl{};
+  dfl.sa_handler = SIG_DFL;
+  ::sigemptyset(&dfl.sa_mask);
+  ::sigaction(sig, &dfl, nullptr);
   ::raise(sig);
+}
+
+extern "C" inline void grtrace_temporary_cleanup_handler(int sig) {
+  if (g_committing.load() != 0) {  // a set is being renamed: the committer ends the process once it is in place
+    g_pending_signal.store(sig);
+    install_cleanup_handler(sig);  // SA_RESETHAND removed it
+    // Looked at again after the store (Dekker with commit(): its decrement, then its look at the pending signal):
+    // if the set finished in between, whoever takes the pending signal back ends the process; nobody loses it.
+    if (g_committing.load() != 0 || g_pending_signal.exchange(0) == 0) return;
+  }
+  remove_temporaries_and_raise(sig);
 }
 
 inline void install_temporary_cleanup_handlers() {
@@ -306,9 +341,16 @@ class TemporaryOutput {
       ::sigemptyset(&block);
       for (const int sig : detail::kCleanupSignals) ::sigaddset(&block, sig);
       ::pthread_sigmask(SIG_BLOCK, &block, &old);
+      detail::g_creating.fetch_add(1);  // before looking at g_ending: see detail::g_creating
+      if (detail::g_ending.load() != 0) {
+        detail::g_creating.fetch_sub(1);
+        ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+        throw std::runtime_error("cannot write '" + target_.string() + "': the program is ending on a signal");
+      }
       fd_ = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
       const int err = errno;
       if (fd_ >= 0) slot_ = detail::register_temporary(candidate.string());
+      detail::g_creating.fetch_sub(1);
       ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
       if (fd_ >= 0) {
         temporary_ = candidate;
@@ -448,12 +490,9 @@ class OutputSet {
       error = std::string(e.what()) + (renamed.empty() ? "" : " (already replaced: " + renamed + ")");
     }
     outputs_.clear();
-    if (detail::g_committing.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-      if (const int sig = detail::g_pending_signal.exchange(0)) {  // the signal that came during the renames
-        remove_registered_temporaries();
-        ::signal(sig, SIG_DFL);
-        ::raise(sig);
-      }
+    if (detail::g_committing.fetch_sub(1) == 1) {
+      if (const int sig = detail::g_pending_signal.exchange(0))  // the signal that came during the renames
+        detail::remove_temporaries_and_raise(sig);
     }
     ::pthread_sigmask(SIG_SETMASK, &old, nullptr);  // a signal raised above is delivered here
     if (!error.empty()) throw std::runtime_error(error);

@@ -28,8 +28,10 @@
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -184,6 +186,44 @@ inline std::vector<std::uint8_t> preview_rgb8(const Image& image, float exposure
 }
 
 }  // namespace detail
+
+/// The width and height of the PNG at `path` when its chunk structure is whole, else nothing: the signature, an
+/// IHDR chunk first, then chunks (length, type, data, CRC) that lie inside the file, ending in IEND exactly at its
+/// end. Reads the 8-byte chunk headers only (CRCs and pixels are not checked): a resumed flight tells a truncated
+/// preview from a whole one without decoding it.
+inline std::optional<std::array<int, 2>> whole_png_size(const std::filesystem::path& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return std::nullopt;
+  struct Closer {
+    std::FILE* f;
+    ~Closer() { std::fclose(f); }
+  } closer{f};
+  auto be32 = [](const unsigned char* b) {
+    return static_cast<std::uint32_t>(b[0]) << 24 | static_cast<std::uint32_t>(b[1]) << 16 |
+           static_cast<std::uint32_t>(b[2]) << 8 | static_cast<std::uint32_t>(b[3]);
+  };
+  unsigned char start[8 + 8 + 8] = {};  // signature, IHDR's length and type, its width and height
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (std::fread(start, 1, sizeof start, f) != sizeof start || std::memcmp(start, kSignature, 8) != 0 ||
+      std::memcmp(start + 12, "IHDR", 4) != 0 || be32(start + 8) != 13)
+    return std::nullopt;
+  const std::uint32_t width = be32(start + 16), height = be32(start + 20);
+  if (width == 0 || height == 0 || width > 0x7fffffffu || height > 0x7fffffffu) return std::nullopt;
+  if (std::fseek(f, 8, SEEK_SET) != 0) return std::nullopt;
+  for (;;) {  // each chunk: 4-byte length, 4-byte type, data, 4-byte CRC
+    unsigned char head[8] = {};
+    if (std::fread(head, 1, 8, f) != 8) return std::nullopt;  // ended without IEND
+    const std::uint32_t length = be32(head);
+    if (length > 0x7fffffffu) return std::nullopt;
+    if (std::memcmp(head + 4, "IEND", 4) == 0) {
+      if (length != 0 || std::fseek(f, 4, SEEK_CUR) != 0) return std::nullopt;
+      const long end = std::ftell(f);
+      if (std::fseek(f, 0, SEEK_END) != 0 || std::ftell(f) != end) return std::nullopt;  // IEND is the last byte
+      return std::array<int, 2>{static_cast<int>(width), static_cast<int>(height)};
+    }
+    if (std::fseek(f, static_cast<long>(length) + 4, SEEK_CUR) != 0) return std::nullopt;
+  }
+}
 
 /// Writes an 8-bit RGB PNG (rgb: 3 * width * height bytes, row-major, top row first), whole or not at all.
 inline void write_png_rgb8(const std::filesystem::path& path, int width, int height,

@@ -113,7 +113,8 @@ struct ExportPathError : std::runtime_error {
 };
 /// Makes `dir` usable as an export directory before any work: creates it (and its parents) if missing; throws
 /// ExportPathError naming it if it is empty, exists as something other than a directory, cannot be created, or
-/// is not writable. Creates nothing else.
+/// is not writable, or if an entry in it with a name the export may write (*.vtp, *.vti, *.vtm) is not a regular
+/// file (check_output_path: a directory, device or FIFO in the way). Creates nothing else.
 void prepare_export_directory(const std::filesystem::path& dir);
 
 /// A camera flight for export_scene: the arguments of flight_to_export_polydata.

@@ -9,8 +9,8 @@
 //   --fov                                      horizontal field of view in degrees, in (0, 180)
 //
 // Reading takes an option source: the CommandLine itself, or grtrace-view's frame-aware one (a value not given is
-// then the --frame header's). Both have text(name); numbers are read by the rules every tool shares
-// (grtrace/core/number_text.hpp through CommandLine::parse_number).
+// then the --frame header's). Both have text(name) and number(name); numbers are read by the rules every tool
+// shares (grtrace/core/number_text.hpp, CommandLine::parse_number).
 #pragma once
 
 #include "command_line.hpp"
@@ -90,12 +90,12 @@ struct CameraOptions {
 template <class Source>
 CameraOptions read_camera_options(const Source& source, const CommandLine& cli, const std::string& metric_name) {
   CameraOptions c;
-  c.r = CommandLine::parse_number("camera-r", source.text("camera-r"));
-  c.theta_degrees = CommandLine::parse_number("camera-theta", source.text("camera-theta"));
-  c.phi_degrees = CommandLine::parse_number("camera-phi", source.text("camera-phi"));
+  c.r = source.number("camera-r");
+  c.theta_degrees = source.number("camera-theta");
+  c.phi_degrees = source.number("camera-phi");
   if (!(c.theta_degrees > 0.0 && c.theta_degrees < 180.0))
     throw UsageError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
-  c.fov_degrees = CommandLine::parse_number("fov", source.text("fov"));
+  c.fov_degrees = source.number("fov");
   if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
     throw UsageError("--fov must lie in (0, 180) degrees, got " + source.text("fov"));
   c.observer = read_observer(cli, metric_name);

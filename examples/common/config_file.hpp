@@ -8,6 +8,8 @@
 // This layer only reads and types the entries; which keys exist and which kinds they take is CommandLine's.
 #pragma once
 
+#include "grtrace/render/output_file.hpp"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -187,6 +189,13 @@ inline ConfigFile read_config_file(const std::string& path) {
                       "written by grtrace-render)");
   if (std::filesystem::is_directory(path, ec))
     throw ConfigError("--config '" + path + "' is a directory; give a TOML scene file");
+  // A device or a socket is never a scene file (/dev/zero would read as a megabyte of NULs); a pipe is read, up to
+  // the size limit (--config <(generate-toml) is a pipe).
+  if (const auto st = std::filesystem::status(path, ec);
+      st.type() == std::filesystem::file_type::character || st.type() == std::filesystem::file_type::block ||
+      st.type() == std::filesystem::file_type::socket)
+    throw ConfigError("--config '" + path + "' is " + grtrace::entry_kind_name(st) +
+                      ", not a file; give a TOML scene file (or an EXR written by grtrace-render)");
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec && size > kMaxConfigBytes)
     throw ConfigError("--config '" + path + "' is larger than 1 MiB; a scene file is a few lines of TOML");

@@ -10,6 +10,7 @@
 #include "json_writer.hpp"
 #include "kerr_options.hpp"
 #include "method_options.hpp"
+#include "metric_options.hpp"
 #include "render_request.hpp"
 
 #include "grtrace/exact/kerr_exact.hpp"
@@ -51,17 +52,12 @@ CommandLine make_command_line() {
                   "on the Kerr disk frame (hit radius, redshift); the planar tracer's table costs the same with it\n"
                   "as with tsit5 (docs/benchmarks.md).");
   cli.option("scene", "checker", "checker | sky | redshift | disk")
-      .option("metric", "schwarzschild",
-              "schwarzschild | minkowski (flat: straight lines, never integrated) | kerr | rn (Reissner-Nordstrom) | "
-              "sds (Schwarzschild-de Sitter) | wormhole (Ellis) | schwarzschild-ef (Eddington-Finkelstein)")
-      .option("mass", "1", "black-hole mass M (G = c = 1)")
-      .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)")
-      .option("chart", "bl", tools::kKerrChartHelp)
-      .option("charge", "0.5", "rn: charge Q, |Q| < M")
-      .option("lambda", "1e-5", "sds: cosmological constant, 0 < Lambda < 1/(9 M^2); the sky sphere must lie "
-                                "inside the cosmological horizon")
-      .option("throat", "1", "wormhole: throat radius b0 (--camera-r is then the proper distance l; l < 0 is "
-                             "the other side, whose sky is drawn differently: green-violet checker, orange stars)");
+;
+  tools::declare_metric_options(
+      cli, tools::all_metric_names(),
+      "schwarzschild | minkowski (flat: straight lines, never integrated) | kerr | rn (Reissner-Nordstrom) | "
+      "sds (Schwarzschild-de Sitter) | wormhole (Ellis) | schwarzschild-ef (Eddington-Finkelstein)");
+  cli.option("chart", "bl", tools::kKerrChartHelp);
   tools::declare_camera_options(cli, {"200", "90", "90",
                                       "camera radius (must be outside the horizon guard and inside --sky-radius)"});
   cli.option("width", "1024", "image width in pixels")
@@ -102,7 +98,10 @@ CommandLine make_command_line() {
                                 "Doppler from the camera's u): <out stem>-NNNN.exr and .png; a re-run skips the "
                                 "frames already written whole by the same flight",
                                 "");
-  cli.option("fps", "30", "flight --mp4: frames per second")
+  cli.option("frame-range", "", "flight: render only frames A .. B-1 (A:B, 0-based, B one past the last): one part "
+                                "of a flight split over a cluster (a Slurm job array, see the README); any order, "
+                                "resumable; the frames are those of one whole run")
+      .option("fps", "30", "flight --mp4: frames per second")
       .flag("mp4", "flight: also write <out stem>.mp4 from the PNG previews (ffmpeg, H.264)");
   return cli;
 }
@@ -142,7 +141,8 @@ std::vector<std::string> output_paths(const Request& q, bool status_map, bool mp
 void read_flight(const CommandLine& cli, Request& q) {
   FlightRequest& f = q.flight;
   const std::optional<FlightPathSpec> spec =
-      tools::read_flight_spec(cli, q.metric.mass, q.settings.escape_radius, {"fps", "mp4", "orbit-dr", "orbit-dphi"});
+      tools::read_flight_spec(cli, q.metric.mass, q.settings.escape_radius,
+                              {"fps", "mp4", "orbit-dr", "orbit-dphi", "frame-range"});
   if (!spec) return;
   refuse_inapplicable_options(cli, {{"orbit-dr", spec->kind == "orbit", "--flight orbit"},
                                     {"orbit-dphi", spec->kind == "orbit", "--flight orbit"}});
@@ -169,6 +169,17 @@ void read_flight(const CommandLine& cli, Request& q) {
   });
   f.dtau = frame_step(path);
   for (const WorldlineSample& s : path.samples) f.tau.push_back(s.tau);
+  if (cli.given("frame-range")) {
+    try {
+      f.range = parse_flight_frame_range(cli.text("frame-range"), static_cast<int>(f.cameras.size()));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    if (cli.flag_set("mp4"))
+      throw UsageError("--mp4 assembles every frame of the flight, not --frame-range's part: once every part is "
+                       "done, run the same command without --frame-range, with --mp4 (the frames on disk are "
+                       "skipped)");
+  }
   q.camera = f.cameras.front();
 }
 
@@ -178,26 +189,11 @@ Request read_request(const CommandLine& cli) {
   if (!is_standard_scene(q.scene.name))
     throw UsageError("unknown scene '" + q.scene.name + "'; choose checker, sky, redshift or disk");
   const bool disk = q.scene.name == "disk";
-  MetricSpec& ms = q.metric;
-  ms.name = cli.text("metric");
-  ms.mass = cli.number("mass");
-  ms.spin = cli.number("spin");
-  ms.chart = cli.text("chart");
-  ms.charge = cli.number("charge");
-  ms.lambda = cli.number("lambda");
-  ms.throat = cli.number("throat");
-  refuse_inapplicable_options(cli, {{"spin", ms.name == "kerr", "--metric kerr"},
-                                    {"charge", ms.name == "rn", "--metric rn"},
-                                    {"lambda", ms.name == "sds", "--metric sds"},
-                                    {"throat", ms.name == "wormhole", "--metric wormhole"},
-                                    {"disk-inner", disk, "--scene disk"},
+  q.metric = tools::read_metric_options(cli, cli, tools::all_metric_names(), cli.text("chart"));
+  const MetricSpec& ms = q.metric;
+  refuse_inapplicable_options(cli, {{"disk-inner", disk, "--scene disk"},
                                     {"disk-outer", disk, "--scene disk"},
                                     {"disk-retrograde", disk, "--scene disk"}});
-  try {
-    check_metric_spec(ms);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
   // The wormhole's other universe (rays ending at l < 0) gets a sky of its own, seen through the throat.
   q.scene.far_side = ms.name == "wormhole";
   if (ms.name == "minkowski" && disk)
@@ -502,10 +498,14 @@ JsonObject status_counts_json(const std::array<long, kRayStatusCount>& counts) {
 int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const ExrWriteOptions& exr) {
   std::map<std::string, std::string> content;  // the options that decide what the frames show
   for (const auto& [name, value] : cli.values())
-    if (name != "threads" && name != "mp4" && name != "fps" && name != "exr-compression") content[name] = value;
+    if (name != "threads" && name != "mp4" && name != "fps" && name != "exr-compression" && name != "frame-range")
+      content[name] = value;  // a part's frames are the whole run's: --frame-range is not in the signature
   const std::string signature = flight_signature(content);
   const int frames = static_cast<int>(q.flight.cameras.size());
-  q.flight.skip = [&](int i) { return flight_frame_done(flight_exr_path(q, i), png_path(flight_exr_path(q, i)), signature); };
+  q.flight.skip = [&](int i) {
+    if (q.flight.range && !q.flight.range->contains(i)) return true;  // another part's frame
+    return flight_frame_done(flight_exr_path(q, i), png_path(flight_exr_path(q, i)), signature);
+  };
   TracerReport table;  // the frames' table statistics summed, and the tracer that ran
   table.name = "none";
   q.flight.sink = [&](int i, Frame& frame, const TracerReport& t) {
@@ -536,8 +536,10 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
     outputs.commit();
   }
   JsonObject json;
+  const int other_parts = q.flight.range ? frames - q.flight.range->count() : 0;  // skipped as not ours
   json.add("flight", q.flight.name).add("frames", frames).add("frames_rendered", stats.rendered);
-  json.add("frames_skipped", stats.skipped).add("width", q.camera->width()).add("height", q.camera->height());
+  if (q.flight.range) json.add("frame_range", q.flight.range->text());
+  json.add("frames_skipped", stats.skipped - other_parts).add("width", q.camera->width()).add("height", q.camera->height());
   json.add("proper_time_step", q.flight.dtau).add("seconds", stats.seconds);
   json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds).add("traced_rays", stats.traced_rays);
   json.add("status_counts", status_counts_json(stats.status_counts));

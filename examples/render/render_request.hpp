@@ -10,6 +10,7 @@
 #include "grtrace/metric/named_metrics.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/render/flight.hpp"
+#include "grtrace/render/flight_files.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 
@@ -30,6 +31,7 @@ struct FlightRequest {
   std::vector<Camera> cameras;
   std::vector<double> tau;         ///< each frame's proper time on the path
   double dtau = 0.0;               ///< proper time between frames (csv: as given)
+  std::optional<FlightFrameRange> range;  ///< --frame-range: only these frames (nothing: all)
   std::function<bool(int)> skip;                              ///< frame i is already on disk, written whole
   std::function<void(int, Frame&, const TracerReport&)> sink;  ///< writes frame i (on the flight's writer thread)
   FlightStats* stats = nullptr;                              ///< receives the flight's statistics

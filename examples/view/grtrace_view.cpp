@@ -36,6 +36,7 @@
 #include "json_writer.hpp"
 #include "kerr_options.hpp"
 #include "method_options.hpp"
+#include "metric_options.hpp"
 #include "view_request.hpp"
 
 #include "grtrace/exact/kerr_exact.hpp"
@@ -86,6 +87,8 @@ using view::MethodChoice;
 using view::Request;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
+/// The metrics the viewer draws (its surfaces, ISCO rings and orbit charts are Schwarzschild's and Kerr's).
+const std::vector<std::string> kViewMetrics = {"schwarzschild", "kerr"};
 
 CommandLine make_command_line() {
   CommandLine cli("grtrace-view",
@@ -103,10 +106,10 @@ CommandLine make_command_line() {
                            "step: the older spelling of --plot")
       // scene (as grtrace-render)
       .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)")
-      .option("mass", "1", "black-hole mass M (G = c = 1)")
-      .option("metric", "schwarzschild", "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, "
-                                         "the ergosphere and the ISCO of the disk's sense)")
-      .option("spin", "0", "kerr: spin a, |a| < M (negative: rotation towards -phi)");
+;
+  tools::declare_metric_options(cli, kViewMetrics,
+                                "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, the "
+                                "ergosphere and the ISCO of the disk's sense)");
   tools::declare_camera_options(
       cli, {"35", "84", "55", "camera radius r (Schwarzschild or Boyer-Lindquist r, units of M; both charts)"});
   cli.option("width", "320", "frame width in pixels (with --frame: the EXR's)")
@@ -435,30 +438,12 @@ Request read_request(const CommandLine& cli) {
   q.scene = p.text("scene");
   if (!is_standard_scene(q.scene))
     throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");
-  q.mass = positive(p, "mass");
-  const std::string metric = p.text("metric");
-  if (metric != "schwarzschild" && metric != "kerr")
-    throw UsageError("--metric must be schwarzschild or kerr, got '" + metric + "'");
-  q.kerr = metric == "kerr";
-  MetricSpec ms;  // for the options shared with grtrace-render (kerr_options.hpp)
-  ms.name = metric;
-  ms.mass = q.mass;
-  if (q.kerr) {
-    q.spin = p.number("spin");
-    try {
-      (void)KerrMetric::checked(q.mass, q.spin);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--spin: ") + e.what());
-    }
-    ms.spin = q.spin;
-    if (!q.plot.empty()) throw UsageError(plot_option + " draws Schwarzschild orbits; not with --metric kerr");
-  }
-  ms.chart = q.chart;
-  try {  // the library's refusals, worded as grtrace-render's (e.g. --chart ks without --metric kerr)
-    check_metric_spec(ms);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  // The metric group shared with grtrace-render (metric_options.hpp): the library's refusals, worded as there.
+  const MetricSpec ms = tools::read_metric_options(p, cli, kViewMetrics, q.chart);
+  q.mass = ms.mass;
+  q.kerr = ms.name == "kerr";
+  q.spin = ms.spin;
+  if (q.kerr && !q.plot.empty()) throw UsageError(plot_option + " draws Schwarzschild orbits; not with --metric kerr");
   q.sky_radius = positive(p, "sky-radius");
   if (q.frame && q.frame->metadata.count("camera_position")) {
     for (const char* o : {"camera-r", "camera-theta", "camera-phi", "velocity", "look", "up", "fov", "width", "height",

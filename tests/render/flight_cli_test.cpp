@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -156,6 +157,39 @@ TEST(FlightCli, KerrSchildInfallContinuesThroughTheHorizon) {
     for (const float v : last.channel(channel)) ASSERT_TRUE(std::isfinite(v)) << channel;
 }
 
+// A flight split into parts (as the tasks of a Slurm job array would render it) gives the frames of one whole run:
+// each part renders only its frames, the parts share one signature, and a last run without a range finds all done.
+TEST(FlightCli, FrameRangesSplitAFlightIntoPartsOfTheSameFrames) {
+  TempDir whole, parts;
+  const std::string args = kSmall + "--scene disk --flight seed --frames 5 --out ";
+  ASSERT_EQ(render(args + (whole.path / "f.exr").string()).status, 0);
+  const ToolRun second = render(args + (parts.path / "f.exr").string() + " --frame-range 3:5");
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_EQ(json_number(second.output, "frames_rendered"), 2.0) << second.output;
+  EXPECT_EQ(json_number(second.output, "frames_skipped"), 0.0) << second.output;
+  EXPECT_NE(second.output.find("\"frame_range\":\"3:5\""), std::string::npos) << second.output;
+  EXPECT_EQ(parts.files(), 4u) << "frames 3 and 4 only";
+  EXPECT_FALSE(fs::exists(parts.path / "f-0000.exr"));
+  const ToolRun first = render(args + (parts.path / "f.exr").string() + " --frame-range 0:4");
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_EQ(json_number(first.output, "frames_rendered"), 3.0) << "frame 3 is on disk already: " << first.output;
+  EXPECT_EQ(json_number(first.output, "frames_skipped"), 1.0) << first.output;
+  const ToolRun all = render(args + (parts.path / "f.exr").string());
+  ASSERT_EQ(all.status, 0) << all.output;
+  EXPECT_EQ(json_number(all.output, "frames_rendered"), 0.0) << all.output;
+  EXPECT_EQ(json_number(all.output, "frames_skipped"), 5.0) << all.output;
+  for (int i = 0; i < 5; ++i) {
+    const std::string name = "f-000" + std::to_string(i) + ".exr";
+    const grtrace::Image a = grtrace::read_exr(whole.path / name), b = grtrace::read_exr(parts.path / name);
+    for (const char* channel : {"R", "G", "B", "status", "redshift", "sky_theta"}) {  // bit for bit (NaN too)
+      const std::vector<float>& x = a.channel(channel);
+      const std::vector<float>& y = b.channel(channel);
+      ASSERT_EQ(x.size(), y.size());
+      EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << name << " " << channel;
+    }
+  }
+}
+
 TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
   TempDir dir;
   const std::string out = " --out " + (dir.path / "f.exr").string();
@@ -174,6 +208,12 @@ TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
       {"--flight seed --metric kerr --spin 0.5 --chart ks", "the automatic step of a seed flight counts a revolution"},
       {"--flight seed --status-map", "are for single frames"},
       {"--flight seed --tracer symmetric", "--tracer symmetric is retired"},
+      {"--frame-range 0:2", "--frame-range needs --flight"},
+      {"--flight seed --frames 4 --frame-range 3:1", "--frame-range 3:1 must satisfy 0 <= A < B <= 4"},
+      {"--flight seed --frames 4 --frame-range 0:5", "--frame-range 0:5 must satisfy 0 <= A < B <= 4"},
+      {"--flight seed --frames 4 --frame-range 2", "--frame-range expects A:B"},
+      {"--flight seed --frames 4 --frame-range 1.5:3", "--frame-range expects A:B"},
+      {"--flight seed --frames 4 --frame-range 0:2 --mp4", "--mp4 assembles every frame of the flight"},
   };
   for (const auto& [args, says] : cases) {
     const ToolRun r = render(kSmall + args + out);

@@ -495,6 +495,20 @@ TEST_F(HardeningCli, ForgedSkyTextureAndHugeSizesAreRefusedBeforeAllocating) {
   EXPECT_TRUE(listing(dir_ / "shared").empty());
 }
 
+TEST_F(HardeningCli, InputsThatAreNotFilesAreNamedForWhatTheyAre) {
+  // A directory or a device given where a file is read: the message says what the path is, not "no such file",
+  // and a device is never read (the config reader used to parse a megabyte of /dev/zero's NULs as TOML).
+  const fs::path out = dir_ / "shared" / "frame.exr";
+  expect_refused(run(render_, small({"--scene", "sky", "--sky-texture", dir_.string(), "--out", out.string()})),
+                 "it is a directory, not an EXR file");
+  expect_refused(run(render_, small({"--scene", "sky", "--sky-texture", "/dev/zero", "--out", out.string()})),
+                 "it is a character device, not an EXR file");
+  expect_refused(run(render_, small({"--config", "/dev/zero", "--out", out.string()})),
+                 "--config '/dev/zero' is a character device, not a file");
+  expect_refused(run(render_, small({"--config", dir_.string(), "--out", out.string()})), "is a directory");
+  EXPECT_TRUE(listing(dir_ / "shared").empty());
+}
+
 TEST_F(HardeningCli, RenderRefusesAnOutputThatIsItsInputOrInTheWay) {
   const fs::path tex = dir_ / "shared" / "t.exr";
   write_texture(tex, 8, 4);

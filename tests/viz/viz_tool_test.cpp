@@ -52,7 +52,13 @@ TEST(ViewTool, HelpListsOptionsWithDefaults) {
 }
 
 TEST(ViewTool, BadInputExitsWithTwo) {
-  const std::array<std::pair<const char*, const char*>, 15> cases = {{
+  const std::array<std::pair<const char*, const char*>, 19> cases = {{
+      // The camera and metric groups shared with grtrace-render (examples/common/camera_options.hpp,
+      // metric_options.hpp): the same refusals, worded once.
+      {"--spin 0.5", "--spin applies only with --metric kerr"},
+      {"--metric rn", "--metric must be schwarzschild or kerr, got 'rn'"},
+      {"--metric kerr --spin 1", "--spin must satisfy |a| < M"},
+      {"--look 1,0", "--look expects 3 comma-separated numbers"},
       {"--camera-theta 0", "--camera-theta"},
       {"--up -1,0,0", "up"},
       {"--scene disk --disk-inner 2", "disk"},

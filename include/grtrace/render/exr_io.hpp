@@ -514,7 +514,13 @@ inline void write_exr(OutputSet& set, const std::filesystem::path& path, const I
 /// Reads every channel (as float) and every string attribute of an EXR file. Throws std::runtime_error.
 inline Image read_exr(const std::filesystem::path& path) {
   try {
-    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("no such file");
+    {
+      std::error_code ec;
+      const std::filesystem::file_status st = std::filesystem::status(path, ec);
+      if (!std::filesystem::exists(st)) throw std::runtime_error("no such file");
+      if (!std::filesystem::is_regular_file(st))
+        throw std::runtime_error(std::string("it is ") + entry_kind_name(st) + ", not an EXR file");
+    }
     // Protects OpenEXR's own allocations (offset tables) from absurd data windows: refused by the header check.
     static const bool limited = [] {
       Imf::Header::setMaxImageSize(1 << 20, 1 << 20);

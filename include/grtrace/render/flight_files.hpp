@@ -4,6 +4,7 @@
 //
 //   flight_frame_path("out/orbit.exr", 7, 300)  -> "out/orbit-0007.exr" (at least 4 digits, more for long flights)
 //   flight_signature(options)                    -> a hash of everything that decides the frames' content
+//   parse_flight_frame_range("30:60", 300)       -> frames 30 .. 59, one part of a flight split over a cluster
 //   flight_frame_done(exr, png, signature)       -> true when the EXR reads back whole with that signature and its
 //                                                   PNG's chunks are whole, of the same size (frames are written
 //                                                   with OutputSet: temp + rename, so a frame on disk was written
@@ -13,6 +14,7 @@
 // (Camera paths as CSV files: observer/worldline_csv.hpp.)
 #pragma once
 
+#include "grtrace/core/number_text.hpp"
 #include "grtrace/observer/worldline_csv.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/output_file.hpp"
@@ -56,6 +58,31 @@ inline std::filesystem::path flight_frame_path(const std::filesystem::path& out,
   std::filesystem::path p = out;
   p.replace_filename(out.stem().string() + number + out.extension().string());
   return p;
+}
+
+/// A part of a flight's frames, frames first .. end - 1 (half-open, 0-based): one task of a cluster's job array
+/// renders one part, and the frames are the same as from one run (each frame depends on its index only).
+struct FlightFrameRange {
+  int first = 0;
+  int end = 0;
+  bool contains(int i) const { return i >= first && i < end; }
+  int count() const { return end - first; }
+  /// "A:B" as given.
+  std::string text() const { return std::to_string(first) + ":" + std::to_string(end); }
+};
+
+/// The range "A:B" of a flight of `frames` frames: whole numbers with 0 <= A < B <= frames (B = frames: to the
+/// last frame). Throws std::invalid_argument saying what to change.
+inline FlightFrameRange parse_flight_frame_range(const std::string& text, int frames) {
+  const auto colon = text.find(':');
+  const ParsedWholeNumber a = parse_whole_number(text.substr(0, colon));
+  const ParsedWholeNumber b = colon == std::string::npos ? ParsedWholeNumber{} : parse_whole_number(text.substr(colon + 1));
+  if (a.result != NumberText::ok || b.result != NumberText::ok)
+    throw std::invalid_argument("--frame-range expects A:B, two whole numbers (frames A to B - 1), got '" + text + "'");
+  if (!(a.value >= 0 && a.value < b.value && b.value <= frames))
+    throw std::invalid_argument("--frame-range " + text + " must satisfy 0 <= A < B <= " + std::to_string(frames) +
+                                " (the flight's frame count; B is one past the last frame rendered)");
+  return {static_cast<int>(a.value), static_cast<int>(b.value)};
 }
 
 /// 64-bit FNV-1a of "key=value\n" for every entry (ordered by key), as 16 hex digits. Takes the options that

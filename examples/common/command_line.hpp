@@ -391,6 +391,14 @@ inline void check_command_output(const CommandLine& cli, const std::string& opti
   for (const auto& [input_option, input] : inputs) check_not_input(option, path, input_option, input);
 }
 
+/// Refuses (UsageError) an --out that does not name an EXR file: a file name ending in ".exr" with a name before it
+/// (its PNG preview and a flight's frames are named after that stem: "dir/.exr" would make hidden ".png" files).
+inline void check_exr_output_name(const std::string& option, const std::string& path) {
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (name.size() < 5 || !name.ends_with(".exr"))
+    throw UsageError("--" + option + " must name an .exr file (a name, then .exr), got '" + path + "'");
+}
+
 /// An option that means something only when the command's other options say so.
 struct OptionCondition {
   const char* option;  ///< without the dashes

@@ -170,8 +170,9 @@ inline Request read_request(const CommandLine& cli) {
   const auto p = cli.numbers("position", 4), v = cli.numbers("velocity", 3);
   const Vec4 x(p[0], p[1], p[2], p[3]);
   if (!(x[1] > r_guard))
-    throw UsageError("--position: r = " + cli.text("position") + " is not outside the horizon guard r = " +
-                     std::to_string(r_guard));
+    throw UsageError("--position " + cli.text("position") + ": r = " + JsonObject::number(x[1]) +
+                     " is not outside the horizon guard r = " + JsonObject::number(r_guard) +
+                     "; move the start out");
   if (!(x[2] > 0.0 && x[2] < std::numbers::pi))
     throw UsageError("--position: theta must lie strictly between 0 and pi (the chart is singular on the axis)");
   if (!(x[1] < s.escape_radius)) throw UsageError("--position: r must be inside --escape-radius");

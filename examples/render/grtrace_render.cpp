@@ -306,8 +306,7 @@ Request read_request(const CommandLine& cli) {
   }
 
   q.out = cli.text("out");
-  if (q.out.size() < 5 || q.out.substr(q.out.size() - 4) != ".exr")
-    throw UsageError("--out must name an .exr file, got '" + q.out + "'");
+  tools::check_exr_output_name("out", q.out);
   read_flight(cli, q);
   // Every file this run writes, checked before any work: writable, not a directory or device, not an input (the
   // texture, the camera path, the --config file).
@@ -539,7 +538,8 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   const int other_parts = q.flight.range ? frames - q.flight.range->count() : 0;  // skipped as not ours
   json.add("flight", q.flight.name).add("frames", frames).add("frames_rendered", stats.rendered);
   if (q.flight.range) json.add("frame_range", q.flight.range->text());
-  json.add("frames_skipped", stats.skipped - other_parts).add("width", q.camera->width()).add("height", q.camera->height());
+  json.add("frames_skipped", stats.skipped - other_parts).add("width", q.camera->width());
+  json.add("height", q.camera->height());
   json.add("proper_time_step", q.flight.dtau).add("seconds", stats.seconds);
   json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds).add("traced_rays", stats.traced_rays);
   json.add("status_counts", status_counts_json(stats.status_counts));

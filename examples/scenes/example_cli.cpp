@@ -23,7 +23,7 @@ ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
   if (!cli.parse(argc, argv)) throw NothingMoreToDo{};
   ExampleArgs a = defaults;
   a.out = cli.text("out");
-  if (a.out.size() <= 4 || !a.out.ends_with(".exr")) throw std::invalid_argument("--out must name an .exr file, got '" + a.out + "'");
+  grtrace::tools::check_exr_output_name("out", a.out);
   const long size = cli.integer("size");
   if (!(size >= 8 && size <= 4096)) throw std::invalid_argument("--size must be 8 .. 4096 pixels, got " + cli.text("size"));
   a.size = static_cast<int>(size);

@@ -165,6 +165,13 @@ TEST_F(RenderCli, RefusesBadInputBeforeAnyWork) {
   }
   const ToolRun r = run("--width 8 --height 8 --out /nonexistent-dir/x.exr");
   EXPECT_EQ(r.status, 2) << r.output;
+  // No name before .exr (the preview would be a hidden ".png"), or a directory named x.exr/: refused by name.
+  for (const fs::path& name : {scratch(".exr"), scratch("x.exr") / ""}) {
+    const ToolRun unnamed = run("--width 8 --height 8 --out " + name.string());
+    EXPECT_EQ(unnamed.status, 2) << unnamed.output;
+    EXPECT_NE(unnamed.output.find("must name an .exr file (a name, then .exr)"), std::string::npos) << unnamed.output;
+    EXPECT_FALSE(fs::exists(scratch(".png")));
+  }
 }
 
 // The rendering tools offer a declared list of methods (grtrace/app/tool_methods.hpp): --help lists it, every pair

@@ -367,6 +367,27 @@ TEST_F(Hardening, ImagesReadInBandsAreTheImagesWritten) {
   }
 }
 
+TEST_F(Hardening, ExrMessagesNeverEchoRawBytes) {
+  // A file of random bytes, and one with the magic number followed by binary "names": refused with words that say
+  // what the file is, never with its bytes (which used to be printed as an attribute's name).
+  const fs::path file = dir_ / "junk.exr";
+  auto refused_with = [&](const std::string& bytes, const std::string& says) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+    try {
+      (void)grtrace::read_exr(file);
+      ADD_FAILURE() << "accepted";
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(says), std::string::npos) << what;
+      EXPECT_TRUE(std::all_of(what.begin(), what.end(), [](char c) { return c >= 0x20 && c < 0x7f; })) << what;
+    }
+  };
+  std::string random_bytes;
+  for (int i = 0; i < 3000; ++i) random_bytes += static_cast<char>(i % 10 == 9 ? 0 : (i * 7919 + 13) % 120 + 128);
+  refused_with(random_bytes, "not an OpenEXR file (wrong magic number)");
+  refused_with(std::string("\x76\x2f\x31\x01\x02\x00\x00\x00", 8) + random_bytes, "name or type is not text");
+}
+
 TEST_F(Hardening, HeaderAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
   // Found by tests/fuzz/exr_fuzz (corpus/exr/hang_huge_string_attribute.exr): OpenEXR allocated the 1.7 GB a
   // 201-byte file's string attribute claimed before noticing the file ends.

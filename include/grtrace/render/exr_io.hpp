@@ -382,7 +382,13 @@ inline void check_exr_attribute_sizes(const std::filesystem::path& path) {
   unsigned char start[8] = {};
   file.read(reinterpret_cast<char*>(start), sizeof start);
   if (file.gcount() != 8) throw std::runtime_error("too short for an OpenEXR file");
+  if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01)
+    throw std::runtime_error("not an OpenEXR file (wrong magic number)");
   const bool multi_part = (start[5] & 0x10) != 0;  // version flags: bit 12 = multi-part
+  // Names go into messages: a byte outside printable ASCII means the header is not one (never echo raw bytes).
+  auto printable = [](const std::string& text) {
+    return std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+  };
   auto read_name = [&](std::string& out) {
     out.clear();
     for (int c = file.get(); c != 0; c = file.get()) {
@@ -397,6 +403,8 @@ inline void check_exr_attribute_sizes(const std::filesystem::path& path) {
     if (name.empty()) return;  // the empty header that ends a multi-part file's list (or an empty one)
     for (;;) {
       read_name(type);
+      if (!printable(name) || !printable(type))
+        throw std::runtime_error("a header attribute's name or type is not text: damaged or not an OpenEXR file");
       unsigned char size_bytes[4] = {};
       file.read(reinterpret_cast<char*>(size_bytes), 4);
       if (file.gcount() != 4) throw std::runtime_error("the header ends early (truncated file)");

@@ -76,7 +76,8 @@ struct FlightFrameRange {
 inline FlightFrameRange parse_flight_frame_range(const std::string& text, int frames) {
   const auto colon = text.find(':');
   const ParsedWholeNumber a = parse_whole_number(text.substr(0, colon));
-  const ParsedWholeNumber b = colon == std::string::npos ? ParsedWholeNumber{} : parse_whole_number(text.substr(colon + 1));
+  const ParsedWholeNumber b =
+      colon == std::string::npos ? ParsedWholeNumber{} : parse_whole_number(text.substr(colon + 1));
   if (a.result != NumberText::ok || b.result != NumberText::ok)
     throw std::invalid_argument("--frame-range expects A:B, two whole numbers (frames A to B - 1), got '" + text + "'");
   if (!(a.value >= 0 && a.value < b.value && b.value <= frames))

@@ -556,40 +556,34 @@ inline Image read_exr(const std::filesystem::path& path) {
       if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
 
-    // The pixels arrive in bands of whole chunks, and each channel grows only as its band arrives: a header that
-    // claims more pixels than the file holds fails at the first missing chunk, having cost about one band, not the
-    // claimed image (a forged 8 kB file claiming 12000 x 12000 pixels cost 1.7 GB before it was refused).
+    // The pixels arrive in bands of whole chunks, decoded straight into the channels, which are written (and so
+    // backed by memory) only as bands arrive: a header that claims more pixels than the file holds fails at the
+    // first missing chunk, having cost about one band, not the claimed image (a forged 8 kB file claiming
+    // 8000 x 8000 pixels cost 2.3 GB before it was refused). Each channel reserves its whole size at once (address
+    // space, which the memory check above bounds; pages are only touched as bands fill them), so growing never
+    // copies. The first band is ~16 MB, each later one as large as all before it: a large file takes a few reads.
     const long chunk_lines = header.hasTileDescription()
                                  ? std::max(1L, static_cast<long>(header.tileDescription().ySize))
                                  : static_cast<long>(detail::exr_lines_per_chunk(header.compression()));
     const double line_bytes = 4.0 * static_cast<double>(w) * static_cast<double>(names.size());
-    const long band_chunks =
+    const long first_chunks =
         std::max(1L, static_cast<long>(detail::kExrBandBytes / (line_bytes * static_cast<double>(chunk_lines))));
-    const long band_lines = band_chunks * chunk_lines;
-    const auto pixels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    const auto width = static_cast<std::size_t>(w);
     std::vector<std::vector<float>> planes(names.size());
-    const std::size_t band_values = static_cast<std::size_t>(std::min(band_lines, h)) * static_cast<std::size_t>(w);
-    std::vector<std::vector<float>> band_planes(names.size(), std::vector<float>(band_values));
-    // Bands start on chunk boundaries of the data window (which starts a chunk).
-    for (long y0 = window.min.y; y0 <= window.max.y; y0 += band_lines) {
-      const long y1 = std::min<long>(window.max.y, y0 + band_lines - 1);
-      const Imath::Box2i band_window(Imath::V2i(window.min.x, static_cast<int>(y0)),
-                                     Imath::V2i(window.max.x, static_cast<int>(y1)));
-      Imf::FrameBuffer frame;
+    for (std::vector<float>& plane : planes) plane.reserve(width * static_cast<std::size_t>(h));
+    long done = 0;  // lines decoded; bands start on chunk boundaries of the data window (which starts a chunk)
+    while (done < h) {
+      const long lines = std::min(h - done, std::max(first_chunks * chunk_lines, done));
+      const std::size_t values = static_cast<std::size_t>(done + lines) * width;
+      for (std::vector<float>& plane : planes) plane.resize(values);
+      const int y0 = window.min.y + static_cast<int>(done), y1 = y0 + static_cast<int>(lines) - 1;
+      Imf::FrameBuffer frame;  // row y of the window at plane.data() + (y - min.y) * width, as in the image
       for (std::size_t c = 0; c < names.size(); ++c)
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, band_planes[c].data(), band_window));
+        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, planes[c].data(), window));
       in.setFrameBuffer(frame);
-      in.readPixels(static_cast<int>(y0), static_cast<int>(y1));
-      const auto values = static_cast<std::size_t>(y1 - y0 + 1) * static_cast<std::size_t>(w);
-      for (std::size_t c = 0; c < names.size(); ++c) {
-        std::vector<float>& plane = planes[c];
-        if (plane.capacity() < plane.size() + values)  // doubling, never past the whole channel
-          plane.reserve(std::min(pixels, std::max(plane.size() + values, 2 * plane.capacity())));
-        plane.insert(plane.end(), band_planes[c].begin(),
-                     band_planes[c].begin() + static_cast<std::ptrdiff_t>(values));
-      }
+      in.readPixels(y0, y1);
+      done += lines;
     }
-    band_planes.clear();
     Image image = Image::from_planes(static_cast<int>(w), static_cast<int>(h), names, std::move(planes));
 
     for (auto it = header.begin(); it != header.end(); ++it)

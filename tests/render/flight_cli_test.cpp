@@ -116,6 +116,27 @@ TEST(FlightCli, Mp4HasEveryFrame) {
   EXPECT_EQ(dir.files(), 9u);  // 4 EXR + 4 PNG + the MP4
 }
 
+// When ffmpeg fails, its message is passed on naming the video asked for, never the temporary it was writing, and
+// nothing but the frames is left. (A stand-in ffmpeg on PATH that fails as a full disk would.)
+TEST(FlightCli, AFailingFfmpegIsReportedWithTheVideosName) {
+  TempDir dir;
+  const fs::path bin = dir.path / "bin";
+  fs::create_directory(bin);
+  std::ofstream(bin / "ffmpeg") << "#!/bin/sh\nfor last; do :; done\n"  // $last: the output file
+                                << "echo \"$last: No space left on device\" >&2\nexit 1\n";
+  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+  const std::string out = (dir.path / "circle.exr").string();
+  const ToolRun run = run_command("PATH=" + bin.string() + ":$PATH " + std::string(GRTRACE_RENDER_BINARY) + " " +
+                                  kSmall + "--flight circular --camera-r 30 --frames 2 --mp4 --out " + out);
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("assembling " + (dir.path / "circle.mp4").string() + ": " +
+                            (dir.path / "circle.mp4").string() + ": No space left on device"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find(".tmp-"), std::string::npos) << run.output;
+  EXPECT_EQ(dir.files(), 5u) << "bin/ and the two frames' EXR and PNG, no video, no temporary";
+}
+
 // A camera path from a CSV: the frames are the rows.
 TEST(FlightCli, CsvPathGivesOneFramePerRow) {
   TempDir dir;

@@ -20,6 +20,7 @@
 #include "grtrace/render/output_file.hpp"
 #include "grtrace/render/png_preview.hpp"
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -180,12 +181,40 @@ inline std::string flight_png_pattern(const std::filesystem::path& out_png, int 
 }
 
 /// Runs `argv` (argv[0] looked up on PATH), waits, and returns its exit status (127: it could not be started).
-inline int run_program(const std::vector<std::string>& argv) {
+/// With `error_output`, the program's standard error goes there (its last 64 kB) instead of to ours, so the caller
+/// can word it (e.g. name the file the user asked for, not the temporary the program wrote).
+inline int run_program(const std::vector<std::string>& argv, std::string* error_output = nullptr) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  int pipe_fds[2] = {-1, -1};
+  posix_spawn_file_actions_t actions;
+  ::posix_spawn_file_actions_init(&actions);
+  if (error_output) {
+    if (::pipe2(pipe_fds, O_CLOEXEC) != 0) {
+      ::posix_spawn_file_actions_destroy(&actions);
+      return 127;
+    }
+    ::posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], 2);  // dup2 clears close-on-exec on fd 2
+  }
   pid_t pid = 0;
-  if (::posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return 127;
+  const int spawned = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  ::posix_spawn_file_actions_destroy(&actions);
+  if (error_output) {
+    ::close(pipe_fds[1]);
+    if (spawned == 0) {
+      char buffer[4096];
+      for (;;) {
+        const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        error_output->append(buffer, static_cast<std::size_t>(n));
+        if (error_output->size() > 65536) error_output->erase(0, error_output->size() - 65536);
+      }
+    }
+    ::close(pipe_fds[0]);
+  }
+  if (spawned != 0) return 127;
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) return 127;
@@ -220,15 +249,23 @@ inline void assemble_mp4(OutputSet& set, const std::string& png_pattern, int fra
   char rate[32];
   std::snprintf(rate, sizeof rate, "%.17g", fps);
   // Even sizes for yuv420p (x264 refuses odd ones): pad by one pixel where needed.
+  std::string said;  // ffmpeg's messages, which name the temporary it writes: reworded with the target's name
+  const std::string temporary = out.temporary().string();
   const int status = run_program({"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate",
                                   rate, "-start_number", "0", "-i", png_pattern, "-frames:v", std::to_string(frames),
                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p",
-                                  "-movflags", "+faststart", "-f", "mp4", out.temporary().string()});
+                                  "-movflags", "+faststart", "-f", "mp4", temporary},
+                                 &said);
   if (status == 127)
     throw std::runtime_error("cannot run ffmpeg to assemble " + mp4.string() +
                              " (install it: bash cmake/install-deps.sh, or leave out --mp4)");
-  if (status != 0)
-    throw std::runtime_error("ffmpeg failed (exit status " + std::to_string(status) + ") assembling " + mp4.string());
+  if (status != 0) {
+    for (std::size_t at = said.find(temporary); at != std::string::npos; at = said.find(temporary, at))
+      said.replace(at, temporary.size(), mp4.string());
+    while (!said.empty() && (said.back() == '\n' || said.back() == '\r')) said.pop_back();
+    throw std::runtime_error("ffmpeg failed (exit status " + std::to_string(status) + ") assembling " +
+                             mp4.string() + (said.empty() ? std::string() : ": " + said));
+  }
   out.finish();
 }
 

@@ -208,6 +208,27 @@ TEST_F(Hardening, OutputSetIsAllNewOrAllOld) {
   EXPECT_EQ(listing(dir_ / "shared"), (std::vector<std::string>{"a.txt", "b.txt", "c.png"}));
 }
 
+TEST_F(Hardening, AFailedRenameNamesTheTargetNotTheTemporary) {
+  // The target became a non-empty directory after the checks: rename() fails; the message names what the user
+  // asked for (it used to name the temporary, already removed, as ''), the temporary is gone, the directory kept.
+  const fs::path target = dir_ / "shared" / "frame.exr";
+  grtrace::TemporaryOutput out(target);
+  out.write("data", 4);
+  fs::create_directories(target / "inside");
+  try {
+    out.commit();
+    FAIL() << "renamed over a directory";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cannot put the finished file in place at '" + target.string() + "'"), std::string::npos)
+        << what;
+    EXPECT_EQ(what.find(".tmp-"), std::string::npos) << what;
+    EXPECT_EQ(what.find("''"), std::string::npos) << what;
+  }
+  EXPECT_EQ(listing(dir_ / "shared"), std::vector<std::string>{"frame.exr"});
+  EXPECT_TRUE(fs::is_directory(target / "inside"));
+}
+
 TEST_F(Hardening, TemporariesAreRemovedOnSigtermAndSigint) {
   for (const int sig : {SIGTERM, SIGINT}) {
     SCOPED_TRACE(sig);

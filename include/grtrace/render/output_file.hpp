@@ -401,15 +401,17 @@ class TemporaryOutput {
     }
   }
 
-  /// finish(), then renames the temporary over the target. Throws std::runtime_error naming both paths.
+  /// finish(), then renames the temporary over the target. Throws std::runtime_error naming the target (the
+  /// temporary is removed, so its name would tell the user nothing; discard() clears it, and the message used to
+  /// read "cannot rename '' to ...").
   void commit() {
     finish();
     if (committed_) return;
     if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
       const int e = errno;
       discard();
-      throw std::runtime_error("cannot rename '" + temporary_.string() + "' to '" + target_.string() +
-                               "': " + std::strerror(e));
+      throw std::runtime_error("cannot put the finished file in place at '" + target_.string() + "': " +
+                               std::strerror(e) + " (the file there is unchanged)");
     }
     committed_ = true;
     detail::unregister_temporary(std::exchange(slot_, -1));

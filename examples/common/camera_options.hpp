@@ -21,7 +21,6 @@
 #include "grtrace/observer/camera_spec.hpp"
 
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -51,11 +50,7 @@ inline void declare_camera_options(CommandLine& cli, const CameraOptionDefaults&
 /// The three comma-separated numbers of --name from `source` (UsageError naming the option otherwise).
 template <class Source>
 Vec3 read_option_triple(const Source& source, const std::string& name) {
-  const std::string text = source.text(name);
-  std::stringstream ss(text);
-  std::vector<double> v;
-  for (std::string item; std::getline(ss, item, ',');) v.push_back(CommandLine::parse_number(name, item));
-  if (v.size() != 3) throw UsageError("--" + name + " expects 3 comma-separated numbers, got '" + text + "'");
+  const std::vector<double> v = CommandLine::parse_numbers(name, source.text(name), 3);
   return {v[0], v[1], v[2]};
 }
 

@@ -203,14 +203,7 @@ class CommandLine {
 
   /// A comma-separated list of exactly `count` numbers (count 0: any length).
   std::vector<double> numbers(const std::string& name, std::size_t count) const {
-    std::vector<double> out;
-    std::stringstream ss(text(name));
-    std::string item;
-    while (std::getline(ss, item, ',')) out.push_back(parse_number(name, item));
-    if (count != 0 && out.size() != count)
-      throw UsageError("--" + name + " expects " + std::to_string(count) + " comma-separated numbers, got '" +
-                       text(name) + "'");
-    return out;
+    return parse_numbers(name, text(name), count);
   }
 
   std::string help() const {
@@ -259,9 +252,6 @@ class CommandLine {
     std::string name, default_value, help;
     bool takes_value;
   };
-
-  static constexpr const char* kConfigOption = "config";
-  static constexpr const char* kWriteConfigOption = "write-config";
 
   /// Takes a new option's spec; refuses (std::logic_error: a programming error) a name declared twice or one of
   /// the names every tool answers itself.
@@ -345,7 +335,6 @@ class CommandLine {
     return nullptr;
   }
 
-
  public:
   /// The number in `t` (grtrace/core/number_text.hpp: the same rules as scene files and camera-path CSVs), or
   /// UsageError naming --name. `from` is added to the message (e.g. " (from the frame's header)").
@@ -366,9 +355,24 @@ class CommandLine {
       throw UsageError("--" + name + " expects a whole number, got '" + t + "'" + from);
     return n.value;
   }
+  /// The comma-separated numbers in `t`, exactly `count` of them (0: any number), each read as parse_number reads
+  /// one, or UsageError naming --name.
+  static std::vector<double> parse_numbers(const std::string& name, const std::string& t, std::size_t count) {
+    std::vector<double> out;
+    std::stringstream ss(t);
+    std::string item;
+    while (std::getline(ss, item, ',')) out.push_back(parse_number(name, item));
+    if (count != 0 && out.size() != count)
+      throw UsageError("--" + name + " expects " + std::to_string(count) + " comma-separated numbers, got '" + t +
+                       "'");
+    return out;
+  }
+
+  /// The options every tool answers itself: --config FILE and --write-config FILE.
+  static constexpr const char* kConfigOption = "config";
+  static constexpr const char* kWriteConfigOption = "write-config";
 
  private:
-
   std::string program_, summary_;
   std::string config_file_;
   std::optional<std::string> write_config_path_;
@@ -385,7 +389,7 @@ class CommandLine {
 /// from a frame's header names the frame itself as --out, and saving it is fine.
 inline void check_command_output(const CommandLine& cli, const std::string& option, const std::filesystem::path& path,
                                  std::initializer_list<std::pair<const char*, std::string>> inputs) {
-  if (cli.write_config_asked() && option != "write-config") return;
+  if (cli.write_config_asked() && option != CommandLine::kWriteConfigOption) return;
   check_output_option(option, path);
   check_not_input(option, path, "config", cli.config_file());
   for (const auto& [input_option, input] : inputs) check_not_input(option, path, input_option, input);

@@ -183,20 +183,19 @@ inline ConfigFile config_from_exr(std::string_view bytes, const std::string& pat
 /// missing, unreadable, oversized or damaged file and for a TOML syntax error (with its line and column). Keys
 /// and kinds are not checked here.
 inline ConfigFile read_config_file(const std::string& path) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st))
     throw ConfigError("--config '" + path + "': no such file; give the path of a TOML scene file (or of an EXR "
                       "written by grtrace-render)");
-  if (std::filesystem::is_directory(path, ec))
-    throw ConfigError("--config '" + path + "' is a directory; give a TOML scene file");
+  if (fs::is_directory(st)) throw ConfigError("--config '" + path + "' is a directory; give a TOML scene file");
   // A device or a socket is never a scene file (/dev/zero would read as a megabyte of NULs); a pipe is read, up to
   // the size limit (--config <(generate-toml) is a pipe).
-  if (const auto st = std::filesystem::status(path, ec);
-      st.type() == std::filesystem::file_type::character || st.type() == std::filesystem::file_type::block ||
-      st.type() == std::filesystem::file_type::socket)
+  if (fs::is_character_file(st) || fs::is_block_file(st) || fs::is_socket(st))
     throw ConfigError("--config '" + path + "' is " + grtrace::entry_kind_name(st) +
                       ", not a file; give a TOML scene file (or an EXR written by grtrace-render)");
-  const auto size = std::filesystem::file_size(path, ec);
+  const auto size = fs::file_size(path, ec);
   if (!ec && size > kMaxConfigBytes)
     throw ConfigError("--config '" + path + "' is larger than 1 MiB; a scene file is a few lines of TOML");
   std::ifstream in(path, std::ios::binary);

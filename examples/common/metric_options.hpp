@@ -24,20 +24,22 @@
 
 namespace grtrace::tools {
 
-/// The parameter option of each named metric that has one: {metric, option, help, default}.
+/// The parameter option of each named metric that has one: {metric, option, help, default, the field it sets}.
 struct MetricParameterOption {
   const char* metric;
   const char* option;
   const char* help;
   const char* default_value;
+  double MetricSpec::*field;
 };
 inline constexpr MetricParameterOption kMetricParameterOptions[] = {
-    {"kerr", "spin", "kerr: spin a, |a| < M (negative: rotation towards -phi)", "0"},
-    {"rn", "charge", "rn: charge Q, |Q| < M", "0.5"},
+    {"kerr", "spin", "kerr: spin a, |a| < M (negative: rotation towards -phi)", "0", &MetricSpec::spin},
+    {"rn", "charge", "rn: charge Q, |Q| < M", "0.5", &MetricSpec::charge},
     {"sds", "lambda", "sds: cosmological constant, 0 < Lambda < 1/(9 M^2); the sky sphere must lie inside the "
-                      "cosmological horizon", "1e-5"},
+                      "cosmological horizon", "1e-5", &MetricSpec::lambda},
     {"wormhole", "throat", "wormhole: throat radius b0 (--camera-r is then the proper distance l; l < 0 is the other "
-                           "side, whose sky is drawn differently: green-violet checker, orange stars)", "1"},
+                           "side, whose sky is drawn differently: green-violet checker, orange stars)", "1",
+     &MetricSpec::throat},
 };
 
 /// Every named metric (grtrace-render offers them all).
@@ -72,14 +74,9 @@ MetricSpec read_metric_options(const Source& source, const CommandLine& cli, con
   ms.chart = chart;
   for (const MetricParameterOption& p : kMetricParameterOptions) {
     if (std::find(offered.begin(), offered.end(), p.metric) == offered.end()) continue;
-    const std::string option = p.option, needs = std::string("--metric ") + p.metric;
+    const std::string needs = std::string("--metric ") + p.metric;
     refuse_inapplicable_options(cli, {{p.option, ms.name == p.metric, needs.c_str()}});
-    if (ms.name != p.metric) continue;
-    const double value = source.number(option);
-    if (option == "spin") ms.spin = value;
-    else if (option == "charge") ms.charge = value;
-    else if (option == "lambda") ms.lambda = value;
-    else ms.throat = value;
+    if (ms.name == p.metric) ms.*p.field = source.number(p.option);
   }
   try {
     check_metric_spec(ms);

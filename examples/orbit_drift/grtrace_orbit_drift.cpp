@@ -477,8 +477,6 @@ int main(int argc, char** argv) {
     if (draw) {
       tools::check_output_option("png", png);
       if (same_file(csv, png)) throw UsageError("--csv and --png name the same file '" + csv.string() + "'");
-    }
-    if (draw) {
       try {
         viz::require_display("grtrace-orbit-drift", "pass --no-png");
       } catch (const viz::NoDisplayError& e) {

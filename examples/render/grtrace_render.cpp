@@ -51,8 +51,7 @@ CommandLine make_command_line() {
                   "the cheapest whose largest error stays below 1e-6 both on that frame (angle, general tracer) and\n"
                   "on the Kerr disk frame (hit radius, redshift); the planar tracer's table costs the same with it\n"
                   "as with tsit5 (docs/benchmarks.md).");
-  cli.option("scene", "checker", "checker | sky | redshift | disk")
-;
+  cli.option("scene", "checker", "checker | sky | redshift | disk");
   tools::declare_metric_options(
       cli, tools::all_metric_names(),
       "schwarzschild | minkowski (flat: straight lines, never integrated) | kerr | rn (Reissner-Nordstrom) | "

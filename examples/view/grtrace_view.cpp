@@ -105,8 +105,7 @@ CommandLine make_command_line() {
       .option("chart", "", tools::kKerrChartHelp + " (default bl; with --frame: the frame's). Also orbit | norm | "
                            "step: the older spelling of --plot")
       // scene (as grtrace-render)
-      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)")
-;
+      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)");
   tools::declare_metric_options(cli, kViewMetrics,
                                 "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, the "
                                 "ergosphere and the ISCO of the disk's sense)");

@@ -37,8 +37,9 @@
 //   header claiming 12000 x 12000 pixels in a few kB is refused as "forged or truncated header"), for all its
 //   pixels when uncompressed, and one chunk may not decode to more than max(64 MB, 100 x the file); before
 //   OpenEXR parses the header, every attribute's byte count must fit in the file (OpenEXR allocates it first).
-//   The pixels are then read in bands of chunks (about 16 MB), each channel growing as they arrive: a file whose
-//   chunks are missing costs about one band before it is refused, not the image its header claims.
+//   The pixels are then decoded in bands of chunks (the first about 16 MB, each later one as large as all before
+//   it) straight into the channels, whose memory is written only as bands arrive: a file whose chunks are missing
+//   costs about one band before it is refused, not the image its header claims.
 #pragma once
 
 #include "grtrace/core/ray_status.hpp"
@@ -371,6 +372,22 @@ inline void write_exr_into(TemporaryOutput& out, const Image& image, const ExrWr
   }
 }
 
+/// A little-endian 32-bit integer of an EXR file (magic number, version, attribute sizes).
+inline std::int32_t exr_le32(const unsigned char* b) {
+  return static_cast<std::int32_t>(static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+                                   static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24);
+}
+
+/// Reads an EXR file's first 8 bytes from `file` and returns its version field; throws std::runtime_error for a
+/// file too short or without OpenEXR's magic number (before any of its bytes could reach a message).
+inline int read_exr_start(std::istream& file) {
+  unsigned char start[8] = {};
+  file.read(reinterpret_cast<char*>(start), sizeof start);
+  if (file.gcount() != 8) throw std::runtime_error("too short for an OpenEXR file");
+  if (exr_le32(start) != Imf::MAGIC) throw std::runtime_error("not an OpenEXR file (wrong magic number)");
+  return exr_le32(start + 4);
+}
+
 /// Walks the header attributes (name, type, byte count) without OpenEXR and refuses any whose byte count exceeds
 /// what is left of the file: OpenEXR allocates an attribute's claimed size before reading it, so a 200-byte file
 /// claiming a 1.7 GB string attribute would otherwise cost 1.7 GB (found by tests/fuzz/exr_fuzz).
@@ -379,12 +396,7 @@ inline void check_exr_attribute_sizes(const std::filesystem::path& path) {
   std::error_code ec;
   const auto file_size = static_cast<long long>(std::filesystem::file_size(path, ec));
   if (!file || ec) throw std::runtime_error("cannot open the file");
-  unsigned char start[8] = {};
-  file.read(reinterpret_cast<char*>(start), sizeof start);
-  if (file.gcount() != 8) throw std::runtime_error("too short for an OpenEXR file");
-  if (start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 || start[3] != 0x01)
-    throw std::runtime_error("not an OpenEXR file (wrong magic number)");
-  const bool multi_part = (start[5] & 0x10) != 0;  // version flags: bit 12 = multi-part
+  const bool multi_part = (read_exr_start(file) & 0x1000) != 0;  // version flags: bit 12 = multi-part
   // Names go into messages: a byte outside printable ASCII means the header is not one (never echo raw bytes).
   auto printable = [](const std::string& text) {
     return std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
@@ -408,9 +420,7 @@ inline void check_exr_attribute_sizes(const std::filesystem::path& path) {
       unsigned char size_bytes[4] = {};
       file.read(reinterpret_cast<char*>(size_bytes), 4);
       if (file.gcount() != 4) throw std::runtime_error("the header ends early (truncated file)");
-      const long long size = static_cast<std::int32_t>(
-          static_cast<std::uint32_t>(size_bytes[0]) | static_cast<std::uint32_t>(size_bytes[1]) << 8 |
-          static_cast<std::uint32_t>(size_bytes[2]) << 16 | static_cast<std::uint32_t>(size_bytes[3]) << 24);
+      const long long size = exr_le32(size_bytes);
       const long long left = file_size - static_cast<long long>(file.tellg());
       if (size < 0 || size > left)
         throw std::runtime_error("header attribute '" + name + "' (" + type + ") claims " + std::to_string(size) +
@@ -429,16 +439,7 @@ inline void check_exr_attribute_sizes(const std::filesystem::path& path) {
 inline Imf::Header read_exr_header(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw std::runtime_error("cannot open the file");
-  unsigned char start[8] = {};
-  file.read(reinterpret_cast<char*>(start), sizeof start);
-  if (file.gcount() != 8) throw std::runtime_error("too short for an OpenEXR file");
-  auto le32 = [&](int at) {
-    return static_cast<int>(static_cast<std::uint32_t>(start[at]) | static_cast<std::uint32_t>(start[at + 1]) << 8 |
-                            static_cast<std::uint32_t>(start[at + 2]) << 16 |
-                            static_cast<std::uint32_t>(start[at + 3]) << 24);
-  };
-  if (le32(0) != Imf::MAGIC) throw std::runtime_error("not an OpenEXR file (wrong magic number)");
-  int version = le32(4);
+  int version = read_exr_start(file);
   Imf::StdIFStream stream(file, path.c_str());
   Imf::Header header;
   header.readFrom(stream, version);
@@ -449,8 +450,9 @@ inline Imf::Header read_exr_header(const std::filesystem::path& path) {
 inline constexpr double kMaxExrChunkBytes = 64.0 * 1024 * 1024;
 
 /// The limits every read_exr() applies before allocating pixels: the data window's size, its channels (as
-/// floats) against memory_limit_bytes(), and the smallest file that can hold that window (one 8-byte
-/// offset-table entry per chunk).
+/// floats) against memory_limit_bytes(), the smallest file that can hold that window (one 8-byte offset-table
+/// entry per chunk; every stored pixel when uncompressed), and one chunk's decoded size against
+/// max(kMaxExrChunkBytes, 100 x the file).
 inline void check_exr_header(const std::filesystem::path& path, const Imf::Header& header) {
   const Imath::Box2i window = header.dataWindow();
   const long w = static_cast<long>(window.max.x) - window.min.x + 1;
@@ -500,7 +502,7 @@ inline void check_exr_header(const std::filesystem::path& path, const Imf::Heade
                              " and 100 times the " + describe_bytes(file_size) + " file: forged header");
 }
 
-/// Scanlines read at a time by read_exr(): whole chunks, about this many bytes of float channels per band.
+/// read_exr()'s first band: whole chunks, about this many bytes of float channels (later bands double).
 inline constexpr double kExrBandBytes = 16.0 * 1024 * 1024;
 
 }  // namespace detail

@@ -121,9 +121,12 @@ inline std::optional<Imf::Header> whole_scanline_exr_header(const std::filesyste
     for (int i = bytes - 1; i >= 0; --i) v = v << 8 | b[i];
     return v;
   };
-  if (read_le(4) != static_cast<std::uint64_t>(Imf::MAGIC)) return std::nullopt;
-  int version = static_cast<int>(read_le(4));  // readFrom may adjust it
-  if (!file) return std::nullopt;
+  int version = 0;  // readFrom may adjust it
+  try {
+    version = detail::read_exr_start(file);
+  } catch (const std::runtime_error&) {
+    return std::nullopt;  // too short, or not an EXR
+  }
   Imf::StdIFStream stream(file, path.c_str());
   Imf::Header header;
   header.readFrom(stream, version);

@@ -135,9 +135,10 @@ std::vector<std::string> output_paths(const Request& q, bool status_map, bool mp
 /// The camera path of --flight (checked, before any work): the start (a preset, or --camera-r/-theta/-phi with
 /// --orbit-dr/--orbit-dphi), the proper-time step (--frame-dtau, or automatic: one revolution over the frames, or
 /// the fall to 1.1 r_h), the path sampled (observer/worldline.hpp) and one camera per frame pointed by
-/// --look/--up (make_moving_camera). Refuses what a single frame's camera would, plus a path that ends (horizon,
-/// sky sphere) before its last frame, and the options that describe a single frame only.
-void read_flight(const CommandLine& cli, Request& q) {
+/// --look/--up (`cam`, read with the single frame's camera; make_moving_camera). Refuses what a single frame's
+/// camera would, plus a path that ends (horizon, sky sphere) before its last frame, and the options that describe a
+/// single frame only.
+void read_flight(const CommandLine& cli, const tools::CameraOptions& cam, Request& q) {
   FlightRequest& f = q.flight;
   const std::optional<FlightPathSpec> spec =
       tools::read_flight_spec(cli, q.metric.mass, q.settings.escape_radius,
@@ -157,8 +158,7 @@ void read_flight(const CommandLine& cli, Request& q) {
   if (cli.flag_set("mp4") && !program_on_path("ffmpeg"))
     throw UsageError("--mp4 needs ffmpeg, which is not on PATH; install it (apt-get install ffmpeg, or bash "
                      "cmake/install-deps.sh) or leave --mp4 out");
-  const CameraView view{tools::read_option_triple(cli, "look"), tools::read_option_triple(cli, "up"),
-                        q.camera->width(), q.camera->height(), q.camera->fov_degrees()};
+  const CameraView view{cam.look, cam.up, q.camera->width(), q.camera->height(), q.camera->fov_degrees()};
   // Kerr-Schild flights are flown in the ingoing slicing, regular where the falling camera crosses the horizon.
   if (q.metric.chart == "ks") q.metric.slicing = KerrSchildSlicing::ingoing;
   Worldline path;
@@ -306,7 +306,7 @@ Request read_request(const CommandLine& cli) {
 
   q.out = cli.text("out");
   tools::check_exr_output_name("out", q.out);
-  read_flight(cli, q);
+  read_flight(cli, cam, q);
   // Every file this run writes, checked before any work: writable, not a directory or device, not an input (the
   // texture, the camera path, the --config file).
   for (const std::string& path : output_paths(q, cli.flag_set("status-map"), cli.flag_set("mp4")))

@@ -233,7 +233,7 @@ TEST(RefineCrossing, SecantFromAnInterpolantsEstimateConvergesInAFewProbes) {
   int calls = 0;
   auto probe = [&](double t) {
     ++calls;
-    return std::pair<double, double>{std::cos(3.0 * t) - 0.4, t};
+    return Probed<double>{std::cos(3.0 * t) - 0.4, t};
   };
   const double theta0 = root + 1e-4, slope0 = -3.0 * std::sin(3.0 * (root - 2e-4));
   const auto c = refine_crossing(probe, theta0, slope0);
@@ -245,9 +245,9 @@ TEST(RefineCrossing, SecantFromAnInterpolantsEstimateConvergesInAFewProbes) {
   EXPECT_LE(std::abs(c->pending), 1e-7);
   EXPECT_NEAR(c->theta + c->pending, root, 1e-15);
   // A non-finite probe at the start gives nothing; a crossing beyond the step is clamped to its end.
-  auto nan_probe = [](double t) { return std::pair<double, double>{std::nan(""), t}; };
+  auto nan_probe = [](double t) { return Probed<double>{std::nan(""), t}; };
   EXPECT_FALSE(refine_crossing(nan_probe, 0.5, -1.0).has_value());
-  auto late = [](double t) { return std::pair<double, double>{1.5 - t, t}; };
+  auto late = [](double t) { return Probed<double>{1.5 - t, t}; };
   const auto e = refine_crossing(late, 0.99, -1.0);
   ASSERT_TRUE(e.has_value());
   EXPECT_LE(e->theta + e->pending, 1.0);

@@ -24,6 +24,7 @@
 // away where k is a constant after inlining, as in the integrators) and std::pow otherwise.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/mul_add.hpp"
 
 #include <array>
@@ -84,14 +85,30 @@ consteval Tables<K> make_tables() {
 template <int K>
 inline constexpr Tables<K> tables = make_tables<K>();
 
+#if defined(__CUDACC__)
+/// The same tables in the GPU's memory (a host variable cannot be read by device code).
+template <int K>
+__device__ constexpr Tables<K> device_tables = make_tables<K>();  // not inline: nvcc without -rdc
+#endif
+
+/// The tables of the pass being compiled: the host's, or their copy on the device.
+template <int K>
+GRTRACE_HD inline const Tables<K>& tables_here() {
+#if GRTRACE_DEVICE_PASS
+  return device_tables<K>;
+#else
+  return tables<K>;
+#endif
+}
+
 }  // namespace inverse_root_detail
 
 /// x^(-1/K) for 2 <= K <= 16 (see the top of this file).
 template <int K>
-[[gnu::always_inline]] inline double inverse_root(double x) {
+[[gnu::always_inline]] inline GRTRACE_HD double inverse_root(double x) {
   static_assert(K >= 2 && K <= 16, "inverse_root<K>: K must be 2..16 (use std::pow for other exponents)");
   namespace d = inverse_root_detail;
-  constexpr const d::Tables<K>& t = d::tables<K>;
+  const d::Tables<K>& t = d::tables_here<K>();
   if (!(x >= 0x1p-1022 && x <= 0x1.fffffffffffffp+1023)) return std::pow(x, -1.0 / K);
   const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
   // e + offset >= 0 for every normal exponent e, with offset a multiple of K: e = K q + s without a signed division.
@@ -114,7 +131,7 @@ template <int K>
 }
 
 /// x^(-1/k) with k known at run time: inverse_root<k> for k = 2..16, std::pow(x, -1.0 / k) otherwise.
-[[gnu::always_inline]] inline double inverse_root(double x, int k) {
+[[gnu::always_inline]] inline GRTRACE_HD double inverse_root(double x, int k) {
   switch (k) {
     case 2: return inverse_root<2>(x);
     case 3: return inverse_root<3>(x);

@@ -20,6 +20,7 @@
 //          convention depends on the target (the compilers' -Wpsabi warning, silenced below).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/mul_add.hpp"
 
 #include <array>
@@ -167,7 +168,7 @@ template <int W>
 /// The scalar type's value x: x itself for double, every lane x for a lane vector. For formulas written once over
 /// both (constants that must be an operand of mul_add, where no broadcast happens by itself).
 template <class S>
-[[gnu::always_inline]] inline S broadcast(double x) {
+[[gnu::always_inline]] inline GRTRACE_HD S broadcast(double x) {
   if constexpr (std::is_same_v<S, double>) return x;
   else return splat<lanes_of<S>>(x);
 }

@@ -22,19 +22,21 @@
 //          only where the instruction exists (compile-time test, no run-time dispatch).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
+
 #include <cmath>
 
 namespace grtrace {
 
 /// True when mul_add rounds once (the build has a fused multiply-add instruction).
 inline constexpr bool fused_mul_add =
-#if defined(__FMA__) || defined(__ARM_FEATURE_FMA)
+#if defined(__FMA__) || defined(__ARM_FEATURE_FMA) || defined(__CUDA_ARCH__)  // every CUDA GPU fuses
     true;
 #else
     false;
 #endif
 
-[[gnu::always_inline]] inline double mul_add(double a, double b, double c) {
+[[gnu::always_inline]] inline GRTRACE_HD double mul_add(double a, double b, double c) {
   if constexpr (fused_mul_add) return std::fma(a, b, c);
   else return a * b + c;
 }

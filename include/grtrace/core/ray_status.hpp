@@ -3,6 +3,8 @@
 // The names are part of the command-line contract (JSON "status_counts" keys, EXR "status" channel values).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
+
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -34,7 +36,7 @@ inline std::optional<RayStatus> ray_status_from_string(std::string_view name) {
 }
 
 /// True for the statuses that mean the integration itself failed (as opposed to a physical outcome).
-constexpr bool is_failure(RayStatus s) {
+constexpr GRTRACE_HD bool is_failure(RayStatus s) {
   return s == RayStatus::max_steps || s == RayStatus::step_underflow || s == RayStatus::non_finite;
 }
 

@@ -16,6 +16,7 @@
 // Assumes: round-to-nearest, no -ffast-math reassociation (the kernels' order of operations matters).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/lanes.hpp"
 #include "grtrace/core/mul_add.hpp"
 
@@ -40,7 +41,7 @@ struct LaneSinCos {
 namespace sin_cos_detail {
 
 /// The high 32 bits of |x| (fdlibm's `ix`): its comparisons are made on them.
-inline std::uint32_t high_word(double x) {
+inline GRTRACE_HD std::uint32_t high_word(double x) {
   return static_cast<std::uint32_t>(std::bit_cast<std::uint64_t>(x) >> 32) & 0x7fffffffU;
 }
 
@@ -56,14 +57,14 @@ constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-
 constexpr double pio2_1 = 1.57079632673412561417e+00, pio2_1t = 6.07710050650619224932e-11;
 
 /// fdlibm __kernel_sin(x, y, 1): sin(x + y) for |x| <= pi/4, |y| <= ulp(x) / 2.
-inline double kernel_sin(double x, double y) {
+inline GRTRACE_HD double kernel_sin(double x, double y) {
   const double z = x * x, v = z * x;
   const double r = mul_add(z, mul_add(z, mul_add(z, mul_add(z, S6, S5), S4), S3), S2);
   return x - ((z * (0.5 * y - v * r) - y) - v * S1);
 }
 
 /// fdlibm __kernel_cos(x, y): cos(x + y) for |x| <= pi/4, |y| <= ulp(x) / 2.
-inline double kernel_cos(double x, double y) {
+inline GRTRACE_HD double kernel_cos(double x, double y) {
   const double z = x * x;
   const double r = z * mul_add(z, mul_add(z, mul_add(z, mul_add(z, mul_add(z, C6, C5), C4), C3), C2), C1);
   const std::uint32_t ix = high_word(x);
@@ -78,7 +79,7 @@ inline double kernel_cos(double x, double y) {
 /// sin u and cos u for |u| <= pi/4 (a hair beyond at polar_sin_cos's range ends). Written once for double and
 /// Lanes<W>, so that a lane of the lane polar_sin_cos cannot differ from the scalar one.
 template <class S>
-[[gnu::always_inline]] inline void polar_polynomials(const S& u, S& sin_u, S& cos_u) {
+[[gnu::always_inline]] inline GRTRACE_HD void polar_polynomials(const S& u, S& sin_u, S& cos_u) {
   // The coefficients as S: mul_add's operands are of one type (for Lanes<W>, every lane the same constant).
   const S s1 = broadcast<S>(S1), s2 = broadcast<S>(S2), s3 = broadcast<S>(S3), s4 = broadcast<S>(S4),
           s5 = broadcast<S>(S5), s6 = broadcast<S>(S6);
@@ -98,11 +99,11 @@ template <class S>
 /// factor 2 of pio2_1, resp. of 2 pio2_1), the second rounds once. pio2_1t is pi/2 - pio2_1 to 53 bits: the
 /// two-part pi/2 is off by 3.5e-27 (2^-87.9), pi by twice that; relative to |u| >= 2^-16, below 2^-70.
 template <class S>
-[[gnu::always_inline]] inline S polar_middle_u(const S& theta) {
+[[gnu::always_inline]] inline GRTRACE_HD S polar_middle_u(const S& theta) {
   return (theta - pio2_1) - pio2_1t;
 }
 template <class S>
-[[gnu::always_inline]] inline S polar_high_u(const S& theta) {
+[[gnu::always_inline]] inline GRTRACE_HD S polar_high_u(const S& theta) {
   constexpr double pi_1 = 2.0 * pio2_1, pi_1t = 2.0 * pio2_1t;
   return (pi_1 - theta) + pi_1t;
 }
@@ -118,7 +119,7 @@ constexpr double polar_max = 3.141592653589793 - 0x1p-16;
 
 /// The reduction's second and third iterations (x within ~2^-16 of a multiple of pi/2: rare, kept out of line).
 /// Takes r = x - fn pio2_1 and w = fn pio2_1t with y0 = r - w; updates r, w and y0 (fdlibm __ieee754_rem_pio2).
-[[gnu::noinline]] inline void reduce_further(double fn, int j, double& r, double& w, double& y0) {
+[[gnu::noinline]] inline GRTRACE_HD void reduce_further(double fn, int j, double& r, double& w, double& y0) {
   constexpr double pio2_2 = 6.07710050630396597660e-11, pio2_2t = 2.02226624879595063154e-21;
   constexpr double pio2_3 = 2.02226624871116645580e-21, pio2_3t = 8.47842766036889956997e-32;
   double t = r;  // 2nd iteration: good to 118 bits
@@ -135,12 +136,12 @@ constexpr double polar_max = 3.141592653589793 - 0x1p-16;
   }
 }
 
-[[gnu::noinline]] inline SinCos sin_cos_libm(double x) { return {std::sin(x), std::cos(x)}; }
+[[gnu::noinline]] inline GRTRACE_HD SinCos sin_cos_libm(double x) { return {std::sin(x), std::cos(x)}; }
 
 }  // namespace sin_cos_detail
 
 /// Forced inline (GCC and Clang): it is called once per right-hand side, and a call costs as much as the kernels.
-[[gnu::always_inline]] inline SinCos sin_cos(double x) {
+[[gnu::always_inline]] inline GRTRACE_HD SinCos sin_cos(double x) {
   using namespace sin_cos_detail;
   const std::uint32_t ix = high_word(x);
   if (ix <= 0x3fe921fbU) return {kernel_sin(x, 0.0), kernel_cos(x, 0.0)};  // |x| ~<= pi/4
@@ -186,7 +187,7 @@ constexpr double polar_max = 3.141592653589793 - 0x1p-16;
 ///          (fdlibm's margin; polar_gap_low, polar_gap_high, polar_max: bounds on theta, so that the test needs no
 ///          u). There, for theta outside [0, pi] (-0.0 included), NaN and infinities: sin_cos(theta) (below 1 ulp).
 ///          No hand-over near 0: there u = theta exactly.
-[[gnu::always_inline]] inline SinCos polar_sin_cos(double theta) {
+[[gnu::always_inline]] inline GRTRACE_HD SinCos polar_sin_cos(double theta) {
   using namespace sin_cos_detail;
   // The short path: theta in [+0, polar_max] (false for NaN) and not in the gap around pi/2.
   if (!std::signbit(theta) && theta <= polar_max && (theta <= polar_gap_low || theta >= polar_gap_high)) {

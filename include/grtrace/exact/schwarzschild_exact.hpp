@@ -12,48 +12,53 @@
 //       Phi(u) = 1 / sqrt(2M A) [F(phi(u), k) - F(phi(0), k)],
 //       cos phi(u) = (A - (u - u1)) / (A + (u - u1)),  k^2 = (A + m - u1) / (2A)   (Byrd & Friedman 239.00)
 // The total deflection from infinity to infinity is alpha(b) = 2 Phi(1/r0) - pi.
-// std::ellint_1(k, psi) and std::comp_ellint_1(k) take the modulus k (not k^2).
+// F is core/elliptic.hpp's elliptic_f(psi, k) (modulus k, not k^2; callable on a GPU); Darwin's closed form below
+// uses the standard library's std::ellint_1, an independent implementation for the tests.
 #pragma once
 
-#include "grtrace/metric/schwarzschild_lapse.hpp"
-#include "grtrace/core/types.hpp"
+#include "grtrace/core/elliptic.hpp"
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/sky_direction.hpp"
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numbers>
 #include <optional>
 
 namespace grtrace::exact {
 
-inline double critical_impact_parameter(double mass = 1.0) { return 3.0 * std::sqrt(3.0) * mass; }
+inline GRTRACE_HD double critical_impact_parameter(double mass = 1.0) { return 3.0 * std::sqrt(3.0) * mass; }
 
 /// Closest approach r0 of a photon with impact parameter b > b_c (largest root of r^3 - b^2 r + 2 M b^2).
-inline double periapsis_from_impact(double b, double mass = 1.0) {
+inline GRTRACE_HD double periapsis_from_impact(double b, double mass = 1.0) {
   return 2.0 * b / std::sqrt(3.0) * std::cos(std::acos(-critical_impact_parameter(mass) / b) / 3.0);
 }
 
 /// Impact parameter of the photon whose closest approach is r0 (> 3M).
-inline double impact_from_periapsis(double r0, double mass = 1.0) { return r0 / std::sqrt(schwarzschild_f(r0, mass)); }
+inline GRTRACE_HD double impact_from_periapsis(double r0, double mass = 1.0) {
+  return r0 / std::sqrt(schwarzschild_f(r0, mass));
+}
 
 namespace detail {
 /// Phi(u) for b > b_c, given u2 = 1/periapsis (passed in: near b_c, u2 is better computed from r0 than from b).
-inline double phi_three_real_roots(double b, double u2, double u, double M) {
+inline GRTRACE_HD double phi_three_real_roots(double b, double u2, double u, double M) {
   // The other two roots of 2M u^3 - u^2 + 1/b^2 from Vieta: u1 + u3 = 1/(2M) - u2, u1 u3 = -1/(2M b^2 u2).
   const double s = 1.0 / (2.0 * M) - u2, p = -1.0 / (2.0 * M * b * b * u2);
   const double disc = std::sqrt(std::max(0.0, s * s - 4.0 * p));
   const double u3 = 0.5 * (s + disc), u1 = p / u3;
   const double k = std::sqrt((u2 - u1) / (u3 - u1));
   auto psi = [&](double v) { return std::asin(std::sqrt(std::clamp((v - u1) / (u2 - u1), 0.0, 1.0))); };
-  return 2.0 / std::sqrt(2.0 * M * (u3 - u1)) * (std::ellint_1(k, psi(u)) - std::ellint_1(k, psi(0.0)));
+  return 2.0 / std::sqrt(2.0 * M * (u3 - u1)) * (elliptic_f(psi(u), k) - elliptic_f(psi(0.0), k));
 }
 }  // namespace detail
 
 /// Angle swept between infinity and u = 1/r on a branch with no turning point in between.
 /// Assumes 0 <= u and, for b > b_c, u <= 1/periapsis.
-inline double phi_from_infinity(double b, double u, double mass = 1.0) {
+inline GRTRACE_HD double phi_from_infinity(double b, double u, double mass = 1.0) {
   if (mass == 0.0) return std::asin(std::min(1.0, b * u));
   const double M = mass;
   if (b > critical_impact_parameter(M)) return detail::phi_three_real_roots(b, 1.0 / periapsis_from_impact(b, M), u, M);
@@ -68,18 +73,18 @@ inline double phi_from_infinity(double b, double u, double mass = 1.0) {
   const double A = std::sqrt((m - u1) * (m - u1) + n2);
   const double k = std::sqrt(std::clamp((A + m - u1) / (2.0 * A), 0.0, 1.0));
   auto phi = [&](double v) { return std::acos(std::clamp((A - (v - u1)) / (A + (v - u1)), -1.0, 1.0)); };
-  return (std::ellint_1(k, phi(u)) - std::ellint_1(k, phi(0.0))) / std::sqrt(2.0 * M * A);
+  return (elliptic_f(phi(u), k) - elliptic_f(phi(0.0), k)) / std::sqrt(2.0 * M * A);
 }
 
 /// Total deflection of a photon from infinity to infinity (radians); NaN when b <= b_c (captured).
-inline double deflection_angle(double b, double mass = 1.0) {
+inline GRTRACE_HD double deflection_angle(double b, double mass = 1.0) {
   if (mass == 0.0) return 0.0;
   if (!(b > critical_impact_parameter(mass))) return std::numeric_limits<double>::quiet_NaN();
   return 2.0 * phi_from_infinity(b, 1.0 / periapsis_from_impact(b, mass), mass) - std::numbers::pi;
 }
 
 /// Total deflection of the photon whose closest approach is r0 > 3M (well conditioned even as r0 -> 3M).
-inline double deflection_angle_from_periapsis(double r0, double mass = 1.0) {
+inline GRTRACE_HD double deflection_angle_from_periapsis(double r0, double mass = 1.0) {
   const double b = impact_from_periapsis(r0, mass);
   return 2.0 * detail::phi_three_real_roots(b, 1.0 / r0, 1.0 / r0, mass) - std::numbers::pi;
 }
@@ -97,7 +102,7 @@ inline double deflection_angle_darwin(double r0, double mass = 1.0) {
 /// Where a photon at radius r, moving outward (outward = true) or inward with impact parameter b, ends up:
 /// nothing if it falls into the hole, else the angle it still sweeps in its orbital plane until infinity.
 /// Assumes r > 2M.
-inline std::optional<double> remaining_sweep(double b, double r, bool outward, double mass = 1.0) {
+inline GRTRACE_HD std::optional<double> remaining_sweep(double b, double r, bool outward, double mass = 1.0) {
   const double u = 1.0 / r;
   if (mass == 0.0) {
     const double base = std::asin(std::min(1.0, b * u));
@@ -128,8 +133,8 @@ using grtrace::angular_distance;
 /// "captured" unless they know the state is valid: a non-finite state or mass, mass < 0, r <= 2M (or r <= 0),
 /// zero momentum (k = 0) or k^t = 0 (E = 0: no impact parameter). A state on the polar axis (theta = 0 or pi) is
 /// valid: the basis there is the limit along phi.
-inline std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y, double mass = 1.0) {
-  if (!y.allFinite() || !std::isfinite(mass) || mass < 0.0) return std::nullopt;
+inline GRTRACE_HD std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y, double mass = 1.0) {
+  if (!all_finite(y) || !std::isfinite(mass) || mass < 0.0) return std::nullopt;
   if (!(y[1] > 2.0 * mass && y[1] > 0.0)) return std::nullopt;
   if (y.tail<4>().isZero(0.0) || y[4] == 0.0) return std::nullopt;
   const double r = y[1];
@@ -148,7 +153,7 @@ inline std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y, 
 
 /// The seed's angle correction (eq. 7-8): the direction of the ray's Cartesian velocity at its last point,
 /// i.e. flat space beyond that point.
-inline SkyDirection flat_direction(const GeodesicState& y) {
+inline GRTRACE_HD SkyDirection flat_direction(const GeodesicState& y) {
   return sky_direction_of(embedded_velocity(y, spherical_basis(y[2], y[3])));
 }
 

@@ -11,6 +11,7 @@
 // Counts right-hand-side evaluations exactly (FSAL stages are reused; stage 1 is always the stored f(y)).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/integrate/dense_output.hpp"
 #include "grtrace/integrate/error_norm.hpp"
@@ -45,14 +46,6 @@ struct IntegrationCounters {
   Controller controller{};
 };
 
-/// v.allFinite() as one branch-free pass (Eigen's allFinite is an out-of-line unrolled compare in the hot loop).
-template <int N>
-inline bool all_finite(const Vector<N>& v) {
-  bool ok = true;
-  for (int i = 0; i < N; ++i) ok &= std::isfinite(v[i]);
-  return ok;
-}
-
 template <ExplicitTableau T, StepController Controller, int N, class Norm = RmsNorm>
 class ControlledIntegrator {
   static_assert(Controller::estimate != ErrorEstimate::embedded || has_embedded_pair<T>,
@@ -64,18 +57,18 @@ class ControlledIntegrator {
   using Tableau = T;
   using ControllerType = Controller;
 
-  explicit ControlledIntegrator(IntegratorSettings settings = {}, Controller controller = {}, Norm norm = {})
+  GRTRACE_HD explicit ControlledIntegrator(IntegratorSettings settings = {}, Controller controller = {}, Norm norm = {})
       : settings_(settings), controller_(controller), norm_(norm) {}
 
   /// Exponent k of the controller law: (order of the local error estimate) + 1.
-  static constexpr int error_exponent() {
+  static constexpr GRTRACE_HD int error_exponent() {
     if constexpr (Controller::estimate == ErrorEstimate::embedded) return std::min(T::order, T::embedded_order) + 1;
     else return T::order + 1;
   }
 
   /// Starts at y0 with step h0; h0 <= 0 picks one automatically (Hairer, Norsett & Wanner I, II.4, "hinit").
   template <class Rhs>
-  void start(const Rhs& f, const State& y0, double h0) {
+  GRTRACE_HD void start(const Rhs& f, const State& y0, double h0) {
     y_ = y0;
     f_ = f(y0);
     rhs_evals_ = 1;
@@ -91,7 +84,7 @@ class ControlledIntegrator {
   /// right-hand side each of them evaluates): measured 0.74-0.88 of the time per general-tracer frame against the
   /// compiler's own choices (tsit5, dopri5, rkf78; docs/benchmarks.md), for ~20 % more compile time.
   template <class Rhs>
-  [[gnu::flatten]] StepOutcome advance(const Rhs& f) {
+  [[gnu::flatten]] GRTRACE_HD StepOutcome advance(const Rhs& f) {
     for (;;) {
       const std::optional<double> trial = trial_step();
       if (!trial) return StepOutcome::step_underflow;
@@ -119,7 +112,7 @@ class ControlledIntegrator {
 
   /// The step the next trial takes, min(next_step(), h_max); nothing when it is below h_min (advance() then ends
   /// with step_underflow).
-  std::optional<double> trial_step() const {
+  GRTRACE_HD std::optional<double> trial_step() const {
     const double h = std::min(h_, settings_.h_max);
     if (!(h >= settings_.h_min)) return std::nullopt;
     return h;
@@ -135,10 +128,9 @@ class ControlledIntegrator {
   /// stepper, so after it dense() reads a tableau's own interpolant from stale stages: use step_from_previous()
   /// (or a tableau without one: cubic Hermite from the kept states) where the step's interior is needed.
   template <class Rhs>
-  [[gnu::flatten]] bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err,
-                                    const State& last_stage)
-    requires(Controller::estimate == ErrorEstimate::embedded)
-  {
+  [[gnu::flatten]] GRTRACE_HD bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err,
+                                               const State& last_stage) requires(Controller::estimate ==
+                                                                                 ErrorEstimate::embedded) {
     rhs_evals_ += Stepper::evals_per_step;
     const auto outcome =
         conclude_trial(f, h, y_new, embedded_error_norm(y_new, err), [&]() -> const State& { return last_stage; });
@@ -148,7 +140,7 @@ class ControlledIntegrator {
   /// Replaces the current point by an equivalent one (e.g. the same event in another chart) and goes on from it
   /// with the same step size and controller state. The last step's dense output is no longer available.
   template <class Rhs>
-  void reseat(const Rhs& f, const State& y) {
+  GRTRACE_HD void reseat(const Rhs& f, const State& y) {
     y_ = y;
     f_ = f(y);
     ++rhs_evals_;
@@ -158,7 +150,7 @@ class ControlledIntegrator {
   }
 
   /// Everything but the state that advance() goes on from (see IntegrationCounters).
-  IntegrationCounters<Controller> counters() const {
+  GRTRACE_HD IntegrationCounters<Controller> counters() const {
     return {lambda_, h_, accepted_, rejected_, rhs_evals_, controller_};
   }
 
@@ -166,7 +158,7 @@ class ControlledIntegrator {
   /// batched integrator): the state y, its derivative f = f(y) and the counters there. advance() then goes on
   /// exactly, bit for bit, as the integration it was taken from would have. There is no dense output until the
   /// next accepted step (previous_state() is y, last_step() 0).
-  void resume_at(const State& y, const State& f, const IntegrationCounters<Controller>& c) {
+  GRTRACE_HD void resume_at(const State& y, const State& f, const IntegrationCounters<Controller>& c) {
     y_ = y_prev_ = y;
     f_ = f_prev_ = f;
     lambda_ = c.lambda;
@@ -179,7 +171,7 @@ class ControlledIntegrator {
   }
 
   /// State at lambda_prev + theta * h on the last accepted step, theta in [0, 1].
-  State dense(double theta) const {
+  GRTRACE_HD State dense(double theta) const {
     if constexpr (TableauWithDenseOutput<T> && Controller::estimate != ErrorEstimate::step_doubling) {
       return stepper_.interpolate(y_prev_, h_last_, theta);
     } else {
@@ -197,7 +189,7 @@ class ControlledIntegrator {
   /// Assumes: a step was accepted since start() or reseat() (last_step() > 0). Uses a stepper of its own, so
   ///          dense() still describes the accepted step afterwards.
   template <class Rhs>
-  State step_from_previous(const Rhs& f, double theta) {
+  GRTRACE_HD State step_from_previous(const Rhs& f, double theta) {
     const double h = theta * h_last_;
     Stepper probe;
     State y_new;
@@ -226,29 +218,29 @@ class ControlledIntegrator {
   /// f(y), counted in rhs_evals(): for work done on the integration's behalf outside advance() (event
   /// refinement), so that the count stays the honest total.
   template <class Rhs>
-  State evaluate(const Rhs& f, const State& y) {
+  GRTRACE_HD State evaluate(const Rhs& f, const State& y) {
     ++rhs_evals_;
     return f(y);
   }
 
-  const State& state() const { return y_; }
-  const State& derivative() const { return f_; }
-  const State& previous_state() const { return y_prev_; }
-  double lambda() const { return lambda_; }
-  double previous_lambda() const { return lambda_ - h_last_; }
-  double last_step() const { return h_last_; }
-  double next_step() const { return h_; }
-  int accepted() const { return accepted_; }
-  int rejected() const { return rejected_; }
-  long rhs_evals() const { return rhs_evals_; }
-  const IntegratorSettings& settings() const { return settings_; }
-  Controller& controller() { return controller_; }
+  GRTRACE_HD const State& state() const { return y_; }
+  GRTRACE_HD const State& derivative() const { return f_; }
+  GRTRACE_HD const State& previous_state() const { return y_prev_; }
+  GRTRACE_HD double lambda() const { return lambda_; }
+  GRTRACE_HD double previous_lambda() const { return lambda_ - h_last_; }
+  GRTRACE_HD double last_step() const { return h_last_; }
+  GRTRACE_HD double next_step() const { return h_; }
+  GRTRACE_HD int accepted() const { return accepted_; }
+  GRTRACE_HD int rejected() const { return rejected_; }
+  GRTRACE_HD long rhs_evals() const { return rhs_evals_; }
+  GRTRACE_HD const IntegratorSettings& settings() const { return settings_; }
+  GRTRACE_HD Controller& controller() { return controller_; }
 
  private:
   using Stepper = RungeKuttaStepper<T, N>;
 
   // The scaled norm of an embedded error estimate; infinite when the trial's result is not finite.
-  double embedded_error_norm(const State& y_new, const State& err) const {
+  GRTRACE_HD double embedded_error_norm(const State& y_new, const State& err) const {
     return all_finite(y_new) ? norm_(err, y_, y_new, settings_.tolerance) : std::numeric_limits<double>::infinity();
   }
 
@@ -256,8 +248,8 @@ class ControlledIntegrator {
   // state moves on; StepOutcome::ok), a failure (StepOutcome::non_finite, fixed steps only), or rejected (nothing:
   // h_ is the step to try next). last_stage() is the trial's last stage, f(y_new) for FSAL tableaux.
   template <class Rhs, class LastStage>
-  std::optional<StepOutcome> conclude_trial(const Rhs& f, double h, const State& y_new, double err_norm,
-                                            const LastStage& last_stage) {
+  GRTRACE_HD std::optional<StepOutcome> conclude_trial(const Rhs& f, double h, const State& y_new, double err_norm,
+                                                       const LastStage& last_stage) {
     const StepDecision decision = controller_.decide(err_norm, h, error_exponent());
     if (decision.accept) {
       State f_new;
@@ -293,7 +285,7 @@ class ControlledIntegrator {
 
   // Two half steps against one full step; returns the scaled error norm and the value to propagate.
   template <class Rhs>
-  double doubling_step(const Rhs& f, double h, State& y_new) {
+  GRTRACE_HD double doubling_step(const Rhs& f, double h, State& y_new) {
     State y_full, y_mid, y_two;
     stepper_.step(f, y_, f_, h, y_full);
     stepper_.step(f, y_, f_, 0.5 * h, y_mid);
@@ -307,7 +299,7 @@ class ControlledIntegrator {
   }
 
   template <class Rhs>
-  double initial_step(const Rhs& f) {
+  GRTRACE_HD double initial_step(const Rhs& f) {
     const Tolerance& tol = settings_.tolerance;
     auto scaled = [&](const State& v) {
       double s = 0.0;

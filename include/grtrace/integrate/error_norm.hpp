@@ -4,6 +4,7 @@
 // a step is acceptable when the norm is <= 1.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/lanes.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/types.hpp"
@@ -26,7 +27,8 @@ struct Tolerance {
 /// Root-mean-square of the scaled components (smooth, the usual choice).
 struct RmsNorm {
   template <int N>
-  double operator()(const Vector<N>& err, const Vector<N>& y, const Vector<N>& y_new, const Tolerance& tol) const {
+  GRTRACE_HD double operator()(const Vector<N>& err, const Vector<N>& y, const Vector<N>& y_new,
+                               const Tolerance& tol) const {
     double sum = 0.0;
     for (int i = 0; i < N; ++i) {
       const double sc = tol.atol + tol.rtol * std::max(std::abs(y[i]), std::abs(y_new[i]));
@@ -67,7 +69,8 @@ struct RmsNorm {
 /// Largest scaled component (stricter: no component may exceed its tolerance).
 struct MaxNorm {
   template <int N>
-  double operator()(const Vector<N>& err, const Vector<N>& y, const Vector<N>& y_new, const Tolerance& tol) const {
+  GRTRACE_HD double operator()(const Vector<N>& err, const Vector<N>& y, const Vector<N>& y_new,
+                               const Tolerance& tol) const {
     double worst = 0.0;
     for (int i = 0; i < N; ++i) {
       const double sc = tol.atol + tol.rtol * std::max(std::abs(y[i]), std::abs(y_new[i]));

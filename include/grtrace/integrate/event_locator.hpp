@@ -12,6 +12,8 @@
 // ControlledIntegrator::step_from_previous) with a secant iteration started from the interpolant's answer.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
+
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -25,8 +27,8 @@ struct EventCrossing {
 };
 
 template <class G>
-std::optional<EventCrossing> locate_first_crossing(const G& g, double g0, double g1, int interior_samples = 0,
-                                                   double theta_tol = 1e-13) {
+GRTRACE_HD std::optional<EventCrossing> locate_first_crossing(const G& g, double g0, double g1,
+                                                              int interior_samples = 0, double theta_tol = 1e-13) {
   if (!(g0 > 0.0)) return EventCrossing{0.0, g0};  // already inside at the start of the step
   double a = 0.0, ga = g0, b = 1.0, gb = g1;
   bool bracketed = false;
@@ -74,6 +76,14 @@ std::optional<EventCrossing> locate_first_crossing(const G& g, double g0, double
   return EventCrossing{b, gb};
 }
 
+/// What a probe of refine_crossing returns: g at the probed point and what was computed there (a plain struct, not
+/// std::pair, whose constructors are not callable on a GPU).
+template <class Payload>
+struct Probed {
+  double g;
+  Payload payload;
+};
+
 /// A crossing refined on an accurate but costly probe of the step, with what the probe returned there.
 template <class Payload>
 struct RefinedCrossing {
@@ -88,7 +98,7 @@ struct RefinedCrossing {
 /// Refines a crossing found on a step's interpolant with a probe that is more accurate but costs a step each
 /// (the event function on the integrator's step map): a secant iteration on theta started from the
 /// interpolant's crossing, whose first correction uses the interpolant's slope there.
-/// Takes:   probe(theta) -> std::pair<double, Payload> (g and what was computed), for theta in (0, 1];
+/// Takes:   probe(theta) -> Probed<Payload> (g and what was computed), for theta in (0, 1];
 ///          theta0, the interpolant's crossing in (0, 1]; slope0, dg/dtheta of the interpolant at theta0;
 ///          linear_limit: a correction this small (as a step fraction) is not probed but returned as `pending`,
 ///          for the caller to apply with the payload's derivative, if it is also accurate: a secant iterate
@@ -105,9 +115,9 @@ struct RefinedCrossing {
 ///          sought is the one next to theta0. The secant then converges superlinearly: one probe with a
 ///          tableau's own (order >= 4) interpolant, two with cubic Hermite.
 template <class Probe>
-auto refine_crossing(const Probe& probe, double theta0, double slope0, double linear_limit = 1e-7,
-                     int max_probes = 8) -> std::optional<RefinedCrossing<decltype(probe(0.0).second)>> {
-  using Payload = decltype(probe(0.0).second);
+GRTRACE_HD auto refine_crossing(const Probe& probe, double theta0, double slope0, double linear_limit = 1e-7,
+                                int max_probes = 8) -> std::optional<RefinedCrossing<decltype(probe(0.0).payload)>> {
+  using Payload = decltype(probe(0.0).payload);
   auto [g0, p0] = probe(theta0);
   if (!std::isfinite(g0)) return std::nullopt;
   RefinedCrossing<Payload> best{theta0, g0, std::move(p0), 1, false};

@@ -9,6 +9,7 @@
 // Stages are kept after the step so that dense output (dense_output.hpp) can reuse them.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/tableau/butcher_tableau.hpp"
@@ -40,19 +41,19 @@ struct StageSums {
 
   /// y + h sum_{J < I} a_IJ k_J: stage I's input.
   template <std::size_t I, class K>
-  static double input(const K& k, double h, double y) {
+  static GRTRACE_HD double input(const K& k, double h, double y) {
     return split<Row<I>, I>(k, h, y);
   }
 
   /// y + h sum_J w_J k_J over all stages, w = b or b - b_hat.
   template <Weights W, class K>
-  static double update(const K& k, double h, double y) {
+  static GRTRACE_HD double update(const K& k, double h, double y) {
     return split<Weight<W>, T::stages>(k, h, y);
   }
 
   /// h sum_J w_J k_J over all stages (the embedded error estimate for w = b - b_hat).
   template <Weights W, class K>
-  static double scaled(const K& k, double h) {
+  static GRTRACE_HD double scaled(const K& k, double h) {
     return split<Weight<W>, T::stages, false>(k, h, 0.0);
   }
 
@@ -60,12 +61,14 @@ struct StageSums {
   template <std::size_t I>
   struct Row {
     template <std::size_t J>
-    static constexpr double of() { return T::a[I][J]; }
+    static constexpr GRTRACE_HD double of() {
+      return T::a[I][J];
+    }
   };
   template <Weights W>
   struct Weight {
     template <std::size_t J>
-    static constexpr double of() {
+    static constexpr GRTRACE_HD double of() {
       if constexpr (W == Weights::b) return T::b[J];
       else return T::b[J] - T::b_hat[J];
     }
@@ -84,7 +87,7 @@ struct StageSums {
   /// base + h sum_{J < Count} c_J k_J as (base + h sum_{J < L} c_J k_J) + (h c_L) k_L, L = last_term; with
   /// WithBase false, h sum_{J < L} c_J k_J + (h c_L) k_L.
   template <class Coefficients, std::size_t Count, bool WithBase = true, class K>
-  static double split(const K& k, double h, double base) {
+  static GRTRACE_HD double split(const K& k, double h, double base) {
     constexpr std::size_t L = last_term<Coefficients, Count>();
     if constexpr (L == Count) {
       return WithBase ? base : 0.0;
@@ -100,7 +103,7 @@ struct StageSums {
   }
 
   template <class Coefficients, class K, std::size_t... J>
-  static double sum_of(const K& k, std::index_sequence<J...>) {
+  static GRTRACE_HD double sum_of(const K& k, std::index_sequence<J...>) {
     double acc = 0.0;
     ((acc = term<Coefficients::template of<J>()>(acc, k, std::integral_constant<std::size_t, J>{})), ...);
     return acc;
@@ -111,7 +114,7 @@ struct StageSums {
   // addition). Measured in frames (docs/benchmarks.md): fusing these terms made the 5-variable Kerr system's step
   // up to 1.1x slower.
   template <double Coefficient, class K, class J>
-  static double term(double acc, const K& k, J j) {
+  static GRTRACE_HD double term(double acc, const K& k, J j) {
     if constexpr (Coefficient != 0.0) return acc + Coefficient * k(j);
     else return acc;
   }
@@ -130,25 +133,23 @@ class RungeKuttaStepper {
   static constexpr int evals_per_step = static_cast<int>(S) - 1;
 
   template <class Rhs>
-  void step(const Rhs& f, const State& y, const State& f0, double h, State& y_new) {
+  GRTRACE_HD void step(const Rhs& f, const State& y, const State& f0, double h, State& y_new) {
     k_[0] = f0;
     compute_stages(f, y, h, std::make_index_sequence<S - 1>{});
     weighted_update<Weights::b>(y, h, y_new);
   }
 
   template <class Rhs>
-  void step(const Rhs& f, const State& y, const State& f0, double h, State& y_new, State& err) {
+  GRTRACE_HD void step(const Rhs& f, const State& y, const State& f0, double h, State& y_new, State& err) {
     step(f, y, f0, h, y_new);
     if constexpr (has_embedded_pair<T>) weighted_scaled<Weights::difference>(h, err);
   }
 
   /// k_i of the last step (k_0 = f0; for FSAL tableaux k_{S-1} = f(y_new)).
-  const State& stage(std::size_t i) const { return k_[i]; }
+  GRTRACE_HD const State& stage(std::size_t i) const { return k_[i]; }
 
   /// y(theta) on the last step, for tableaux that carry their own continuous extension.
-  State interpolate(const State& y, double h, double theta) const
-    requires TableauWithDenseOutput<T>
-  {
+  GRTRACE_HD State interpolate(const State& y, double h, double theta) const requires TableauWithDenseOutput<T> {
     State acc = State::Zero();
     for (std::size_t i = 0; i < S; ++i) {
       double w = 0.0, power = theta;
@@ -167,30 +168,30 @@ class RungeKuttaStepper {
   // showed as 15-25 % of a step). The order of the operations is StageSums': the newest stage enters last, in
   // one mul_add (core/mul_add.hpp).
   template <class Rhs, std::size_t... I>
-  void compute_stages([[maybe_unused]] const Rhs& f, [[maybe_unused]] const State& y, [[maybe_unused]] double h,
-                      std::index_sequence<I...>) {
+  GRTRACE_HD void compute_stages([[maybe_unused]] const Rhs& f, [[maybe_unused]] const State& y,
+                                 [[maybe_unused]] double h, std::index_sequence<I...>) {
     (compute_stage<I + 1>(f, y, h), ...);
   }
 
   template <std::size_t I, class Rhs>
-  void compute_stage(const Rhs& f, const State& y, double h) {
+  GRTRACE_HD void compute_stage(const Rhs& f, const State& y, double h) {
     State y_stage;
     for (int i = 0; i < N; ++i) y_stage[i] = Sums::template input<I>(component(i), h, y[i]);
     k_[I] = f(y_stage);
   }
 
   /// Stage J's value of component i, for StageSums.
-  auto component(int i) const {
+  GRTRACE_HD auto component(int i) const {
     return [this, i](auto J) { return k_[decltype(J)::value][i]; };
   }
 
   /// out = base + h sum_j w_j k_j (base given) or h sum_j w_j k_j (no base), component by component.
   template <Weights W>
-  void weighted_update(const State& base, double h, State& out) const {
+  GRTRACE_HD void weighted_update(const State& base, double h, State& out) const {
     for (int i = 0; i < N; ++i) out[i] = Sums::template update<W>(component(i), h, base[i]);
   }
   template <Weights W>
-  void weighted_scaled(double h, State& out) const {
+  GRTRACE_HD void weighted_scaled(double h, State& out) const {
     for (int i = 0; i < N; ++i) out[i] = Sums::template scaled<W>(component(i), h);
   }
 

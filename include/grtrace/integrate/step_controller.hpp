@@ -12,6 +12,7 @@
 // k = (order of the error estimate) + 1; supplied by the integrator.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/inverse_root.hpp"
 
 #include <algorithm>
@@ -33,19 +34,19 @@ struct StepFactorLimits {
   double min_factor = 0.2;
   double max_factor = 5.0;
 
-  double clamp(double factor) const { return std::clamp(factor, min_factor, max_factor); }
+  GRTRACE_HD double clamp(double factor) const { return std::clamp(factor, min_factor, max_factor); }
 };
 
 struct FixedStep {
   static constexpr std::string_view name = "fixed";
   static constexpr ErrorEstimate estimate = ErrorEstimate::none;
-  StepDecision decide(double /*err*/, double h, int /*k*/) { return {true, h}; }
-  void reset() {}
+  GRTRACE_HD StepDecision decide(double /*err*/, double h, int /*k*/) { return {true, h}; }
+  GRTRACE_HD void reset() {}
 };
 
 namespace controller_detail {
 /// x^k for a small positive integer k, by multiplication.
-constexpr double integer_power(double x, int k) {
+constexpr GRTRACE_HD double integer_power(double x, int k) {
   double p = 1.0;
   for (int i = 0; i < k; ++i) p *= x;
   return p;
@@ -54,14 +55,14 @@ constexpr double integer_power(double x, int k) {
 /// True when safety * err^(-1/k) is certainly above lim.max_factor, i.e. the law's pow would be clamped anyway:
 /// err < (safety / max_factor)^k, with a relative margin of 1e-9 that pow's rounding (< 1 ulp) cannot cross, so
 /// skipping pow never changes a decision. Steps held down by h_max (small err) are common; pow is not cheap.
-inline bool grows_by_max_factor(const StepFactorLimits& lim, double err, int k) {
+inline GRTRACE_HD bool grows_by_max_factor(const StepFactorLimits& lim, double err, int k) {
   return err < integer_power(lim.safety / lim.max_factor, k) * (1.0 - 1e-9);
 }
 
 /// The elementary (I) law. A non-finite error (NaN stage) shrinks by the largest allowed factor.
 /// err^(-1/k) is inverse_root (core/inverse_root.hpp), not std::pow: it lies on the chain from one step to the next
 /// and costs half of pow's latency (within 4 ulp of the exact root, so step sizes agree with pow's to round-off).
-inline StepDecision elementary(const StepFactorLimits& lim, double err, double h, int k) {
+inline GRTRACE_HD StepDecision elementary(const StepFactorLimits& lim, double err, double h, int k) {
   if (!std::isfinite(err)) return {false, h * lim.min_factor};
   if (err <= 1.0) {
     const double factor = grows_by_max_factor(lim, err, k) ? lim.max_factor : lim.safety * inverse_root(err, k);
@@ -75,8 +76,10 @@ struct IController {
   static constexpr std::string_view name = "i";
   static constexpr ErrorEstimate estimate = ErrorEstimate::embedded;
   StepFactorLimits limits{};
-  StepDecision decide(double err, double h, int k) { return controller_detail::elementary(limits, err, h, k); }
-  void reset() {}
+  GRTRACE_HD StepDecision decide(double err, double h, int k) {
+    return controller_detail::elementary(limits, err, h, k);
+  }
+  GRTRACE_HD void reset() {}
 };
 
 struct StepDoubling {
@@ -84,8 +87,10 @@ struct StepDoubling {
   static constexpr ErrorEstimate estimate = ErrorEstimate::step_doubling;
   StepFactorLimits limits{};
   bool richardson = false;  ///< propagate the extrapolated value instead of the two half steps
-  StepDecision decide(double err, double h, int k) { return controller_detail::elementary(limits, err, h, k); }
-  void reset() {}
+  GRTRACE_HD StepDecision decide(double err, double h, int k) {
+    return controller_detail::elementary(limits, err, h, k);
+  }
+  GRTRACE_HD void reset() {}
 };
 
 struct PIController {
@@ -97,7 +102,7 @@ struct PIController {
   double err_prev = 1.0;        ///< error norm of the last accepted step
   bool rejected_last = false;   ///< after a rejection the step may not grow (Hairer's DOPRI5 rule)
 
-  StepDecision decide(double err, double h, int k) {
+  GRTRACE_HD StepDecision decide(double err, double h, int k) {
     if (!std::isfinite(err) || err > 1.0) {
       rejected_last = true;
       return controller_detail::elementary(limits, err, h, k);
@@ -110,7 +115,7 @@ struct PIController {
     rejected_last = false;
     return {true, h * factor};
   }
-  void reset() {
+  GRTRACE_HD void reset() {
     err_prev = 1.0;
     rejected_last = false;
   }

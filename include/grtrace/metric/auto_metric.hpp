@@ -37,6 +37,7 @@
 // which tests and tools use.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/dual.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -105,7 +106,7 @@ concept declares_dependencies = requires {
 };
 
 template <class C>
-constexpr auto active_coordinates() {
+constexpr GRTRACE_HD auto active_coordinates() {
   if constexpr (declares_dependencies<C>) {
     return C::depends_on;
   } else {
@@ -115,7 +116,7 @@ constexpr auto active_coordinates() {
 
 /// depends_on is a std::array<int, K>, 1 <= K <= 4, of distinct increasing indices in 0..3.
 template <class C>
-constexpr bool dependencies_valid() {
+constexpr GRTRACE_HD bool dependencies_valid() {
   constexpr auto a = active_coordinates<C>();
   if (a.size() < 1 || a.size() > 4) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -141,7 +142,7 @@ struct MetricJet {
 
 /// A diagonal metric diag(g00, g11, g22, g33) in any scalar type (most of the example metrics).
 template <class S>
-Mat4Of<S> diagonal_metric(const S& g00, const S& g11, const S& g22, const S& g33) {
+GRTRACE_HD Mat4Of<S> diagonal_metric(const S& g00, const S& g11, const S& g22, const S& g33) {
   Mat4Of<S> g = Mat4Of<S>::Zero();
   g(0, 0) = g00;
   g(1, 1) = g11;
@@ -178,16 +179,16 @@ struct AutoMetric : C {
 
   using Components = C;
 
-  const C& components() const { return *this; }
+  GRTRACE_HD const C& components() const { return *this; }
 
   /// g_{mu nu}(x) as C writes it (evaluated on doubles: no derivative work).
-  Mat4 metric(const Vec4& x) const { return C::metric_components(x); }
+  GRTRACE_HD Mat4 metric(const Vec4& x) const { return C::metric_components(x); }
 
   /// g^{mu nu}(x) (a general 4x4 inverse: C says nothing about its block structure).
-  Mat4 inverse_metric(const Vec4& x) const { return metric(x).inverse(); }
+  GRTRACE_HD Mat4 inverse_metric(const Vec4& x) const { return metric(x).inverse(); }
 
   /// g and all its first partial derivatives in one pass of Dual<4>.
-  MetricJet jet(const Vec4& x) const {
+  GRTRACE_HD MetricJet jet(const Vec4& x) const {
     const Mat4Of<MetricDual> G = dual_components(x);
     MetricJet j;
     for (int a = 0; a < 4; ++a)
@@ -200,7 +201,7 @@ struct AutoMetric : C {
   }
 
   /// Gamma^mu_{ab} = 1/2 g^{mu nu} (d_a g_{nu b} + d_b g_{nu a} - d_nu g_{ab}), the full table.
-  Christoffel christoffel(const Vec4& x) const {
+  GRTRACE_HD Christoffel christoffel(const Vec4& x) const {
     const MetricJet j = jet(x);
     const Mat4 g_inv = j.g.inverse();
     std::array<Mat4, 4> first;  // Gamma_{nu ab}
@@ -229,7 +230,7 @@ struct AutoMetric : C {
   ///   Gamma_{nu ab} k^a k^b = (d_k g)_{nu b} k^b - q_nu / 2,
   /// and raises the index with one solve: a division per component when g is diagonal at x (checked at run time,
   /// exact zeros), else the general 4x4 inverse.
-  Vec4 acceleration(const Vec4& x, const Vec4& k) const {
+  GRTRACE_HD Vec4 acceleration(const Vec4& x, const Vec4& k) const {
     using D = Dual<active_count>;
     Vec4Of<D> xd;
     for (int i = 0; i < 4; ++i) xd[i] = D(x[i]);
@@ -256,7 +257,7 @@ struct AutoMetric : C {
   }
 
   /// The Euclidean embedding for drawing: C's own when it has one, else the chart's.
-  Vec3 to_cartesian(const Vec4& x) const {
+  GRTRACE_HD Vec3 to_cartesian(const Vec4& x) const {
     if constexpr (auto_metric_detail::has_to_cartesian<C>) {
       return C::to_cartesian(x);
     } else if constexpr (C::chart == Chart::spherical) {

@@ -15,6 +15,7 @@
 //          play no part there).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
 #include <cmath>
@@ -24,8 +25,8 @@
 namespace grtrace {
 
 template <MetricPolicy M>
-  requires(M::chart == Chart::spherical)
-std::optional<Vec4> circular_orbit_velocity(const M& metric, double r, int sense = +1) {
+requires(M::chart == Chart::spherical) GRTRACE_HD std::optional<Vec4> circular_orbit_velocity(const M& metric, double r,
+                                                                                              int sense = +1) {
   const Vec4 x(0.0, r, std::numbers::pi / 2.0, 0.0);
   const Christoffel gamma = metric.christoffel(x);
   const double a = gamma[1](3, 3), b = 2.0 * gamma[1](0, 3), c = gamma[1](0, 0);

@@ -23,6 +23,8 @@
 // in a metric).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -42,57 +44,57 @@ struct Dual {
 
   constexpr Dual() = default;
   /// A constant (every derivative 0). Implicit, so literals and doubles mix freely with Duals.
-  constexpr Dual(double value) : v(value) {}  // NOLINT(google-explicit-constructor)
-  constexpr Dual(double value, const std::array<double, size>& gradient) : v(value), d(gradient) {}
+  GRTRACE_HD constexpr Dual(double value) : v(value) {}  // NOLINT(google-explicit-constructor)
+  GRTRACE_HD constexpr Dual(double value, const std::array<double, size>& gradient) : v(value), d(gradient) {}
 
   /// The i-th independent variable at `value` (derivative e_i).
-  static constexpr Dual variable(double value, int i) {
+  static constexpr GRTRACE_HD Dual variable(double value, int i) {
     Dual x(value);
     x.d[static_cast<std::size_t>(i)] = 1.0;
     return x;
   }
 
   // ---- arithmetic ----------------------------------------------------------------------------------------
-  friend constexpr Dual operator+(const Dual& a) { return a; }
-  friend constexpr Dual operator-(const Dual& a) {
+  friend constexpr GRTRACE_HD Dual operator+(const Dual& a) { return a; }
+  friend constexpr GRTRACE_HD Dual operator-(const Dual& a) {
     Dual r(-a.v);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = -a.d[i];
     return r;
   }
-  friend constexpr Dual operator+(const Dual& a, const Dual& b) {
+  friend constexpr GRTRACE_HD Dual operator+(const Dual& a, const Dual& b) {
     Dual r(a.v + b.v);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = a.d[i] + b.d[i];
     return r;
   }
-  friend constexpr Dual operator-(const Dual& a, const Dual& b) {
+  friend constexpr GRTRACE_HD Dual operator-(const Dual& a, const Dual& b) {
     Dual r(a.v - b.v);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = a.d[i] - b.d[i];
     return r;
   }
-  friend constexpr Dual operator*(const Dual& a, const Dual& b) {
+  friend constexpr GRTRACE_HD Dual operator*(const Dual& a, const Dual& b) {
     Dual r(a.v * b.v);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = a.d[i] * b.v + a.v * b.d[i];
     return r;
   }
-  friend constexpr Dual operator/(const Dual& a, const Dual& b) {
+  friend constexpr GRTRACE_HD Dual operator/(const Dual& a, const Dual& b) {
     const double inv = 1.0 / b.v, q = a.v * inv;
     Dual r(q);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = (a.d[i] - q * b.d[i]) * inv;
     return r;
   }
   // Mixed with double: the double is a constant, so its (zero) gradient is never multiplied out.
-  friend constexpr Dual operator+(const Dual& a, double b) { return Dual(a.v + b, a.d); }
-  friend constexpr Dual operator+(double a, const Dual& b) { return Dual(a + b.v, b.d); }
-  friend constexpr Dual operator-(const Dual& a, double b) { return Dual(a.v - b, a.d); }
-  friend constexpr Dual operator-(double a, const Dual& b) { return a + (-b); }
-  friend constexpr Dual operator*(const Dual& a, double b) {
+  friend constexpr GRTRACE_HD Dual operator+(const Dual& a, double b) { return Dual(a.v + b, a.d); }
+  friend constexpr GRTRACE_HD Dual operator+(double a, const Dual& b) { return Dual(a + b.v, b.d); }
+  friend constexpr GRTRACE_HD Dual operator-(const Dual& a, double b) { return Dual(a.v - b, a.d); }
+  friend constexpr GRTRACE_HD Dual operator-(double a, const Dual& b) { return a + (-b); }
+  friend constexpr GRTRACE_HD Dual operator*(const Dual& a, double b) {
     Dual r(a.v * b);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = a.d[i] * b;
     return r;
   }
-  friend constexpr Dual operator*(double a, const Dual& b) { return b * a; }
-  friend constexpr Dual operator/(const Dual& a, double b) { return a * (1.0 / b); }
-  friend constexpr Dual operator/(double a, const Dual& b) {
+  friend constexpr GRTRACE_HD Dual operator*(double a, const Dual& b) { return b * a; }
+  friend constexpr GRTRACE_HD Dual operator/(const Dual& a, double b) { return a * (1.0 / b); }
+  friend constexpr GRTRACE_HD Dual operator/(double a, const Dual& b) {
     const double inv = 1.0 / b.v, q = a * inv;
     Dual r(q);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = -q * inv * b.d[i];
@@ -116,53 +118,53 @@ struct Dual {
 
   // ---- elementary functions (chain rule: f(a) + f'(a) da) ------------------------------------------------
   /// f(a) with derivative fp = f'(a.v).
-  friend constexpr Dual chain(const Dual& a, double f, double fp) {
+  friend constexpr GRTRACE_HD Dual chain(const Dual& a, double f, double fp) {
     Dual r(f);
     for (std::size_t i = 0; i < size; ++i) r.d[i] = fp * a.d[i];
     return r;
   }
-  friend Dual sqrt(const Dual& a) {
+  friend GRTRACE_HD Dual sqrt(const Dual& a) {
     const double s = std::sqrt(a.v);
     return chain(a, s, 0.5 / s);
   }
-  friend Dual cbrt(const Dual& a) {
+  friend GRTRACE_HD Dual cbrt(const Dual& a) {
     const double c = std::cbrt(a.v);
     return chain(a, c, 1.0 / (3.0 * c * c));
   }
-  friend Dual sin(const Dual& a) { return chain(a, std::sin(a.v), std::cos(a.v)); }
-  friend Dual cos(const Dual& a) { return chain(a, std::cos(a.v), -std::sin(a.v)); }
-  friend Dual tan(const Dual& a) {
+  friend GRTRACE_HD Dual sin(const Dual& a) { return chain(a, std::sin(a.v), std::cos(a.v)); }
+  friend GRTRACE_HD Dual cos(const Dual& a) { return chain(a, std::cos(a.v), -std::sin(a.v)); }
+  friend GRTRACE_HD Dual tan(const Dual& a) {
     const double t = std::tan(a.v);
     return chain(a, t, 1.0 + t * t);
   }
-  friend Dual asin(const Dual& a) { return chain(a, std::asin(a.v), 1.0 / std::sqrt(1.0 - a.v * a.v)); }
-  friend Dual acos(const Dual& a) { return chain(a, std::acos(a.v), -1.0 / std::sqrt(1.0 - a.v * a.v)); }
-  friend Dual atan(const Dual& a) { return chain(a, std::atan(a.v), 1.0 / (1.0 + a.v * a.v)); }
-  friend Dual atan2(const Dual& y, const Dual& x) {
+  friend GRTRACE_HD Dual asin(const Dual& a) { return chain(a, std::asin(a.v), 1.0 / std::sqrt(1.0 - a.v * a.v)); }
+  friend GRTRACE_HD Dual acos(const Dual& a) { return chain(a, std::acos(a.v), -1.0 / std::sqrt(1.0 - a.v * a.v)); }
+  friend GRTRACE_HD Dual atan(const Dual& a) { return chain(a, std::atan(a.v), 1.0 / (1.0 + a.v * a.v)); }
+  friend GRTRACE_HD Dual atan2(const Dual& y, const Dual& x) {
     const double inv = 1.0 / (x.v * x.v + y.v * y.v);
     Dual r(std::atan2(y.v, x.v));
     for (std::size_t i = 0; i < size; ++i) r.d[i] = (x.v * y.d[i] - y.v * x.d[i]) * inv;
     return r;
   }
-  friend Dual exp(const Dual& a) {
+  friend GRTRACE_HD Dual exp(const Dual& a) {
     const double e = std::exp(a.v);
     return chain(a, e, e);
   }
-  friend Dual log(const Dual& a) { return chain(a, std::log(a.v), 1.0 / a.v); }
-  friend Dual sinh(const Dual& a) { return chain(a, std::sinh(a.v), std::cosh(a.v)); }
-  friend Dual cosh(const Dual& a) { return chain(a, std::cosh(a.v), std::sinh(a.v)); }
-  friend Dual tanh(const Dual& a) {
+  friend GRTRACE_HD Dual log(const Dual& a) { return chain(a, std::log(a.v), 1.0 / a.v); }
+  friend GRTRACE_HD Dual sinh(const Dual& a) { return chain(a, std::sinh(a.v), std::cosh(a.v)); }
+  friend GRTRACE_HD Dual cosh(const Dual& a) { return chain(a, std::cosh(a.v), std::sinh(a.v)); }
+  friend GRTRACE_HD Dual tanh(const Dual& a) {
     const double t = std::tanh(a.v);
     return chain(a, t, 1.0 - t * t);
   }
-  friend Dual pow(const Dual& a, double p) {
+  friend GRTRACE_HD Dual pow(const Dual& a, double p) {
     const double ap = std::pow(a.v, p - 1.0);
     return chain(a, ap * a.v, p * ap);
   }
-  friend Dual pow(const Dual& a, const Dual& p) { return exp(p * log(a)); }
-  friend constexpr Dual abs(const Dual& a) { return a.v < 0.0 ? -a : a; }
-  friend constexpr Dual fabs(const Dual& a) { return abs(a); }
-  friend bool isfinite(const Dual& a) {
+  friend GRTRACE_HD Dual pow(const Dual& a, const Dual& p) { return exp(p * log(a)); }
+  friend constexpr GRTRACE_HD Dual abs(const Dual& a) { return a.v < 0.0 ? -a : a; }
+  friend constexpr GRTRACE_HD Dual fabs(const Dual& a) { return abs(a); }
+  friend GRTRACE_HD bool isfinite(const Dual& a) {
     bool ok = std::isfinite(a.v);
     for (double x : a.d) ok = ok && std::isfinite(x);
     return ok;
@@ -170,9 +172,9 @@ struct Dual {
 };
 
 /// The value of a number, Dual or plain (for branches and for code shared by both).
-constexpr double primal_value(double x) { return x; }
+constexpr GRTRACE_HD double primal_value(double x) { return x; }
 template <int N>
-constexpr double primal_value(const Dual<N>& x) {
+constexpr GRTRACE_HD double primal_value(const Dual<N>& x) {
   return x.v;
 }
 
@@ -196,10 +198,10 @@ struct NumTraits<grtrace::Dual<N>> : NumTraits<double> {
     AddCost = N + 1,
     MulCost = 2 * N + 1,
   };
-  static inline Real epsilon() { return Real(std::numeric_limits<double>::epsilon()); }
-  static inline Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
-  static inline Real highest() { return Real(std::numeric_limits<double>::max()); }
-  static inline Real lowest() { return Real(std::numeric_limits<double>::lowest()); }
+  static inline GRTRACE_HD Real epsilon() { return Real(std::numeric_limits<double>::epsilon()); }
+  static inline GRTRACE_HD Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
+  static inline GRTRACE_HD Real highest() { return Real(std::numeric_limits<double>::max()); }
+  static inline GRTRACE_HD Real lowest() { return Real(std::numeric_limits<double>::lowest()); }
 };
 
 template <int N, typename BinaryOp>

@@ -27,6 +27,7 @@
 // of metric().
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/sin_cos.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -52,7 +53,7 @@ struct KerrBLTerms {
   double dr_tt, dr_tph, dr_phph, dr_rr, dr_thth;       ///< d/dr
   double dth_tt, dth_tph, dth_phph, dth_rr, dth_thth;  ///< d/dtheta
 
-  KerrBLTerms(double mass, double a, double r_in, double theta) : r(r_in) {
+  GRTRACE_HD KerrBLTerms(double mass, double a, double r_in, double theta) : r(r_in) {
     const double m = mass, s = std::sin(theta), c = std::cos(theta);
     sin_theta = s;
     cos_theta = c;
@@ -88,12 +89,12 @@ struct KerrBLTerms {
   }
 
   /// g_tt g_phph - g_tph^2 = -Delta sin^2 theta (exact, no cancellation).
-  double tphi_determinant() const { return -delta * sin_theta * sin_theta; }
+  GRTRACE_HD double tphi_determinant() const { return -delta * sin_theta * sin_theta; }
 };
 
 /// Gamma^mu_ab = 1/2 g^{mu nu} (d_a g_{nu b} + d_b g_{nu a} - d_nu g_ab) from the inverse metric and the four
 /// matrices d_c g_{mu nu}. For christoffel() of metrics whose derivatives are known in closed form (tests and tools).
-inline Christoffel christoffel_from_derivatives(const Mat4& g_inv, const std::array<Mat4, 4>& dg) {
+inline GRTRACE_HD Christoffel christoffel_from_derivatives(const Mat4& g_inv, const std::array<Mat4, 4>& dg) {
   Christoffel G;
   for (std::size_t mu = 0; mu < 4; ++mu) {
     const int m = static_cast<int>(mu);
@@ -129,9 +130,9 @@ struct KerrMetric {
     return KerrMetric{mass, spin};
   }
 
-  KerrBLTerms terms(const Vec4& x) const { return KerrBLTerms(mass, spin, x[1], x[2]); }
+  GRTRACE_HD KerrBLTerms terms(const Vec4& x) const { return KerrBLTerms(mass, spin, x[1], x[2]); }
 
-  Mat4 metric(const Vec4& x) const {
+  GRTRACE_HD Mat4 metric(const Vec4& x) const {
     const KerrBLTerms q = terms(x);
     Mat4 g = Mat4::Zero();
     g(0, 0) = q.g_tt;
@@ -143,7 +144,7 @@ struct KerrMetric {
   }
 
   /// g^{mu nu}, exact: (t, phi) block over its determinant -Delta sin^2 theta, 1/g_rr, 1/g_thth.
-  Mat4 inverse_metric(const Vec4& x) const {
+  GRTRACE_HD Mat4 inverse_metric(const Vec4& x) const {
     const KerrBLTerms q = terms(x);
     const double inv_det = q.inv_tphi_det;
     Mat4 gi = Mat4::Zero();
@@ -156,7 +157,7 @@ struct KerrMetric {
   }
 
   /// d g_{mu nu} / d x^a for a = t, r, theta, phi (the t and phi derivatives vanish).
-  std::array<Mat4, 4> metric_derivatives(const Vec4& x) const {
+  GRTRACE_HD std::array<Mat4, 4> metric_derivatives(const Vec4& x) const {
     const KerrBLTerms q = terms(x);
     std::array<Mat4, 4> dg;
     for (auto& d : dg) d.setZero();
@@ -173,7 +174,7 @@ struct KerrMetric {
   }
 
   /// Gamma^mu_ab from the analytic derivatives of g (tests and tools; the hot loop uses acceleration()).
-  Christoffel christoffel(const Vec4& x) const {
+  GRTRACE_HD Christoffel christoffel(const Vec4& x) const {
     return christoffel_from_derivatives(inverse_metric(x), metric_derivatives(x));
   }
 
@@ -181,7 +182,7 @@ struct KerrMetric {
   /// T = k^t - a sin^2 k^phi, in which the (t, phi) block is g(k, k)_tphi = k^t^2 - (r^2 + a^2) sin^2 k^phi^2 - h T^2,
   /// p_t = k^t - h T and p_phi = -(r^2 + a^2) sin^2 k^phi + h a sin^2 T; the only division by sin^2 is the one
   /// the chart needs (g^phiphi).
-  Vec4 acceleration(const Vec4& x, const Vec4& k) const {
+  GRTRACE_HD Vec4 acceleration(const Vec4& x, const Vec4& k) const {
     // The inline sincos (core/sin_cos.hpp) where the build has fused multiply-add: 0.87-0.9 of the step time in a
     // frame (tsit5, rkf78; frame_benchmark frame/metric/kerr_bl). Without it, libm's: the inline kernels measured
     // 2-4 % slower here then (docs/benchmarks.md).
@@ -224,21 +225,21 @@ struct KerrMetric {
     return acc;
   }
 
-  double radius(const Vec4& x) const { return x[1]; }
-  double horizon_radius() const { return outer_horizon(); }
+  GRTRACE_HD double radius(const Vec4& x) const { return x[1]; }
+  GRTRACE_HD double horizon_radius() const { return outer_horizon(); }
   /// The Euclidean embedding of (r, theta, phi) as in the Schwarzschild chart (not the oblate KS embedding).
-  Vec3 to_cartesian(const Vec4& x) const { return spherical_to_cartesian(x); }
+  GRTRACE_HD Vec3 to_cartesian(const Vec4& x) const { return spherical_to_cartesian(x); }
 
   // ---- the geometry ------------------------------------------------------------------------------------------
-  double outer_horizon() const { return mass + std::sqrt(mass * mass - spin * spin); }
-  double inner_horizon() const { return mass - std::sqrt(mass * mass - spin * spin); }
+  GRTRACE_HD double outer_horizon() const { return mass + std::sqrt(mass * mass - spin * spin); }
+  GRTRACE_HD double inner_horizon() const { return mass - std::sqrt(mass * mass - spin * spin); }
   /// Omega_H = a / (r_+^2 + a^2) = a / (2 M r_+): the horizon's null generator is chi = d_t + Omega_H d_phi.
-  double horizon_angular_velocity() const { return spin / (2.0 * mass * outer_horizon()); }
+  GRTRACE_HD double horizon_angular_velocity() const { return spin / (2.0 * mass * outer_horizon()); }
 
   /// The radial potential of a null geodesic with energy E, axial angular momentum L_z and Carter constant Q:
   /// R(r) = (E (r^2 + a^2) - a L_z)^2 - Delta ((L_z - a E)^2 + Q), with (Sigma dr/dlambda)^2 = R (Carter 1968;
   /// Chandrasekhar 1983, sec. 63). Valid inside the horizons too (Delta < 0 there).
-  double radial_potential(double e, double lz, double q, double r) const {
+  GRTRACE_HD double radial_potential(double e, double lz, double q, double r) const {
     const double p = e * (r * r + spin * spin) - spin * lz, delta = r * r - 2.0 * mass * r + spin * spin;
     return p * p - delta * ((lz - spin * e) * (lz - spin * e) + q);
   }
@@ -249,7 +250,7 @@ struct KerrMetric {
   /// Method:  R = E^2 r^4 + c2 r^2 + c1 r + c0 (no r^3 term), R -> +inf; its minima over (r_+, inf) are among the
   /// real roots of R'(r)/(4 E^2) = r^3 + p r + q (p = c2 / (2 E^2), q = c1 / (4 E^2)), found in closed form
   /// (trigonometric form for three real roots, Cardano's for one). E = 0: R -> -inf, a turning point.
-  bool radial_turning_point_outside(double e, double lz, double q) const {
+  GRTRACE_HD bool radial_turning_point_outside(double e, double lz, double q) const {
     if (e == 0.0) return true;
     const double a = spin, k = (lz - a * e) * (lz - a * e) + q, w = e * a * a - a * lz;
     const double c2 = 2.0 * e * w - k, c1 = 2.0 * mass * k;
@@ -268,29 +269,29 @@ struct KerrMetric {
   }
 
   /// Static limit r_E(theta) = M + sqrt(M^2 - a^2 cos^2 theta): g_tt = 0 there; no static observers inside.
-  double ergosphere_radius(double theta) const {
+  GRTRACE_HD double ergosphere_radius(double theta) const {
     const double c = std::cos(theta);
     return mass + std::sqrt(mass * mass - spin * spin * c * c);
   }
   /// Angular velocity of the zero-angular-momentum observers, omega = -g_tph / g_phph = 2 M a r / A.
-  double frame_dragging(double r, double theta) const {
+  GRTRACE_HD double frame_dragging(double r, double theta) const {
     const KerrBLTerms q(mass, spin, r, theta);
     return 2.0 * mass * spin * r / q.big_a;
   }
   /// Lapse of the ZAMO frame, alpha = sqrt(Sigma Delta / A) (0 on the horizon, 1 at infinity).
-  double lapse(double r, double theta) const {
+  GRTRACE_HD double lapse(double r, double theta) const {
     const KerrBLTerms q(mass, spin, r, theta);
     return std::sqrt(q.sigma * q.delta / q.big_a);
   }
   /// ZAMO 4-velocity (1/alpha)(d_t + omega d_phi) at x.
-  Vec4 zamo_velocity(const Vec4& x) const {
+  GRTRACE_HD Vec4 zamo_velocity(const Vec4& x) const {
     const double alpha = lapse(x[1], x[2]);
     return Vec4(1.0 / alpha, 0.0, 0.0, frame_dragging(x[1], x[2]) / alpha);
   }
 
   /// Orthonormal frame of the ZAMO at x: e_0 = its 4-velocity, e_1 along +r, e_2 along +theta, e_3 along +phi
   /// (g(e_a, e_b) = diag(1, -1, -1, -1)). Off the axis and outside r_+.
-  std::array<Vec4, 4> zamo_tetrad(const Vec4& x) const {
+  GRTRACE_HD std::array<Vec4, 4> zamo_tetrad(const Vec4& x) const {
     const KerrBLTerms q = terms(x);
     const double alpha = std::sqrt(q.sigma * q.delta / q.big_a), omega = 2.0 * mass * spin * q.r / q.big_a;
     return {Vec4(1.0 / alpha, 0.0, 0.0, omega / alpha), Vec4(0.0, std::sqrt(q.delta / q.sigma), 0.0, 0.0),
@@ -299,18 +300,18 @@ struct KerrMetric {
 
   // ---- constants of geodesic motion (kerr.md sign conventions for +,-,-,-) -------------------------------------
   /// Killing energy E = p_t = g_tt k^t + g_tph k^phi.
-  double energy(const GeodesicState& y) const {
+  GRTRACE_HD double energy(const GeodesicState& y) const {
     const KerrBLTerms q = terms(y.head<4>());
     return q.g_tt * y[4] + q.g_tph * y[7];
   }
   /// Axial angular momentum L_z = -p_phi = -(g_tph k^t + g_phph k^phi).
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const KerrBLTerms q = terms(y.head<4>());
     return -(q.g_tph * y[4] + q.g_phph * y[7]);
   }
   /// Carter's constant Q = p_th^2 - cos^2 th (a^2 (E^2 - mu^2) - L_z^2 / sin^2 th), p_th = -Sigma k^th,
   /// mu^2 = g(k, k) (0 for light). Q >= 0 for rays that cross the equatorial plane.
-  double carter_constant(const GeodesicState& y) const {
+  GRTRACE_HD double carter_constant(const GeodesicState& y) const {
     const KerrBLTerms q = terms(y.head<4>());
     const double e = q.g_tt * y[4] + q.g_tph * y[7];
     const double lz = -(q.g_tph * y[4] + q.g_phph * y[7]);
@@ -322,8 +323,8 @@ struct KerrMetric {
   }
 
   /// Kretschmann scalar R_abcd R^abcd = 48 M^2 (r^6 - 15 a^2 r^4 c^2 + 15 a^4 r^2 c^4 - a^6 c^6) / Sigma^6.
-  double kretschmann(const Vec4& x) const { return kretschmann_at(x[1], std::cos(x[2])); }
-  double kretschmann_at(double r, double cos_theta) const {
+  GRTRACE_HD double kretschmann(const Vec4& x) const { return kretschmann_at(x[1], std::cos(x[2])); }
+  GRTRACE_HD double kretschmann_at(double r, double cos_theta) const {
     const double r2 = r * r, ac2 = spin * spin * cos_theta * cos_theta;
     const double sigma = r2 + ac2, s3 = sigma * sigma * sigma;
     const double poly = r2 * r2 * r2 - 15.0 * r2 * r2 * ac2 + 15.0 * r2 * ac2 * ac2 - ac2 * ac2 * ac2;

@@ -42,6 +42,7 @@
 // W = r^4 + a^2 z^2.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -59,7 +60,7 @@ enum class KerrSchildSlicing { ingoing, outgoing };
 /// The slicing whose horizon a ray with this k^t crosses: ingoing for future-directed rays (k^t > 0), outgoing
 /// for past-directed ones (k^t < 0, camera rays traced backwards). The Kerr-Schild t = const slices are spacelike
 /// everywhere (g^tt = 1 + f > 0), so the sign of k^t is the ray's time orientation at any event, even inside r_+.
-inline constexpr KerrSchildSlicing slicing_crossed_by(double k_t) {
+inline constexpr GRTRACE_HD KerrSchildSlicing slicing_crossed_by(double k_t) {
   return k_t < 0.0 ? KerrSchildSlicing::outgoing : KerrSchildSlicing::ingoing;
 }
 
@@ -74,13 +75,13 @@ struct KerrSchildTerms {
 
   /// r^2 alone: the positive root of r^4 - b r^2 - c = 0 (b = R^2 - a^2, c = a^2 z^2), in the form without
   /// cancellation for either sign of b. radius() needs only this (the events test it every step).
-  static double radius_squared(double a, double x, double y, double z) {
+  static GRTRACE_HD double radius_squared(double a, double x, double y, double z) {
     const double a2 = a * a, b = mul_add(z, z, mul_add(y, y, x * x)) - a2, c = a2 * z * z;
     const double root = std::sqrt(mul_add(b, b, 4.0 * c));
     return b >= 0.0 ? 0.5 * (b + root) : 2.0 * c / (root - b);
   }
 
-  KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
+  GRTRACE_HD KerrSchildTerms(double mass, double a, double e, double x, double y, double z) {
     const double a2 = a * a, c = a2 * z * z;
     const double r2 = radius_squared(a, x, y, z);
     r = std::sqrt(r2);
@@ -118,37 +119,40 @@ struct KerrSchildMetric {
   KerrSchildSlicing slicing = KerrSchildSlicing::ingoing;
 
   /// A KerrSchildMetric after checking M > 0 finite and |a| < M; throws std::invalid_argument otherwise.
-  static KerrSchildMetric checked(double mass, double spin, KerrSchildSlicing slicing = KerrSchildSlicing::ingoing) {
+  static GRTRACE_HD KerrSchildMetric checked(double mass, double spin,
+                                             KerrSchildSlicing slicing = KerrSchildSlicing::ingoing) {
     const KerrMetric bl = KerrMetric::checked(mass, spin);  // same rules, same messages
     return KerrSchildMetric{bl.mass, bl.spin, slicing};
   }
 
   /// e = +1 for the ingoing chart, -1 for the outgoing one.
-  double orientation() const { return slicing == KerrSchildSlicing::ingoing ? 1.0 : -1.0; }
-  KerrSchildTerms terms(const Vec4& x) const { return KerrSchildTerms(mass, spin, orientation(), x[1], x[2], x[3]); }
+  GRTRACE_HD double orientation() const { return slicing == KerrSchildSlicing::ingoing ? 1.0 : -1.0; }
+  GRTRACE_HD KerrSchildTerms terms(const Vec4& x) const {
+    return KerrSchildTerms(mass, spin, orientation(), x[1], x[2], x[3]);
+  }
   /// The Boyer-Lindquist metric of the same hole (for the conversions and the BL quantities).
-  KerrMetric boyer_lindquist() const { return KerrMetric{mass, spin}; }
+  GRTRACE_HD KerrMetric boyer_lindquist() const { return KerrMetric{mass, spin}; }
   /// Optional trait (metric/metric_traits.hpp): the spherical chart of this spacetime (Boyer-Lindquist) and the BL
   /// coordinates of an event outside r_+ (ks_to_bl_position, defined below).
-  KerrMetric spherical_chart() const { return boyer_lindquist(); }
+  GRTRACE_HD KerrMetric spherical_chart() const { return boyer_lindquist(); }
   Vec4 spherical_event(const Vec4& x) const;
 
-  static Mat4 eta() { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
+  static GRTRACE_HD Mat4 eta() { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
 
-  Mat4 metric(const Vec4& x) const {
+  GRTRACE_HD Mat4 metric(const Vec4& x) const {
     const KerrSchildTerms q = terms(x);
     return eta() - q.f * q.l * q.l.transpose();
   }
 
   /// g^{mu nu} = eta^{mu nu} + f L^mu L^nu, exact.
-  Mat4 inverse_metric(const Vec4& x) const {
+  GRTRACE_HD Mat4 inverse_metric(const Vec4& x) const {
     const KerrSchildTerms q = terms(x);
     const Vec4 up = eta() * q.l;
     return eta() + q.f * up * up.transpose();
   }
 
   /// d_c g_{mu nu} = -(d_c f) l_mu l_nu - f (d_c l_mu l_nu + l_mu d_c l_nu); zero for c = t.
-  std::array<Mat4, 4> metric_derivatives(const Vec4& x) const {
+  GRTRACE_HD std::array<Mat4, 4> metric_derivatives(const Vec4& x) const {
     const KerrSchildTerms q = terms(x);
     std::array<Mat4, 4> dg;
     dg[0].setZero();
@@ -161,7 +165,7 @@ struct KerrSchildMetric {
     return dg;
   }
 
-  Christoffel christoffel(const Vec4& x) const {
+  GRTRACE_HD Christoffel christoffel(const Vec4& x) const {
     return christoffel_from_derivatives(inverse_metric(x), metric_derivatives(x));
   }
 
@@ -171,7 +175,7 @@ struct KerrSchildMetric {
   /// J k = dr (c.k) + D k, J^T k = c (dr.k) + D^T k and k.J.k = (dr.k)(c.k) + e r (k_x^2 + k_y^2) / P + e k_z^2 / r
   /// (a's part of D is antisymmetric). The same quantities as the Eigen form (acceleration_reference) up to
   /// round-off, at about half the cost.
-  Vec4 acceleration(const Vec4& x4, const Vec4& k) const {
+  GRTRACE_HD Vec4 acceleration(const Vec4& x4, const Vec4& k) const {
     const double a = spin, e = orientation(), x = x4[1], y = x4[2], z = x4[3];
     const double a2 = a * a, c = a2 * z * z;
     const double r2 = KerrSchildTerms::radius_squared(a, x, y, z), r = std::sqrt(r2), r3 = r2 * r;
@@ -211,7 +215,7 @@ struct KerrSchildMetric {
 
   /// The same acceleration from KerrSchildTerms with Eigen's 3-vectors and 3x3 J (the form acceleration() was
   /// derived from; tests compare the two).
-  Vec4 acceleration_reference(const Vec4& x, const Vec4& k) const {
+  GRTRACE_HD Vec4 acceleration_reference(const Vec4& x, const Vec4& k) const {
     const KerrSchildTerms q = terms(x);
     const Eigen::Vector3d ks = k.tail<3>();
     const double s = q.l.dot(k);
@@ -227,23 +231,25 @@ struct KerrSchildMetric {
   }
 
   /// The Boyer-Lindquist-like r of the event (the quadric's root), not the Euclidean distance.
-  double radius(const Vec4& x) const { return std::sqrt(KerrSchildTerms::radius_squared(spin, x[1], x[2], x[3])); }
+  GRTRACE_HD double radius(const Vec4& x) const {
+    return std::sqrt(KerrSchildTerms::radius_squared(spin, x[1], x[2], x[3]));
+  }
   /// The capture radius r_c = r_+ - (r_+ - r_-)/4 (see the header comment: inside r_+, so capture is exact).
-  double horizon_radius() const { return outer_horizon() - 0.25 * (outer_horizon() - inner_horizon()); }
+  GRTRACE_HD double horizon_radius() const { return outer_horizon() - 0.25 * (outer_horizon() - inner_horizon()); }
   /// The chart's own coordinates: the Kerr-Schild x, y, z (r = const surfaces are oblate spheroids).
-  Vec3 to_cartesian(const Vec4& x) const { return x.tail<3>(); }
+  GRTRACE_HD Vec3 to_cartesian(const Vec4& x) const { return x.tail<3>(); }
 
-  double outer_horizon() const { return mass + std::sqrt(mass * mass - spin * spin); }
-  double inner_horizon() const { return mass - std::sqrt(mass * mass - spin * spin); }
+  GRTRACE_HD double outer_horizon() const { return mass + std::sqrt(mass * mass - spin * spin); }
+  GRTRACE_HD double inner_horizon() const { return mass - std::sqrt(mass * mass - spin * spin); }
   /// Omega_H = a / (r_+^2 + a^2): the horizon's generator is chi = d_t + Omega_H d_phi (KerrMetric's).
-  double horizon_angular_velocity() const { return boyer_lindquist().horizon_angular_velocity(); }
+  GRTRACE_HD double horizon_angular_velocity() const { return boyer_lindquist().horizon_angular_velocity(); }
 
   /// Optional trait (metric/metric_traits.hpp): the capture radius for the ray starting at y0. A ray whose time
   /// direction crosses the horizon this slicing is regular on (slicing_crossed_by(k^t) == slicing) is captured
   /// at r_c inside r_+ (exact, see the header comment); any other ray cannot cross r_+ in this chart (it creeps
   /// towards it as in Boyer-Lindquist) and is captured at the guard (1 + eps) r_+ outside, where a ray moving
   /// inwards inside the photon orbits has no turning point left: the Boyer-Lindquist decision.
-  double capture_radius(const GeodesicState& y0) const {
+  GRTRACE_HD double capture_radius(const GeodesicState& y0) const {
     return slicing_crossed_by(y0[4]) == slicing ? horizon_radius() : outer_horizon();
   }
 
@@ -260,7 +266,7 @@ struct KerrSchildMetric {
   /// is singular on: captured at once too, where it would end anyway. That is also the only way to decide the rays
   /// with E - Omega_H L_z -> 0+ (all of them turn back): they leave near the bifurcation sphere, where this chart's
   /// k^t grows without bound before they are out. Between r_+ and the guard: when it moves outwards.
-  bool leaves_interior(const GeodesicState& y0) const {
+  GRTRACE_HD bool leaves_interior(const GeodesicState& y0) const {
     if (slicing_crossed_by(y0[4]) == slicing) return false;  // it falls in: captured
     const KerrSchildTerms q = terms(y0.head<4>());
     if (q.r >= outer_horizon()) return q.dr.dot(y0.tail<3>()) > 0.0;
@@ -272,9 +278,9 @@ struct KerrSchildMetric {
 
   // ---- constants of geodesic motion (same values as KerrMetric's at the corresponding BL state) -------------
   /// E = p_t = g_{t nu} k^nu (d_t is the same Killing field in both charts).
-  double energy(const GeodesicState& y) const { return metric(y.head<4>()).row(0).dot(y.tail<4>()); }
+  GRTRACE_HD double energy(const GeodesicState& y) const { return metric(y.head<4>()).row(0).dot(y.tail<4>()); }
   /// L_z = -p_phi with d_phi = -y d_x + x d_y: L_z = -(x p_y - y p_x).
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const Vec4 p = metric(y.head<4>()) * y.tail<4>();
     return -(y[1] * p[2] - y[2] * p[1]);
   }
@@ -287,7 +293,7 @@ struct KerrSchildMetric {
   Mat4 jacobian_from_spherical(const Vec4& x_bl) const;
 
   /// Kretschmann scalar, the BL formula at r and cos(theta) = z / r.
-  double kretschmann(const Vec4& x) const {
+  GRTRACE_HD double kretschmann(const Vec4& x) const {
     const double r = radius(x);
     return boyer_lindquist().kretschmann_at(r, x[3] / r);
   }
@@ -300,20 +306,20 @@ static_assert(MetricPolicy<KerrSchildMetric>);
 namespace kerr_schild_detail {
 /// t_KS - t_BL = e int 2 M r / Delta dr and phi_KS - phi_BL = e a int dr / Delta (constants chosen to vanish
 /// nowhere special; only differences matter): partial fractions over r_+ and r_-.
-inline double time_shift(const KerrSchildMetric& m, double r) {
+inline GRTRACE_HD double time_shift(const KerrSchildMetric& m, double r) {
   const double rp = m.outer_horizon(), rm = m.inner_horizon(), d = rp - rm;
   double v = 2.0 * m.mass * rp / d * std::log(std::abs(r - rp) / m.mass);
   if (rm > 0.0) v -= 2.0 * m.mass * rm / d * std::log(std::abs(r - rm) / m.mass);
   return m.orientation() * v;
 }
-inline double phi_shift(const KerrSchildMetric& m, double r) {
+inline GRTRACE_HD double phi_shift(const KerrSchildMetric& m, double r) {
   const double rp = m.outer_horizon(), rm = m.inner_horizon();
   return m.orientation() * m.spin / (rp - rm) * std::log(std::abs((r - rp) / (r - rm)));
 }
 }  // namespace kerr_schild_detail
 
 /// The Kerr-Schild event of a Boyer-Lindquist event (t, r, theta, phi).
-inline Vec4 bl_to_ks_position(const KerrSchildMetric& m, const Vec4& x_bl) {
+inline GRTRACE_HD Vec4 bl_to_ks_position(const KerrSchildMetric& m, const Vec4& x_bl) {
   const double r = x_bl[1], st = std::sin(x_bl[2]), ct = std::cos(x_bl[2]);
   const double ea = m.orientation() * m.spin;
   const double ph = x_bl[3] + kerr_schild_detail::phi_shift(m, r), cp = std::cos(ph), sp = std::sin(ph);
@@ -321,7 +327,7 @@ inline Vec4 bl_to_ks_position(const KerrSchildMetric& m, const Vec4& x_bl) {
 }
 
 /// d x_KS / d x_BL at a Boyer-Lindquist event: maps BL tangent vectors to KS ones.
-inline Mat4 bl_to_ks_jacobian(const KerrSchildMetric& m, const Vec4& x_bl) {
+inline GRTRACE_HD Mat4 bl_to_ks_jacobian(const KerrSchildMetric& m, const Vec4& x_bl) {
   const double r = x_bl[1], st = std::sin(x_bl[2]), ct = std::cos(x_bl[2]);
   const double e = m.orientation(), ea = e * m.spin;
   const double delta = r * r - 2.0 * m.mass * r + m.spin * m.spin;
@@ -343,13 +349,13 @@ inline Mat4 bl_to_ks_jacobian(const KerrSchildMetric& m, const Vec4& x_bl) {
   return jac;
 }
 
-inline GeodesicState bl_to_ks(const KerrSchildMetric& m, const GeodesicState& y_bl) {
+inline GRTRACE_HD GeodesicState bl_to_ks(const KerrSchildMetric& m, const GeodesicState& y_bl) {
   const Vec4 x = y_bl.head<4>();
   return make_state(bl_to_ks_position(m, x), bl_to_ks_jacobian(m, x) * y_bl.tail<4>());
 }
 
 /// The Boyer-Lindquist event of a Kerr-Schild event outside r_+ (phi in (-pi, pi] plus the BL shift).
-inline Vec4 ks_to_bl_position(const KerrSchildMetric& m, const Vec4& x_ks) {
+inline GRTRACE_HD Vec4 ks_to_bl_position(const KerrSchildMetric& m, const Vec4& x_ks) {
   const double r = m.radius(x_ks);
   const double theta = std::acos(std::clamp(x_ks[3] / r, -1.0, 1.0));
   const double phi_ks = std::atan2(x_ks[2], x_ks[1]) - std::atan2(m.orientation() * m.spin, r);
@@ -357,7 +363,7 @@ inline Vec4 ks_to_bl_position(const KerrSchildMetric& m, const Vec4& x_ks) {
 }
 
 /// A Kerr-Schild state (event and tangent) in Boyer-Lindquist coordinates, outside r_+ and off the axis.
-inline GeodesicState ks_to_bl(const KerrSchildMetric& m, const GeodesicState& y_ks) {
+inline GRTRACE_HD GeodesicState ks_to_bl(const KerrSchildMetric& m, const GeodesicState& y_ks) {
   const Vec4 x = y_ks.head<4>(), k = y_ks.tail<4>();
   const KerrSchildTerms q = m.terms(x);
   const double r = q.r, e = m.orientation(), a = m.spin;
@@ -373,7 +379,7 @@ inline GeodesicState ks_to_bl(const KerrSchildMetric& m, const GeodesicState& y_
 
 /// The Kerr-Schild chart the tools trace camera rays in (checked as KerrSchildMetric::checked): the outgoing
 /// slicing, because camera rays are traced backwards (k^t < 0) and cross the past horizon (slicing_crossed_by).
-inline KerrSchildMetric kerr_schild_for_camera_rays(double mass, double spin) {
+inline GRTRACE_HD KerrSchildMetric kerr_schild_for_camera_rays(double mass, double spin) {
   return KerrSchildMetric::checked(mass, spin, KerrSchildSlicing::outgoing);
 }
 
@@ -381,7 +387,7 @@ inline KerrSchildMetric kerr_schild_for_camera_rays(double mass, double spin) {
 /// camera crosses (a flight's infall continues into the black hole). Its camera rays are past-directed: from
 /// outside they are captured at r_+ as in Boyer-Lindquist, from inside they come out of the hole or are captured at
 /// once (capture_radius, leaves_interior).
-inline KerrSchildMetric kerr_schild_for_flights(double mass, double spin) {
+inline GRTRACE_HD KerrSchildMetric kerr_schild_for_flights(double mass, double spin) {
   return KerrSchildMetric::checked(mass, spin, KerrSchildSlicing::ingoing);
 }
 

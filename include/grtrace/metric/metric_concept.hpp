@@ -12,6 +12,7 @@
 //   chart                     Chart::cartesian or Chart::spherical (x = t, r, theta, phi)
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 
 #include <array>
@@ -38,7 +39,7 @@ concept MetricPolicy = requires(const M m, const Vec4 x, const Vec4 k) {
 
 /// g(a, b) = g_{mu nu} a^mu b^nu at x.
 template <MetricPolicy M>
-double inner_product(const M& metric, const Vec4& x, const Vec4& a, const Vec4& b) {
+GRTRACE_HD double inner_product(const M& metric, const Vec4& x, const Vec4& a, const Vec4& b) {
   return a.dot(metric.metric(x) * b);
 }
 
@@ -48,7 +49,7 @@ struct GeodesicEquation {
   const M* metric;
   // Forced inline (also through MetricGeodesicSystem, trace/geodesic_system.hpp): out of line, the call and the
   // copy of its 8-vector result cost a quarter of a Schwarzschild step (measured with perf, kerr_benchmark).
-  [[gnu::always_inline]] GeodesicState operator()(const GeodesicState& y) const {
+  [[gnu::always_inline]] GRTRACE_HD GeodesicState operator()(const GeodesicState& y) const {
     GeodesicState dy;
     const Vec4 x = y.head<4>(), k = y.tail<4>();
     dy.head<4>() = k;
@@ -64,7 +65,7 @@ struct GeodesicEquation {
 };
 
 /// -Gamma^mu_{ab} k^a k^b from a Christoffel table (reference for the closed forms in the tests).
-inline Vec4 acceleration_from_christoffel(const Christoffel& gamma, const Vec4& k) {
+inline GRTRACE_HD Vec4 acceleration_from_christoffel(const Christoffel& gamma, const Vec4& k) {
   Vec4 a;
   for (int mu = 0; mu < 4; ++mu) a[mu] = -k.dot(gamma[static_cast<std::size_t>(mu)] * k);
   return a;

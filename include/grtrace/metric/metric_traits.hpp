@@ -50,6 +50,7 @@
 // Observers and emitters "at rest" (static, ZAMO) are in observer/observers.hpp.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/lanes.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -90,7 +91,7 @@ concept FlatMetric = MetricPolicy<M> && requires { requires M::flat; };
 
 /// True when the metric, in a spherical chart, is unchanged by theta -> pi - theta (see the top of this file).
 template <MetricPolicy M>
-constexpr bool metric_is_equator_mirror_symmetric() {
+constexpr GRTRACE_HD bool metric_is_equator_mirror_symmetric() {
   if constexpr (M::chart != Chart::spherical) return false;
   else if constexpr (requires { M::equator_mirror_symmetric; }) return M::equator_mirror_symmetric;
   else return StaticSphericalMetric<M>;
@@ -98,7 +99,7 @@ constexpr bool metric_is_equator_mirror_symmetric() {
 
 /// True when the metric, in a spherical chart, is unchanged by every phi -> 2 phi0 - phi (see the top of this file).
 template <MetricPolicy M>
-constexpr bool metric_is_meridian_mirror_symmetric() {
+constexpr GRTRACE_HD bool metric_is_meridian_mirror_symmetric() {
   if constexpr (M::chart != Chart::spherical) return false;
   else if constexpr (requires { M::meridian_mirror_symmetric; }) return M::meridian_mirror_symmetric;
   else return StaticSphericalMetric<M>;
@@ -126,21 +127,21 @@ concept HasDirectedCapture = requires(const M m, const GeodesicState y) {
 
 /// The radius of the horizon guard for the ray (or body) starting at y0 (see the top of this file); 0: no horizon.
 template <MetricPolicy M>
-double capture_radius_of(const M& metric, const GeodesicState& y0) {
+GRTRACE_HD double capture_radius_of(const M& metric, const GeodesicState& y0) {
   if constexpr (HasDirectedCapture<M>) return metric.capture_radius(y0);
   else return metric.horizon_radius();
 }
 
 /// For a ray starting on or inside its horizon guard: true when it comes out of the hole (see the top of this file).
 template <MetricPolicy M>
-bool leaves_interior_of(const M& metric, const GeodesicState& y0) {
+GRTRACE_HD bool leaves_interior_of(const M& metric, const GeodesicState& y0) {
   if constexpr (HasDirectedCapture<M>) return metric.leaves_interior(y0);
   else return false;
 }
 
 /// The event with spherical coordinates x = (t, r, theta, phi) in the metric's chart (see the top of this file).
 template <MetricPolicy M>
-Vec4 event_from_spherical(const M& metric, const Vec4& x) {
+GRTRACE_HD Vec4 event_from_spherical(const M& metric, const Vec4& x) {
   if constexpr (HasSphericalMap<M>) return metric.event_from_spherical(x);
   else if constexpr (M::chart == Chart::spherical) return x;
   else {
@@ -153,7 +154,7 @@ Vec4 event_from_spherical(const M& metric, const Vec4& x) {
 /// d(chart)/d(spherical) at the spherical event x: maps vectors given in (t, r, theta, phi) to the metric's chart
 /// (the identity for a spherical chart).
 template <MetricPolicy M>
-Mat4 jacobian_of_spherical(const M& metric, const Vec4& x) {
+GRTRACE_HD Mat4 jacobian_of_spherical(const M& metric, const Vec4& x) {
   Mat4 j = Mat4::Identity();
   if constexpr (HasSphericalMap<M>) j = metric.jacobian_from_spherical(x);
   else if constexpr (M::chart == Chart::cartesian) {
@@ -167,14 +168,14 @@ Mat4 jacobian_of_spherical(const M& metric, const Vec4& x) {
 
 /// The coordinate vectors d_r, d_theta, d_phi at the spherical event x, as vectors of the metric's chart.
 template <MetricPolicy M>
-std::array<Vec4, 3> spherical_axes(const M& metric, const Vec4& x) {
+GRTRACE_HD std::array<Vec4, 3> spherical_axes(const M& metric, const Vec4& x) {
   const Mat4 j = jacobian_of_spherical(metric, x);
   return {Vec4(j.col(1)), Vec4(j.col(2)), Vec4(j.col(3))};
 }
 
 /// dx/dlambda of a state as a vector of the chart's Euclidean embedding.
 template <MetricPolicy M>
-Vec3 embedded_velocity_of(const M& /*metric*/, const GeodesicState& y) {
+GRTRACE_HD Vec3 embedded_velocity_of(const M& /*metric*/, const GeodesicState& y) {
   if constexpr (M::chart == Chart::spherical) return embedded_velocity(y, spherical_basis(y[2], y[3]));
   else return y.tail<3>();
 }
@@ -182,7 +183,7 @@ Vec3 embedded_velocity_of(const M& /*metric*/, const GeodesicState& y) {
 /// (theta, phi) of the event x seen from the centre of the embedding, phi reduced to (-pi, pi] (azimuth_in_range:
 /// a spherical chart's phi keeps counting turns).
 template <MetricPolicy M>
-SkyDirection position_direction(const M& metric, const Vec4& x) {
+GRTRACE_HD SkyDirection position_direction(const M& metric, const Vec4& x) {
   if constexpr (M::chart == Chart::spherical) return {x[2], azimuth_in_range(x[3])};
   else return sky_direction_of(metric.to_cartesian(x));
 }
@@ -191,8 +192,8 @@ SkyDirection position_direction(const M& metric, const Vec4& x) {
 /// `from` is where the exact continuation starts (any point of the outgoing leg: the end of the last accepted
 /// step carries the integrator's error only, the point on the sphere the interpolant's too).
 template <MetricPolicy M>
-SkyDirection continued_direction(const M& metric, const GeodesicState& from, const GeodesicState& at_sphere,
-                                 AngleCorrection correction) {
+GRTRACE_HD SkyDirection continued_direction(const M& metric, const GeodesicState& from, const GeodesicState& at_sphere,
+                                            AngleCorrection correction) {
   if (correction == AngleCorrection::none) return position_direction(metric, at_sphere.head<4>());
   if constexpr (HasExactContinuation<M>) {
     if (correction == AngleCorrection::exact) {

@@ -5,6 +5,7 @@
 // Flat space in spherical coordinates is MinkowskiSpherical in schwarzschild.hpp.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
 namespace grtrace {
@@ -14,16 +15,16 @@ struct MinkowskiMetric {
   static constexpr Chart chart = Chart::cartesian;
   static constexpr bool flat = true;  ///< optional trait: straight lines, never integrated (metric_traits.hpp)
 
-  Mat4 metric(const Vec4& /*x*/) const { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
-  Christoffel christoffel(const Vec4& /*x*/) const {
+  GRTRACE_HD Mat4 metric(const Vec4& /*x*/) const { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
+  GRTRACE_HD Christoffel christoffel(const Vec4& /*x*/) const {
     Christoffel G;
     for (auto& g : G) g.setZero();
     return G;
   }
-  Vec4 acceleration(const Vec4& /*x*/, const Vec4& /*k*/) const { return Vec4::Zero(); }
-  double radius(const Vec4& x) const { return x.tail<3>().norm(); }
-  double horizon_radius() const { return 0.0; }
-  Vec3 to_cartesian(const Vec4& x) const { return x.tail<3>(); }
+  GRTRACE_HD Vec4 acceleration(const Vec4& /*x*/, const Vec4& /*k*/) const { return Vec4::Zero(); }
+  GRTRACE_HD double radius(const Vec4& x) const { return x.tail<3>().norm(); }
+  GRTRACE_HD double horizon_radius() const { return 0.0; }
+  GRTRACE_HD Vec3 to_cartesian(const Vec4& x) const { return x.tail<3>(); }
 };
 
 static_assert(MetricPolicy<MinkowskiMetric>);

@@ -6,12 +6,13 @@
 // With mass 0 this is flat space in spherical coordinates (MinkowskiSpherical).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/lanes.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/sin_cos.hpp"
-#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 
 #include <array>
@@ -25,7 +26,7 @@ struct SchwarzschildMetric {
   static constexpr Chart chart = Chart::spherical;
   double mass = 1.0;
 
-  Mat4 metric(const Vec4& x) const {
+  GRTRACE_HD Mat4 metric(const Vec4& x) const {
     const double r = x[1], f = lapse_squared(r), st = std::sin(x[2]);
     Mat4 g = Mat4::Zero();
     g(0, 0) = f;
@@ -35,7 +36,7 @@ struct SchwarzschildMetric {
     return g;
   }
 
-  Christoffel christoffel(const Vec4& x) const {
+  GRTRACE_HD Christoffel christoffel(const Vec4& x) const {
     const double r = x[1], m = mass, st = std::sin(x[2]), ct = std::cos(x[2]);
     Christoffel G;
     for (auto& gm : G) gm.setZero();
@@ -52,7 +53,7 @@ struct SchwarzschildMetric {
   }
 
   /// -Gamma^mu_{ab} k^a k^b, written out (14 multiplies, one division by r, one by sin theta, one inline sincos).
-  Vec4 acceleration(const Vec4& x, const Vec4& k) const {
+  GRTRACE_HD Vec4 acceleration(const Vec4& x, const Vec4& k) const {
     const std::array<double, 4> a = acceleration_of<double>(x[1], x[2], k);
     return Vec4(a[0], a[1], a[2], a[3]);
   }
@@ -76,7 +77,7 @@ struct SchwarzschildMetric {
   /// same order, so a lane cannot round differently from the scalar (constants are broadcast to every lane).
   /// k: the four components k[0..3] of type S (a Vec4 or a std::array of lanes).
   template <class S, class K>
-  [[gnu::always_inline]] std::array<S, 4> acceleration_of(const S& r, const S& theta, const K& k) const {
+  [[gnu::always_inline]] GRTRACE_HD std::array<S, 4> acceleration_of(const S& r, const S& theta, const K& k) const {
     const auto sc = polar_sin_cos(theta);  // inline (core/sin_cos.hpp): libm's call was a quarter of a step
     const double m = mass;
     const S inv_r = 1.0 / r, st = sc.sin, ct = sc.cos;
@@ -93,35 +94,35 @@ struct SchwarzschildMetric {
     return a;
   }
 
-  double radius(const Vec4& x) const { return x[1]; }
-  double horizon_radius() const { return 2.0 * mass; }
+  GRTRACE_HD double radius(const Vec4& x) const { return x[1]; }
+  GRTRACE_HD double horizon_radius() const { return 2.0 * mass; }
   /// 1 - 2M/r: g_tt, the squared lapse of the static observers (any scalar type: the planar tracer
   /// differentiates it, metric/static_spherical.hpp).
   template <class S>
-  S lapse_squared(const S& r) const {
+  GRTRACE_HD S lapse_squared(const S& r) const {
     return schwarzschild_f(r, mass);
   }
   /// r = 3M, the circular photon orbit (optional trait of metric/static_spherical.hpp).
-  double photon_sphere_radius() const { return 3.0 * mass; }
+  GRTRACE_HD double photon_sphere_radius() const { return 3.0 * mass; }
   /// u'' = 3 M u^2 - u, the orbit equation of light in u = 1 / r (optional trait of metric/static_spherical.hpp:
   /// the planar tracer's table integrates it; tests check it against the generic derivative).
-  double planar_ray_curvature(double u) const { return (3.0 * mass * u - 1.0) * u; }
+  GRTRACE_HD double planar_ray_curvature(double u) const { return (3.0 * mass * u - 1.0) * u; }
 
   /// Optional trait (metric/metric_traits.hpp): the exact continuation of a ray from y to infinity, by elliptic
   /// integrals (exact/schwarzschild_exact.hpp); nothing when it falls into the hole.
-  std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y) const {
+  GRTRACE_HD std::optional<SkyDirection> asymptotic_direction(const GeodesicState& y) const {
     return exact::asymptotic_direction(y, mass);
   }
-  Vec3 to_cartesian(const Vec4& x) const { return spherical_to_cartesian(x); }
+  GRTRACE_HD Vec3 to_cartesian(const Vec4& x) const { return spherical_to_cartesian(x); }
 
   /// Killing energy E = g_tt k^t and axial angular momentum L_z = -g_phiphi k^phi.
-  double energy(const GeodesicState& y) const { return lapse_squared(y[1]) * y[4]; }
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double energy(const GeodesicState& y) const { return lapse_squared(y[1]) * y[4]; }
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const double st = std::sin(y[2]);
     return y[1] * y[1] * st * st * y[7];
   }
   /// Total angular momentum |L| (conserved in every plane through the centre, not only the equator).
-  double total_angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double total_angular_momentum(const GeodesicState& y) const {
     const double r2 = y[1] * y[1], st = std::sin(y[2]);
     return r2 * std::sqrt(y[6] * y[6] + st * st * y[7] * y[7]);
   }

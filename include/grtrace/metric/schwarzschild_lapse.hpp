@@ -4,10 +4,12 @@
 // or the dual numbers of metric/dual.hpp for automatic differentiation).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
+
 namespace grtrace {
 
 template <class S>
-constexpr S schwarzschild_f(const S& r, double mass) {
+constexpr GRTRACE_HD S schwarzschild_f(const S& r, double mass) {
   return 1.0 - 2.0 * mass / r;
 }
 

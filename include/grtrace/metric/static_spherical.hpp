@@ -24,6 +24,7 @@
 // ch. 3, eq. 16 and 85).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/dual.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
@@ -49,7 +50,7 @@ concept HasRadialScale = requires(const M m, double r, Dual<1> d) {
 
 /// B(r) = -g_rr of a static spherical metric, in any scalar type.
 template <StaticSphericalMetric M, class S>
-S radial_scale_squared(const M& metric, const S& r) {
+GRTRACE_HD S radial_scale_squared(const M& metric, const S& r) {
   if constexpr (HasRadialScale<M>) return metric.radial_scale_squared(r);
   else return 1.0 / metric.lapse_squared(r);
 }
@@ -61,12 +62,12 @@ struct PlanarRayEquation {
   double inverse_b2;  ///< 1 / b^2 (only used when the metric has its own B(r))
 
   /// d/dpsi of (u, u'): (u', G(u)).
-  Vector<2> operator()(const Vector<2>& y) const { return {y[1], curvature(y[0])}; }
+  GRTRACE_HD Vector<2> operator()(const Vector<2>& y) const { return {y[1], curvature(y[0])}; }
 
   /// G(u) = (P'(u) / b^2 - Q'(u)) / 2 from A, B and their r-derivatives (automatic differentiation in r), with
   /// dr/du = -r^2 folded in analytically so that u = 0 (r = infinity) and u < 0 (the continuation of an escaped
   /// ray past infinity) stay finite: Q' = 2u / B + B_r / B^2 and P' = (A B)_r / ((A B)^2 u^2).
-  double curvature(double u) const {
+  GRTRACE_HD double curvature(double u) const {
     if constexpr (requires { { metric->planar_ray_curvature(u) } -> std::convertible_to<double>; }) {
       static_assert(!HasRadialScale<M>, "planar_ray_curvature(u) is the f(r) form (B = 1 / A): it has no 1 / b^2 term");
       return metric->planar_ray_curvature(u);
@@ -89,7 +90,7 @@ struct PlanarRayEquation {
   }
 
   /// F(u) = (du/dpsi)^2 on the ray (for tests and for starting values).
-  double first_integral(double u) const {
+  GRTRACE_HD double first_integral(double u) const {
     const double r = 1.0 / u, a = metric->lapse_squared(r), b = radial_scale_squared(*metric, r);
     return inverse_b2 / (a * b) - u * u / b;
   }
@@ -125,7 +126,7 @@ double photon_sphere_radius(const M& metric) {
 
 /// b_c = r_ph / sqrt(A(r_ph)): rays with smaller impact parameter from outside the photon sphere are captured.
 template <StaticSphericalMetric M>
-double critical_impact_parameter(const M& metric) {
+GRTRACE_HD double critical_impact_parameter(const M& metric) {
   const double r = photon_sphere_radius(metric);
   return r / std::sqrt(metric.lapse_squared(r));
 }

@@ -7,6 +7,7 @@
 // tracer follows the light back to where it came from.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/observer/tetrad.hpp"
 
@@ -32,7 +33,7 @@ class Camera {
 
   /// Direction of the pixel in the camera frame: (forward, up, right) components of the unit 3-vector the
   /// light arrives against (the way the camera looks), seed eq. (6).
-  Vec3 pixel_direction(double col, double row) const {
+  GRTRACE_HD Vec3 pixel_direction(double col, double row) const {
     const double y = (height_ - 1) - row;
     const double r = width_ > 1 ? tan_half_ * (2.0 * col / (width_ - 1) - 1.0) : 0.0;
     const double u =
@@ -45,19 +46,21 @@ class Camera {
   }
 
   /// Initial null momentum for the pixel (seed eq. 5).
-  Vec4 pixel_momentum(double col, double row) const {
+  GRTRACE_HD Vec4 pixel_momentum(double col, double row) const {
     const Vec3 d = pixel_direction(col, row);
     return d[0] * tetrad_.e[1] + d[1] * tetrad_.e[2] + d[2] * tetrad_.e[3] - tetrad_.e[0];
   }
 
-  GeodesicState pixel_state(double col, double row) const { return make_state(position_, pixel_momentum(col, row)); }
+  GRTRACE_HD GeodesicState pixel_state(double col, double row) const {
+    return make_state(position_, pixel_momentum(col, row));
+  }
 
-  const Vec4& position() const { return position_; }
-  const Tetrad& tetrad() const { return tetrad_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
-  double tan_half_fov() const { return tan_half_; }
-  double fov_degrees() const { return fov_degrees_; }
+  GRTRACE_HD const Vec4& position() const { return position_; }
+  GRTRACE_HD const Tetrad& tetrad() const { return tetrad_; }
+  GRTRACE_HD int width() const { return width_; }
+  GRTRACE_HD int height() const { return height_; }
+  GRTRACE_HD double tan_half_fov() const { return tan_half_; }
+  GRTRACE_HD double fov_degrees() const { return fov_degrees_; }
 
  private:
   Vec4 position_;

@@ -11,6 +11,7 @@
 // metric and the static observer this is the familiar local static frame.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
@@ -39,22 +40,22 @@ inline std::optional<ObserverKind> observer_kind_from_string(std::string_view s)
 }
 
 /// The static observer's 4-velocity from g at the event, or nothing where g_tt <= 0.
-inline std::optional<Vec4> static_velocity(const Mat4& g) {
+inline GRTRACE_HD std::optional<Vec4> static_velocity(const Mat4& g) {
   if (!(g(0, 0) > 0.0)) return std::nullopt;
   return Vec4(1.0 / std::sqrt(g(0, 0)), 0.0, 0.0, 0.0);
 }
 
 /// The ZAMO's 4-velocity from g at the event, or nothing where g^{tt} <= 0 (or g is singular).
-inline std::optional<Vec4> zamo_velocity(const Mat4& g) {
+inline GRTRACE_HD std::optional<Vec4> zamo_velocity(const Mat4& g) {
   const Mat4 inverse = g.inverse();
-  if (!inverse.allFinite() || !(inverse(0, 0) > 0.0)) return std::nullopt;
+  if (!all_finite(inverse) || !(inverse(0, 0) > 0.0)) return std::nullopt;
   return Vec4(inverse.col(0) / std::sqrt(inverse(0, 0)));
 }
 
 /// The 4-velocity of an emitter at rest at x for the sky and the horizon: static where it exists, else the ZAMO,
 /// else NaN (the redshift is then undefined and reported as NaN, never guessed).
 template <MetricPolicy M>
-Vec4 rest_emitter_velocity(const M& metric, const Vec4& x) {
+GRTRACE_HD Vec4 rest_emitter_velocity(const M& metric, const Vec4& x) {
   const Mat4 g = metric.metric(x);
   if (auto u = static_velocity(g)) return *u;
   if (auto u = zamo_velocity(g)) return *u;
@@ -88,7 +89,7 @@ struct ObserverFrame {
   }
 
   /// Spatial vector with components along the frame's axes, as a coordinate vector.
-  Vec4 spatial(const Vec3& v) const { return v[0] * e[1] + v[1] * e[2] + v[2] * e[3]; }
+  GRTRACE_HD Vec4 spatial(const Vec3& v) const { return v[0] * e[1] + v[1] * e[2] + v[2] * e[3]; }
 
   /// 4-velocity of an observer moving with 3-velocity beta (fraction of c) through this frame.
   Vec4 velocity(const Vec3& beta) const {

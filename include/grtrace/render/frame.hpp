@@ -27,6 +27,7 @@
 #include "grtrace/trace/sky_continuation_kind.hpp"
 
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -71,17 +72,38 @@ FrameMirrors frame_mirrors_of(const Tracer& tracer, const Camera& camera, const 
   return {};
 }
 
-/// One thread's way to each pixel's outcome, the scratch object of render_image_by_orbits: a tracer that traces
-/// groups of rays (TracesMany, trace/scene_tracer_concept.hpp) traces each tile's pixels together when the tile
-/// begins (begin_tile); any other traces a pixel when at(col, row) asks for it. Either way at(col, row) is
+/// The pixels render_frame traces for a tracer and camera: the top-left width x height block (the whole frame when
+/// no mirror applies; half or a quarter of it, middle row and column of odd sizes included, when one does).
+struct TracedRegion {
+  FrameMirrors mirrors;
+  int width = 0, height = 0;
+  std::size_t pixel_count() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
+};
+
+template <SceneTracer Tracer>
+TracedRegion traced_region(const Tracer& tracer, const Camera& camera, const RenderOptions& options) {
+  TracedRegion r{frame_mirrors_of(tracer, camera, options), camera.width(), camera.height()};
+  if (r.mirrors.meridian) r.width = (r.width + 1) / 2;
+  if (r.mirrors.equator) r.height = (r.height + 1) / 2;
+  return r;
+}
+
+/// One thread's way to each pixel's outcome, the scratch object of render_image_by_orbits: outcomes traced
+/// elsewhere beforehand (a GPU: gpu/gpu_frame.cuh) are read from there; a tracer that traces groups of rays
+/// (TracesMany, trace/scene_tracer_concept.hpp) traces each tile's pixels together when the tile begins
+/// (begin_tile); any other traces a pixel when at(col, row) asks for it. Either way at(col, row) is
 /// tracer.trace(camera.pixel_state(col, row)), bit for bit.
 template <SceneTracer Tracer>
 class TileOutcomes {
  public:
-  TileOutcomes(const Camera& camera, const Tracer& tracer) : camera_(&camera), tracer_(&tracer) {}
+  /// traced: nothing, or the outcomes of the traced region's pixels, row by row, traced_width to a row.
+  TileOutcomes(const Camera& camera, const Tracer& tracer, const std::vector<RayOutcome>* traced = nullptr,
+               int traced_width = 0)
+      : camera_(&camera), tracer_(&tracer), traced_(traced), traced_width_(traced_width) {}
 
   void begin_tile(int x0, int y0, int x1, int y1) {
     if constexpr (TracesMany<Tracer>) {
+      if (traced_) return;
       x0_ = x0;
       y0_ = y0;
       width_ = x1 - x0;
@@ -95,6 +117,9 @@ class TileOutcomes {
 
   /// The outcome of pixel (col, row) of the current tile.
   RayOutcome at(int col, int row) const {
+    if (traced_)
+      return (*traced_)[static_cast<std::size_t>(row) * static_cast<std::size_t>(traced_width_) +
+                        static_cast<std::size_t>(col)];
     if constexpr (TracesMany<Tracer>)
       return outcomes_[static_cast<std::size_t>(row - y0_) * static_cast<std::size_t>(width_) +
                        static_cast<std::size_t>(col - x0_)];
@@ -104,30 +129,39 @@ class TileOutcomes {
  private:
   const Camera* camera_;
   const Tracer* tracer_;
+  const std::vector<RayOutcome>* traced_;
+  int traced_width_;
   int x0_ = 0, y0_ = 0, width_ = 0;
   std::vector<GeodesicState> states_;
   std::vector<RayOutcome> outcomes_;
 };
 
+/// traced: nothing (the tracer traces every pixel here), or the outcomes of traced_region's pixels traced
+/// elsewhere (row by row; a GPU, gpu/gpu_frame.cuh), which are then shaded, mirrored and counted as if traced here.
 template <SceneTracer Tracer>
 Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptions& options = {},
-                   std::vector<SkyDirection>* directions = nullptr) {
+                   std::vector<SkyDirection>* directions = nullptr, const std::vector<RayOutcome>* traced = nullptr) {
   Frame frame{Image(camera.width(), camera.height()), {}};
   Image& image = frame.image;
   if (directions) directions->assign(image.pixel_count(), SkyDirection{RayOutcome::nan, RayOutcome::nan});
   const auto& scene = tracer.scene();
   // A mirror-symmetric frame traces the top-left half or quarter (the middle row and column of odd sizes
   // included) and reflects each outcome into the pixels it mirrors (render/mirror_symmetry.hpp).
-  const FrameMirrors mirrors = frame_mirrors_of(tracer, camera, options);
+  const TracedRegion region = traced_region(tracer, camera, options);
+  const FrameMirrors& mirrors = region.mirrors;
   const int width = image.width(), height = image.height();
-  const int traced_width = mirrors.meridian ? (width + 1) / 2 : width;
-  const int traced_height = mirrors.equator ? (height + 1) / 2 : height;
+  const int traced_width = region.width, traced_height = region.height;
+  if (traced && traced->size() != region.pixel_count())
+    throw std::invalid_argument("render_frame: " + std::to_string(traced->size()) +
+                                " outcomes given for a traced "
+                                "region of " +
+                                std::to_string(region.pixel_count()) + " pixels (traced_region)");
   const auto shade = [&](int col, int row, const RayOutcome& o) {
     if (directions) (*directions)[image.index(col, row)] = o.where;  // distinct pixels: no data race
     return scene.shade(o);
   };
   // A tracer that traces groups of rays gets each tile's pixels at once (TileOutcomes), others pixel by pixel.
-  const auto make_scratch = [&] { return TileOutcomes<Tracer>(camera, tracer); };
+  const auto make_scratch = [&] { return TileOutcomes<Tracer>(camera, tracer, traced, traced_width); };
   if (!mirrors.any()) {
     // Every pixel traced: one trace and one shade per pixel, the loop frames had before mirrors (the mirrored loop
     // below measured up to ~5 % slower on such frames, within the noise of one run).

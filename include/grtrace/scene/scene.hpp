@@ -13,9 +13,10 @@
 // colour. With colour_by_redshift every pixel is painted by f_obs / f_src (seed Fig. 5) instead.
 #pragma once
 
-#include "grtrace/scene/pixel_sample.hpp"
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/scene/colour_maps.hpp"
 #include "grtrace/scene/object_ids.hpp"
+#include "grtrace/scene/pixel_sample.hpp"
 #include "grtrace/scene/scene_object.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 
@@ -91,7 +92,7 @@ struct Scene {
 
   /// Calls f(object) for the object at scene position `position` (>= kFirstSceneObject); nothing otherwise.
   template <class F>
-  void visit_object(int position, F&& f) const {
+  GRTRACE_HD void visit_object(int position, F&& f) const {
     [&]<std::size_t... I>(std::index_sequence<I...>) {
       ((static_cast<int>(I) + kFirstSceneObject == position ? f(std::get<I>(objects)) : void()), ...);
     }(std::index_sequence_for<Objects...>{});
@@ -127,6 +128,13 @@ struct Scene {
     return p;
   }
 };
+
+/// f(objects...) for a scene's tuple of objects: std::apply, callable on a GPU (core/host_device.hpp).
+template <class F, class... Objects>
+GRTRACE_HD decltype(auto) apply_to_objects(const F& f, const std::tuple<Objects...>& objects) {
+  return [&]<std::size_t... I>(std::index_sequence<I...>)->decltype(auto) { return f(std::get<I>(objects)...); }
+  (std::index_sequence_for<Objects...>{});
+}
 
 namespace detail {
 template <class Tuple>

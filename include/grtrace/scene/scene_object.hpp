@@ -54,6 +54,7 @@
 // event_accepts).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/scene/colour_maps.hpp"
@@ -70,8 +71,8 @@ struct SurfaceHit {
   GeodesicState state;  ///< (x^mu, k^mu) at the hit, in the metric's chart; k is the traced (past-directed) tangent
   double redshift;      ///< f_obs / f_src
   double radius = std::numeric_limits<double>::quiet_NaN();  ///< the metric's radius(x) at the hit
-  Vec4 position() const { return state.head<4>(); }
-  Vec4 momentum() const { return state.tail<4>(); }
+  GRTRACE_HD Vec4 position() const { return state.head<4>(); }
+  GRTRACE_HD Vec4 momentum() const { return state.tail<4>(); }
 };
 
 /// What every scene object provides, whatever the metric (see the top of this file).
@@ -105,28 +106,28 @@ constexpr bool check_scene_object() {
 
 /// True when the object declares itself equatorial (see the top of this file).
 template <class O>
-constexpr bool object_is_equatorial() {
+constexpr GRTRACE_HD bool object_is_equatorial() {
   if constexpr (requires { O::equatorial; }) return O::equatorial;
   else return false;
 }
 
 /// True when the object declares itself stationary, or equatorial (which implies it: see the top of this file).
 template <class O>
-constexpr bool object_is_stationary() {
+constexpr GRTRACE_HD bool object_is_stationary() {
   if constexpr (requires { O::stationary; }) return O::stationary;
   else return object_is_equatorial<O>();
 }
 
 /// True when the object declares itself unchanged by the reflection theta -> pi - theta (see the top of this file).
 template <class O>
-constexpr bool object_is_equator_mirror_symmetric() {
+constexpr GRTRACE_HD bool object_is_equator_mirror_symmetric() {
   if constexpr (requires { O::equator_mirror_symmetric; }) return O::equator_mirror_symmetric;
   else return false;
 }
 
 /// True when the object declares itself unchanged by every reflection phi -> 2 phi0 - phi (see the top of this file).
 template <class O>
-constexpr bool object_is_meridian_mirror_symmetric() {
+constexpr GRTRACE_HD bool object_is_meridian_mirror_symmetric() {
   if constexpr (requires { O::meridian_mirror_symmetric; }) return O::meridian_mirror_symmetric;
   else return false;
 }

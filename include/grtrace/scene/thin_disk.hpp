@@ -12,6 +12,7 @@
 // as a blackbody colour.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/circular_orbits.hpp"
 #include "grtrace/metric/metric_traits.hpp"
@@ -39,18 +40,18 @@ struct ThinDisk {
   double peak_temperature = 5000.0;  ///< kelvin, at the hottest radius (for the colour only)
   int sense = +1;                    ///< +1: the gas turns towards +phi; -1: towards -phi
 
-  double operator()(const GeodesicState& y) const { return std::cos(y[2]); }
-  bool accepts(const GeodesicState& y) const { return y[1] >= r_in && y[1] <= r_out; }
+  GRTRACE_HD double operator()(const GeodesicState& y) const { return std::cos(y[2]); }
+  GRTRACE_HD bool accepts(const GeodesicState& y) const { return y[1] >= r_in && y[1] <= r_out; }
 
   /// The same with the metric at hand: in a Cartesian chart the equatorial plane is z = 0 (Kerr-Schild's
   /// z = r cos theta) and the radius is the metric's (Kerr-Schild's quadric r, not a coordinate).
   template <MetricPolicy M>
-  double surface(const M& /*metric*/, const GeodesicState& y) const {
+  GRTRACE_HD double surface(const M& /*metric*/, const GeodesicState& y) const {
     if constexpr (M::chart == Chart::spherical) return std::cos(y[2]);
     else return y[3];
   }
   template <MetricPolicy M>
-  bool accepts(const M& metric, const GeodesicState& y) const {
+  GRTRACE_HD bool accepts(const M& metric, const GeodesicState& y) const {
     const double r = metric.radius(y.template head<4>());
     return r >= r_in && r <= r_out;
   }
@@ -59,8 +60,9 @@ struct ThinDisk {
   /// check_disk_orbits, so a render never meets it). In a Cartesian chart: the orbit of its spherical chart at the
   /// hit's spherical event, pushed forward with d(chart)/d(spherical) (metric_traits.hpp jacobian_of_spherical).
   template <MetricPolicy M>
-    requires(M::chart == Chart::spherical || HasSphericalChart<M>)
-  Vec4 emitter_velocity(const M& metric, const Vec4& x) const {
+  requires(M::chart == Chart::spherical || HasSphericalChart<M>) GRTRACE_HD Vec4
+      emitter_velocity(const M& metric, const Vec4& x)
+  const {
     if constexpr (M::chart == Chart::spherical) {
       if (auto u = circular_orbit_velocity(metric, x[1], sense)) return *u;
     } else {

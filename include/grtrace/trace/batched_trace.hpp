@@ -39,7 +39,9 @@ inline constexpr bool lanes_can_trace = Controller::estimate == ErrorEstimate::e
 template <int W = kTraceLanes, MetricPolicy Metric, ExplicitTableau Tableau, StepController Controller, class... Events>
 void trace_batched(const GeodesicTracer<Metric, Tableau, Controller>& tracer, std::span<const GeodesicState> y0,
                    std::span<TraceResult> out, const Events&... events) {
-  if constexpr (!lanes_can_trace<Controller, Events...>) {
+  // A CUDA compilation's device pass (core/host_device.hpp) sees the plain loop only: this is host code, and the
+  // lanes' vector types would make nvcc compile device copies of the shared scalar/lane templates they reach.
+  if constexpr (!lanes_can_trace<Controller, Events...> || GRTRACE_DEVICE_PASS) {
     for (std::size_t i = 0; i < y0.size(); ++i) out[i] = tracer.trace(y0[i], events...);
   } else {
     if (y0.empty()) return;

@@ -26,6 +26,7 @@
 // KerrMinoSystem (trace/kerr_mino_tracer.hpp: Kerr's separated equations in Mino time).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/integrate/batch_stepper.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -54,7 +55,7 @@ concept GeodesicSystem = requires(const S s, typename S::State z) {
 
 /// Relative violation of the geodesic's constraint g(k,k) = const: |g(k,k) - norm0| / sum |g_mn k^m k^n|.
 template <MetricPolicy Metric>
-double constraint_violation(const Metric& metric, const GeodesicState& y, double norm0) {
+GRTRACE_HD double constraint_violation(const Metric& metric, const GeodesicState& y, double norm0) {
   const Vec4 x = y.head<4>(), k = y.tail<4>();
   const Mat4 g = metric.metric(x);
   const double size = k.cwiseAbs().dot(g.cwiseAbs() * k.cwiseAbs());
@@ -68,7 +69,7 @@ double constraint_violation(const Metric& metric, const GeodesicState& y, double
 /// dtheta/dlambda in the state (any system that carries them: the reduced Kerr system's are 1, 2, 4).
 /// Returns true when it changed y.
 template <int Theta, int Phi, int ThetaRate, class State>
-bool wrap_polar_axis(State& y) {
+GRTRACE_HD bool wrap_polar_axis(State& y) {
   constexpr double pi = std::numbers::pi;
   if (y[Theta] >= 0.0 && y[Theta] <= pi) return false;
   y[Theta] = y[Theta] < 0.0 ? -y[Theta] : 2.0 * pi - y[Theta];
@@ -78,7 +79,7 @@ bool wrap_polar_axis(State& y) {
 }
 
 /// The same for a geodesic state (x, k) of a spherical chart: theta = x^2, phi = x^3, k^theta.
-inline bool wrap_polar_axis(GeodesicState& y) { return wrap_polar_axis<2, 3, 6>(y); }
+inline GRTRACE_HD bool wrap_polar_axis(GeodesicState& y) { return wrap_polar_axis<2, 3, 6>(y); }
 
 /// The geodesic equation of a metric policy, d/dlambda (x, k) = (k, -Gamma(k, k)), as a geodesic system: the
 /// state is (x, k) itself; the constraint is g(k, k) = its value at the start (norm0).
@@ -89,11 +90,13 @@ struct MetricGeodesicSystem {
   const Metric* metric;
   double norm0 = 0.0;
 
-  MetricGeodesicSystem(const Metric& m, const GeodesicState& y0)
+  GRTRACE_HD MetricGeodesicSystem(const Metric& m, const GeodesicState& y0)
       : metric(&m), norm0(inner_product(m, y0.head<4>(), y0.tail<4>(), y0.tail<4>())) {}
 
   /// Forced inline: the stepper calls it once per stage, and it is no more than the metric's acceleration.
-  [[gnu::always_inline]] State operator()(const State& y) const { return GeodesicEquation<Metric>{metric}(y); }
+  [[gnu::always_inline]] GRTRACE_HD State operator()(const State& y) const {
+    return GeodesicEquation<Metric>{metric}(y);
+  }
   /// The same on W states at once, lane-innermost (a Batch<8, W>, integrate/batch_stepper.hpp): lane l is
   /// operator() of lane l bit for bit, so a batched lane stays its ray alone.
   template <std::size_t W>
@@ -123,19 +126,21 @@ struct MetricGeodesicSystem {
   }
   // True when the metric evaluates W lanes at once (Lanes<W> exists for W = 2, 4, 8: core/lanes.hpp).
   template <std::size_t W>
-  static constexpr bool lane_acceleration() {
+  static constexpr GRTRACE_HD bool lane_acceleration() {
     if constexpr (W == 2 || W == 4 || W == 8) return HasLaneAcceleration<Metric, static_cast<int>(W)>;
     else return false;
   }
-  double radius(const State& y) const { return metric->radius(y.head<4>()); }
-  double radial_coordinate(const State& y) const { return radius(y); }
-  static double radial_coordinate_at(double r) { return r; }
-  const GeodesicState& geodesic_state(const State& y) const { return y; }
-  double constraint_violation(const State& y) const { return grtrace::constraint_violation(*metric, y, norm0); }
-  double constraint_drift(const State& y) const {
+  GRTRACE_HD double radius(const State& y) const { return metric->radius(y.head<4>()); }
+  GRTRACE_HD double radial_coordinate(const State& y) const { return radius(y); }
+  static GRTRACE_HD double radial_coordinate_at(double r) { return r; }
+  GRTRACE_HD const GeodesicState& geodesic_state(const State& y) const { return y; }
+  GRTRACE_HD double constraint_violation(const State& y) const {
+    return grtrace::constraint_violation(*metric, y, norm0);
+  }
+  GRTRACE_HD double constraint_drift(const State& y) const {
     return inner_product(*metric, y.head<4>(), y.tail<4>(), y.tail<4>()) - norm0;
   }
-  bool wrap_chart(State& y) const {
+  GRTRACE_HD bool wrap_chart(State& y) const {
     if constexpr (Metric::chart == Chart::spherical) return wrap_polar_axis(y);
     else return false;
   }

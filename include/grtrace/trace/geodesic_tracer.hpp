@@ -17,6 +17,7 @@
 // refined final state by the interpolant's error).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
@@ -81,7 +82,7 @@ struct TraceResult {
 /// Optional: how many interior points of each step an event samples (to catch a surface entered and left
 /// within one step). Events declare `static constexpr int interior_samples = n;`; default 0.
 template <class E>
-constexpr int event_interior_samples() {
+constexpr GRTRACE_HD int event_interior_samples() {
   if constexpr (requires { E::interior_samples; }) return E::interior_samples;
   else return 0;
 }
@@ -89,7 +90,7 @@ constexpr int event_interior_samples() {
 /// Optional: `static constexpr bool two_sided = true;` makes any sign change of g a crossing (a surface with no
 /// inside, such as a thin disk: g = cos theta); the ray may start on either side.
 template <class E>
-constexpr bool event_is_two_sided() {
+constexpr GRTRACE_HD bool event_is_two_sided() {
   if constexpr (requires { E::two_sided; }) return E::two_sided;
   else return false;
 }
@@ -97,29 +98,36 @@ constexpr bool event_is_two_sided() {
 /// Optional: `bool accepts(const GeodesicState&) const` filters located crossings (e.g. the disk's plane is
 /// crossed but outside its radii); a refused crossing does not end the ray.
 template <class E>
-bool event_accepts(const E& e, const GeodesicState& y) {
+GRTRACE_HD bool event_accepts(const E& e, const GeodesicState& y) {
   if constexpr (requires { { e.accepts(y) } -> std::convertible_to<bool>; }) return e.accepts(y);
   else return true;
 }
 
 struct NullObserver {
   template <class Integrator>
-  void operator()(const Integrator&, double /*theta_end*/) const {}
+  GRTRACE_HD void operator()(const Integrator&, double /*theta_end*/) const {}
 };
 
 namespace detail {
 template <class Tuple, class F>
-void for_each_event(const Tuple& events, F&& f) {
+GRTRACE_HD void for_each_event(const Tuple& events, F&& f) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     (f(I, std::get<I>(events)), ...);
   }(std::make_index_sequence<std::tuple_size_v<Tuple>>{});
 }
 
-inline RayStatus status_of(std::size_t event_index) {
+inline GRTRACE_HD RayStatus status_of(std::size_t event_index) {
   if (event_index == 0) return RayStatus::captured;
   if (event_index == 1) return RayStatus::escaped;
   return RayStatus::hit;
 }
+
+/// Where refine_located puts a crossing: the step fraction and the state there.
+template <class State>
+struct LocatedCrossing {
+  double theta;
+  State z;
+};
 
 // Moves a crossing located on the dense output onto the integrator's own step map, so that a hit is as
 // accurate as the integration and not only as its interpolant (cubic Hermite for tableaux without their own
@@ -136,9 +144,9 @@ inline RayStatus status_of(std::size_t event_index) {
 //          theta = 0 or non-finite, or the step map is non-finite there).
 // Assumes: c came from locate_first_crossing on this step.
 template <class Integrator, class System, class GDense, class GState>
-std::pair<double, typename System::State> refine_located(Integrator& integ, const System& system,
-                                                         const GDense& g_dense, const GState& g_state,
-                                                         const EventCrossing& c, bool refine) {
+GRTRACE_HD LocatedCrossing<typename System::State> refine_located(Integrator& integ, const System& system,
+                                                                  const GDense& g_dense, const GState& g_state,
+                                                                  const EventCrossing& c, bool refine) {
   using State = typename System::State;
   if (!refine || !(c.theta > 0.0) || !std::isfinite(c.value)) return {c.theta, integ.dense(c.theta)};
   // The interpolant's slope at the crossing (central difference; it is a polynomial in theta), for the first
@@ -148,7 +156,7 @@ std::pair<double, typename System::State> refine_located(Integrator& integ, cons
   const double slope0 = (g_dense(hi) - g_dense(lo)) / (hi - lo);
   auto probe = [&](double t) {
     State z = integ.step_from_previous(system, t);
-    return std::pair<double, State>{g_state(z), std::move(z)};
+    return Probed<State>{g_state(z), std::move(z)};
   };
   const auto refined = refine_crossing(probe, c.theta, slope0);
   if (!refined) return {c.theta, integ.dense(c.theta)};
@@ -190,7 +198,7 @@ class TraceLoop {
 
   /// Takes the system built for this ray, the settings, the capture radius r_cap of the ray (<= 0: no horizon,
   /// e.g. flat space or a wormhole) and the events.
-  TraceLoop(const System& system, const TraceSettings& settings, double r_capture, const Events&... events)
+  GRTRACE_HD TraceLoop(const System& system, const TraceSettings& settings, double r_capture, const Events&... events)
       : system_(system),
         settings_(settings),
         all_(RadiusSlot{}, RadiusSlot{}, events...),
@@ -198,19 +206,20 @@ class TraceLoop {
         rho_guard_(system.radial_coordinate_at((1.0 + settings.horizon_epsilon) * r_capture)),
         rho_escape_(system.radial_coordinate_at(settings.escape_radius)) {}
 
-  const System& system() const { return system_; }
+  GRTRACE_HD const System& system() const { return system_; }
 
   /// Prepares the progress for a ray starting at z0 and starts the integrator there. A ray that starts inside the
   /// guard and comes out (leaves_interior: a camera inside the hole, in a chart that penetrates the horizon) is
   /// not captured there: its guard is armed once it is outside (a ray that then falls back in is captured as any
   /// other). Returns the result when the ray ends at its start (non-finite, or on the wrong side of a surface).
-  std::optional<TraceResult> begin(const State& z0, bool leaves_interior, Progress& p, Integrator& integ) const {
+  GRTRACE_HD std::optional<TraceResult> begin(const State& z0, bool leaves_interior, Progress& p,
+                                              Integrator& integ) const {
     p = Progress{};
     p.guard_armed = !(has_horizon_ && !(system_.radial_coordinate(z0) > rho_guard_) && leaves_interior);
     detail::for_each_event(all_, [&](std::size_t i, const auto& e) { p.g_prev[i] = on_state(i, e, z0, p); });
     if (!all_finite(z0)) return finish(RayStatus::non_finite, z0, 0.0, integ, p);
     for (std::size_t i = 0; i < K; ++i)
-      if (!two_sided[i] && !(p.g_prev[i] > 0.0)) return finish(detail::status_of(i), z0, 0.0, integ, p, i);
+      if (!two_sided(i) && !(p.g_prev[i] > 0.0)) return finish(detail::status_of(i), z0, 0.0, integ, p, i);
     integ.start(system_, z0, settings_.initial_step);
     return std::nullopt;
   }
@@ -218,7 +227,7 @@ class TraceLoop {
   /// Integrates from the integrator's current (accepted) point until a surface, a failure or max_steps ends the
   /// ray; the step count goes on from integ.accepted(). The observer sees every accepted step.
   template <class Observer>
-  TraceResult run(Integrator& integ, Progress& p, Observer&& observer) const {
+  GRTRACE_HD TraceResult run(Integrator& integ, Progress& p, Observer&& observer) const {
     while (integ.accepted() < settings_.max_steps)
       if (auto ended = step(integ, p, observer)) return *ended;
     return out_of_steps(integ, p);
@@ -228,7 +237,7 @@ class TraceLoop {
   /// ray, nothing when the ray goes on (a caller that stops at integ.accepted() == max_steps ends it with
   /// out_of_steps).
   template <class Observer>
-  std::optional<TraceResult> step(Integrator& integ, Progress& p, Observer&& observer) const {
+  GRTRACE_HD std::optional<TraceResult> step(Integrator& integ, Progress& p, Observer&& observer) const {
     const int check_interval = std::max(1, settings_.constraint_check_interval);
     const StepOutcome outcome = integ.advance(system_);
     if (outcome != StepOutcome::ok) {
@@ -250,7 +259,7 @@ class TraceLoop {
     detail::for_each_event(all_, [&](std::size_t i, const auto& e) {
       const double g1 = i < 2 ? radial_event(i, rho_now, p) : on_state(i, e, integ.state(), p);
       // Two-sided surfaces are seen from the side the step starts on (a start exactly on it does not count).
-      const double side = two_sided[i] && p.g_prev[i] < 0.0 ? -1.0 : 1.0;
+      const double side = two_sided(i) && p.g_prev[i] < 0.0 ? -1.0 : 1.0;
       if (!needs_location(i, p.g_prev[i], g1)) {
         p.g_prev[i] = g1;
         return;
@@ -259,7 +268,7 @@ class TraceLoop {
       auto g_of_theta = [&](double t) { return g_state(integ.dense(t)); };
       // Bracketed on the dense output (cheap), then refined on the step map (a few steps); a crossing the
       // dense output puts after an already accepted one is not refined: it cannot end the ray.
-      if (auto c = locate_first_crossing(g_of_theta, side * p.g_prev[i], side * g1, samples[i]);
+      if (auto c = locate_first_crossing(g_of_theta, side * p.g_prev[i], side * g1, samples(i));
           c && c->theta < theta_first) {
         const long evals_before = integ.rhs_evals();
         const bool refine = settings_.refine_events && (i != 1 || settings_.refine_escape);  // 1: the sky sphere
@@ -297,7 +306,7 @@ class TraceLoop {
   }
 
   /// The end of a ray that used its max_steps steps (a last constraint check, then max_steps).
-  TraceResult out_of_steps(const Integrator& integ, const Progress& p) const {
+  GRTRACE_HD TraceResult out_of_steps(const Integrator& integ, const Progress& p) const {
     if (p.steps_since_check > 0 && violated(integ.state()))
       return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ, p);
     return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ, p);
@@ -307,7 +316,7 @@ class TraceLoop {
   /// z: true when run() would do nothing after it but go on (no surface to locate, no constraint check that fails,
   /// no change of the guard or the chart); p then moves on to z exactly as run() would move it. False leaves p
   /// as it was: the step must be taken again by run() from its start, which then does what is due.
-  bool uneventful(const State& z, Progress& p) const {
+  GRTRACE_HD bool uneventful(const State& z, Progress& p) const {
     if (!p.guard_armed) return false;
     std::array<double, K> g{};
     bool quiet = true;
@@ -326,32 +335,39 @@ class TraceLoop {
   }
 
  private:
-  static constexpr std::array<int, K> samples = {0, 0, event_interior_samples<Events>()...};
-  static constexpr std::array<bool, K> two_sided = {false, false, event_is_two_sided<Events>()...};
+  // Functions, not static arrays: device code cannot read a host variable (core/host_device.hpp).
+  static GRTRACE_HD constexpr int samples(std::size_t i) {
+    constexpr std::array<int, K> all = {0, 0, event_interior_samples<Events>()...};
+    return all[i];
+  }
+  static GRTRACE_HD constexpr bool two_sided(std::size_t i) {
+    constexpr std::array<bool, K> all = {false, false, event_is_two_sided<Events>()...};
+    return all[i];
+  }
 
   // True when the step from g_prev to g1 may cross surface i (a sign change, or interior samples to look at).
-  static bool needs_location(std::size_t i, double g_prev, double g1) {
-    const double side = two_sided[i] && g_prev < 0.0 ? -1.0 : 1.0;
-    return !((two_sided[i] && g_prev == 0.0) || (side * g1 > 0.0 && samples[i] == 0));
+  static GRTRACE_HD bool needs_location(std::size_t i, double g_prev, double g1) {
+    const double side = two_sided(i) && g_prev < 0.0 ? -1.0 : 1.0;
+    return !((two_sided(i) && g_prev == 0.0) || (side * g1 > 0.0 && samples(i) == 0));
   }
   // The horizon (slot 0) and the sky sphere (slot 1) at the radial coordinate rho.
-  double radial_event(std::size_t i, double rho, const Progress& p) const {
+  GRTRACE_HD double radial_event(std::size_t i, double rho, const Progress& p) const {
     if (i == 0) return has_horizon_ && p.guard_armed ? rho - rho_guard_ : 1.0;
     return rho_escape_ - rho;
   }
   // Every event on the integrated state: the two radial ones on its rho, the others on its (x, k).
   template <class E>
-  double on_state(std::size_t i, const E& e, const State& z, const Progress& p) const {
+  GRTRACE_HD double on_state(std::size_t i, const E& e, const State& z, const Progress& p) const {
     if constexpr (std::is_same_v<E, RadiusSlot>) return radial_event(i, system_.radial_coordinate(z), p);
     else return e(system_.geodesic_state(z));
   }
-  bool violated(const State& z) const {
+  GRTRACE_HD bool violated(const State& z) const {
     const double guard = settings_.constraint_tolerance;
     return guard > 0.0 && system_.constraint_violation(z) > guard;
   }
   // The result of a ray that ends at z (event: the surface that ended it, for status hit).
-  TraceResult finish(RayStatus status, const State& z, double lambda, const Integrator& integ, const Progress& p,
-                     std::size_t event = 0) const {
+  GRTRACE_HD TraceResult finish(RayStatus status, const State& z, double lambda, const Integrator& integ,
+                                const Progress& p, std::size_t event = 0) const {
     TraceResult result;
     result.status = status;
     if (status == RayStatus::hit) result.hit_event = static_cast<int>(event) - 2;
@@ -383,9 +399,10 @@ class TraceLoop {
 /// Returns: the TraceResult, its states mapped to (x, k) by the system; lambda is the system's parameter.
 /// The system is taken by value: a small local object, which the optimiser keeps in registers.
 template <ExplicitTableau Tableau, StepController Controller, GeodesicSystem System, class Observer, class... Events>
-TraceResult trace_geodesic_system(const System system, const TraceSettings& settings, const Controller& controller,
-                                  const typename System::State& z0, double r_capture, bool leaves_interior,
-                                  Observer&& observer, const Events&... events) {
+GRTRACE_HD TraceResult trace_geodesic_system(const System system, const TraceSettings& settings,
+                                             const Controller& controller, const typename System::State& z0,
+                                             double r_capture, bool leaves_interior, Observer&& observer,
+                                             const Events&... events) {
   using Loop = TraceLoop<Tableau, Controller, System, Events...>;
   const Loop loop(system, settings, r_capture, events...);
   typename Loop::Integrator integ(settings.integrator, controller);
@@ -400,20 +417,20 @@ class GeodesicTracer {
  public:
   using Integrator = ControlledIntegrator<Tableau, Controller, 8>;
 
-  GeodesicTracer(Metric metric, TraceSettings settings, Controller controller = {})
+  GRTRACE_HD GeodesicTracer(Metric metric, TraceSettings settings, Controller controller = {})
       : metric_(metric), settings_(settings), controller_(controller) {}
 
-  const Metric& metric() const { return metric_; }
-  const TraceSettings& settings() const { return settings_; }
-  const Controller& controller() const { return controller_; }
+  GRTRACE_HD const Metric& metric() const { return metric_; }
+  GRTRACE_HD const TraceSettings& settings() const { return settings_; }
+  GRTRACE_HD const Controller& controller() const { return controller_; }
 
   template <class... Events>
-  TraceResult trace(const GeodesicState& y0, const Events&... events) const {
+  GRTRACE_HD TraceResult trace(const GeodesicState& y0, const Events&... events) const {
     return trace_observed(y0, NullObserver{}, events...);
   }
 
   template <class Observer, class... Events>
-  TraceResult trace_observed(const GeodesicState& y0, Observer&& observer, const Events&... events) const {
+  GRTRACE_HD TraceResult trace_observed(const GeodesicState& y0, Observer&& observer, const Events&... events) const {
     const MetricGeodesicSystem<Metric> system(metric_, y0);
     return trace_geodesic_system<Tableau>(system, settings_, controller_, y0, capture_radius_of(metric_, y0),
                                           leaves_interior_of(metric_, y0), observer, events...);

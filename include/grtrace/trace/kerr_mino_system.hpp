@@ -30,6 +30,7 @@
 //          inside the polar turning point is answered with NaN, so that the step is shrunk (operator()).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/sin_cos.hpp"
 #include "grtrace/core/types.hpp"
@@ -51,7 +52,7 @@ struct KerrMinoSystem {
   double energy = 0.0, angular_momentum = 0.0, carter = 0.0;  ///< E, L_z, Q of the ray
 
   /// The system of the ray y0 (Boyer-Lindquist, null, outside r_+).
-  KerrMinoSystem(const KerrMetric& m, const GeodesicState& y0)
+  GRTRACE_HD KerrMinoSystem(const KerrMetric& m, const GeodesicState& y0)
       : metric(m), energy(m.energy(y0)), angular_momentum(m.angular_momentum(y0)), carter(m.carter_constant(y0)) {
     const double a = m.spin, e = energy, l = angular_momentum;
     a2_ = a * a;
@@ -63,7 +64,7 @@ struct KerrMinoSystem {
   }
 
   /// z0 of the ray y0 the system was built for: u = 1/r, u' = -Sigma k^r / r^2, theta' = Sigma k^theta.
-  State initial_state(const GeodesicState& y0) const {
+  GRTRACE_HD State initial_state(const GeodesicState& y0) const {
     const double r = y0[1], c = std::cos(y0[2]), sigma = r * r + a2_ * c * c;
     State z;
     z << 1.0 / r, y0[2], y0[3], -sigma * y0[5] / (r * r), sigma * y0[6];
@@ -71,7 +72,7 @@ struct KerrMinoSystem {
   }
 
   /// dz/dlambda_M. Forced inline: a call costs as much as the polynomials (the stepper calls it once per stage).
-  [[gnu::always_inline]] State operator()(const State& z) const {
+  [[gnu::always_inline]] GRTRACE_HD State operator()(const State& z) const {
     const double u = z[0], u2 = u * u, m = metric.mass;
     const SinCos sc = polar_sin_cos(z[1]);
     const double s2 = sc.sin * sc.sin, inv_s2 = 1.0 / s2;
@@ -93,7 +94,7 @@ struct KerrMinoSystem {
   /// radial potential cut after u^2, R~(u) ~ E^2 - K' u^2 with K' = K - 2 E A: asin(sqrt(K') u / |E|) / sqrt(K')
   /// (asinh for K' < 0). The first guess of trace/sky_continuation.hpp's iteration: unlike u / |u'| it stays on
   /// the ray's way out where u' is small (a ray near its periapsis), where R~'s higher terms are O(M u) smaller.
-  double mino_time_to_infinity(const State& z) const {
+  GRTRACE_HD double mino_time_to_infinity(const State& z) const {
     const double k2 = k_ - 2.0 * energy * big_a_, x = z[0] / std::abs(energy);
     if (k2 > 0.0) {
       const double s = std::sqrt(k2);
@@ -106,13 +107,13 @@ struct KerrMinoSystem {
     return x;
   }
 
-  double radius(const State& z) const { return 1.0 / z[0]; }
+  GRTRACE_HD double radius(const State& z) const { return 1.0 / z[0]; }
   /// -u = -1/r: increasing in r and smooth through infinity (u = 0), which a step towards the sky may cross.
-  double radial_coordinate(const State& z) const { return -z[0]; }
-  static double radial_coordinate_at(double r) { return -1.0 / r; }
+  GRTRACE_HD double radial_coordinate(const State& z) const { return -z[0]; }
+  static GRTRACE_HD double radial_coordinate_at(double r) { return -1.0 / r; }
 
   /// (x, k) in Boyer-Lindquist coordinates, t = NaN (not followed).
-  GeodesicState geodesic_state(const State& z) const {
+  GRTRACE_HD GeodesicState geodesic_state(const State& z) const {
     const double u = z[0], r = 1.0 / z[0], u2 = u * u, a = metric.spin;
     const SinCos sc = sin_cos(z[1]);
     const double s2 = sc.sin * sc.sin, inv_sigma = 1.0 / (r * r + a2_ * sc.cos * sc.cos);
@@ -128,7 +129,7 @@ struct KerrMinoSystem {
   /// The larger of the relative residuals of u'^2 = R~(u) and theta'^2 = Theta(theta), each against the size of
   /// its terms (for Theta: Q, a^2 E^2 and L^2 / sin^2 theta, not their products with cos theta, which vanish on the
   /// equator, where an equatorial ray's Theta and theta' are both zero to round-off).
-  double constraint_violation(const State& z) const {
+  GRTRACE_HD double constraint_violation(const State& z) const {
     const double u = z[0], u2 = u * u, p = energy + big_a_ * u2;
     const double delta = 1.0 - 2.0 * metric.mass * u + a2_ * u2;
     const double radial = std::abs(z[3] * z[3] - (p * p - k_ * u2 * delta)) / (z[3] * z[3] + p * p + std::abs(k_ * u2 * delta));
@@ -141,14 +142,14 @@ struct KerrMinoSystem {
   }
 
   /// g(k, k) at z (the ray is null: 0 at the start).
-  double constraint_drift(const State& z) const {
+  GRTRACE_HD double constraint_drift(const State& z) const {
     GeodesicState y = geodesic_state(z);
     y[0] = 0.0;  // the metric does not depend on t
     return inner_product(metric, y.head<4>(), y.tail<4>(), y.tail<4>());
   }
 
   /// The polar axis crossed: theta -> -theta (or 2 pi - theta), phi -> phi + pi, theta' -> -theta'.
-  bool wrap_chart(State& z) const { return wrap_polar_axis<1, 2, 4>(z); }
+  GRTRACE_HD bool wrap_chart(State& z) const { return wrap_polar_axis<1, 2, 4>(z); }
 
  private:
   double a2_ = 0.0, big_a_ = 0.0, k_ = 0.0, a2e2_ = 0.0, l2_ = 0.0;

@@ -17,6 +17,7 @@
 // trace/auto_tracer.hpp picks it for KerrMetric scenes it can draw.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/scene/scene.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
@@ -24,6 +25,7 @@
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/sky_continuation.hpp"
 
+#include <span>
 #include <tuple>
 #include <utility>
 
@@ -38,16 +40,16 @@ inline constexpr bool kerr_mino_supports_scene =
 /// One ray of a Kerr metric on the separated equations: the TraceResult of GeodesicTracer<KerrMetric>::trace for
 /// the same ray and events (within the integration's tolerance), lambda in Mino time, t not followed (NaN).
 template <ExplicitTableau T, StepController C, class... Events>
-TraceResult trace_kerr_mino(const KerrMinoSystem& system, const TraceSettings& settings, const C& controller,
-                            const GeodesicState& y0, const Events&... events) {
+GRTRACE_HD TraceResult trace_kerr_mino(const KerrMinoSystem& system, const TraceSettings& settings, const C& controller,
+                                       const GeodesicState& y0, const Events&... events) {
   return trace_geodesic_system<T>(system, settings, controller, system.initial_state(y0),
                                   system.metric.horizon_radius(), false, NullObserver{}, events...);
 }
 
 /// The same, the ray's system built here (a caller that needs the system afterwards builds it and passes it).
 template <ExplicitTableau T, StepController C, class... Events>
-TraceResult trace_kerr_mino(const KerrMetric& metric, const TraceSettings& settings, const C& controller,
-                            const GeodesicState& y0, const Events&... events) {
+GRTRACE_HD TraceResult trace_kerr_mino(const KerrMetric& metric, const TraceSettings& settings, const C& controller,
+                                       const GeodesicState& y0, const Events&... events) {
   return trace_kerr_mino<T>(KerrMinoSystem(metric, y0), settings, controller, y0, events...);
 }
 
@@ -71,11 +73,13 @@ class KerrMinoSceneTracer {
       : metric_(metric), settings_(with_escape_refinement<KerrMetric>(settings, correction)),
         controller_(controller), correction_(correction), scene_(std::move(scene)) {}
 
-  RayOutcome trace(const GeodesicState& y0) const {
+  GRTRACE_HD RayOutcome trace(const GeodesicState& y0) const {
     const KerrMinoSystem system(metric_, y0);
-    const TraceResult r = std::apply([&](const auto&... o) {
-      return trace_kerr_mino<T>(system, settings_, controller_, y0, bind_to_metric(o, metric_)...);
-    }, scene_.objects);
+    const TraceResult r = apply_to_objects(
+        [&](const auto&... o) {
+          return trace_kerr_mino<T>(system, settings_, controller_, y0, bind_to_metric(o, metric_)...);
+        },
+        scene_.objects);
     // The continuation starts from the last accepted step (which may lie beyond u = 0: it is then taken back),
     // with the ray's own constants of motion; from the sky sphere's crossing if that step is not usable.
     return scene_outcome(metric_, scene_, r, [&](const GeodesicState& from, const GeodesicState& at_sphere) {
@@ -88,12 +92,16 @@ class KerrMinoSceneTracer {
     });
   }
 
-  /// Which continuation this tracer's escaped rays get (recorded in a frame's header: trace/tracer_report.hpp).
-  SkyContinuation sky_continuation() const { return sky_continuation_of<KerrMetric>(correction_); }
+  /// trace() as a GPU runs it (the general tracer's name for it: trace/scene_tracer.hpp); this tracer notes nothing.
+  GRTRACE_HD RayOutcome trace_quietly(const GeodesicState& y0) const { return trace(y0); }
+  void note_escaped(std::span<const RayOutcome>) const {}
 
-  const SceneT& scene() const { return scene_; }
-  const KerrMetric& metric() const { return metric_; }
-  AngleCorrection correction() const { return correction_; }
+  /// Which continuation this tracer's escaped rays get (recorded in a frame's header: trace/tracer_report.hpp).
+  GRTRACE_HD SkyContinuation sky_continuation() const { return sky_continuation_of<KerrMetric>(correction_); }
+
+  GRTRACE_HD const SceneT& scene() const { return scene_; }
+  GRTRACE_HD const KerrMetric& metric() const { return metric_; }
+  GRTRACE_HD AngleCorrection correction() const { return correction_; }
 
  private:
   KerrMetric metric_;

@@ -5,6 +5,7 @@
 // The tracers (general, symmetric-sky, straight-line) differ in how they get there, not in what they report.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/core/types.hpp"
@@ -17,14 +18,16 @@ namespace grtrace {
 
 struct RayOutcome {
   static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  // The members' NaN through a function: device code cannot read the static member (core/host_device.hpp).
+  static GRTRACE_HD constexpr double quiet_nan() { return std::numeric_limits<double>::quiet_NaN(); }
   RayStatus status = RayStatus::max_steps;
   int object = kSkyObject;          ///< 0 sky, 1 horizon, 2... the scene's objects in order; meaningful unless failed
-  SkyDirection where{nan, nan};     ///< escaped: sky direction; captured / hit: direction of the hit point
-  double radius = nan;              ///< metric radius of the end point (sky sphere, horizon guard, hit)
-  double redshift = nan;            ///< f_obs / f_src; NaN for failed rays
+  SkyDirection where{quiet_nan(), quiet_nan()};  ///< escaped: sky direction; captured / hit: direction of the hit point
+  double radius = quiet_nan();                   ///< metric radius of the end point (sky sphere, horizon guard, hit)
+  double redshift = quiet_nan();                 ///< f_obs / f_src; NaN for failed rays
   int steps = 0;                    ///< accepted integration steps (table tracers: the nearest table ray's)
-  GeodesicState state = GeodesicState::Constant(nan);  ///< (x, k) at the end, in the metric's chart; NaN where a
-                                                        ///< tracer does not follow the ray itself (tables)
+  GeodesicState state = GeodesicState::Constant(quiet_nan());  ///< (x, k) at the end, in the metric's chart; NaN where
+                                                               ///< a tracer does not follow the ray itself (tables)
 };
 
 }  // namespace grtrace

@@ -14,6 +14,7 @@
 // metric allows, else the ZAMO: observer/observers.hpp), an object's comes from its emitter_velocity(metric, x).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/observer/observers.hpp"
 #include "grtrace/scene/scene.hpp"
@@ -33,7 +34,7 @@ namespace grtrace {
 /// f_obs / f_src for a ray that left a camera with unit energy (g(e_0, k) = -1) and reached an emitter moving
 /// with 4-velocity u at the end state y (NaN when u is NaN: no emitter can exist there).
 template <MetricPolicy M>
-double redshift_at(const M& metric, const Vec4& u, const GeodesicState& y) {
+GRTRACE_HD double redshift_at(const M& metric, const Vec4& u, const GeodesicState& y) {
   return -1.0 / u.dot(metric.metric(y.head<4>()) * y.tail<4>());
 }
 
@@ -52,8 +53,8 @@ struct MetricBoundObject {
   const M* metric;
   static constexpr bool two_sided = event_is_two_sided<O>();
   static constexpr int interior_samples = event_interior_samples<O>();
-  double operator()(const GeodesicState& y) const { return object->surface(*metric, y); }
-  bool accepts(const GeodesicState& y) const {
+  GRTRACE_HD double operator()(const GeodesicState& y) const { return object->surface(*metric, y); }
+  GRTRACE_HD bool accepts(const GeodesicState& y) const {
     if constexpr (requires { { object->accepts(*metric, y) } -> std::convertible_to<bool>; })
       return object->accepts(*metric, y);
     else return event_accepts(*object, y);
@@ -63,7 +64,7 @@ struct MetricBoundObject {
 /// The event a tracer integrating in `metric` checks for `object`: the object itself, or a MetricBoundObject when
 /// it writes its surface with the metric at hand (the thin disk in a Cartesian chart).
 template <class O, MetricPolicy M>
-decltype(auto) bind_to_metric(const O& object, const M& metric) {
+GRTRACE_HD decltype(auto) bind_to_metric(const O& object, const M& metric) {
   if constexpr (requires(const GeodesicState y) { { object.surface(metric, y) } -> std::convertible_to<double>; })
     return MetricBoundObject<O, M>{&object, &metric};
   else return (object);
@@ -79,7 +80,8 @@ inline constexpr bool scene_fits_metric = every_object_of<SceneT>([]<class O>() 
 /// and the horizon). An escaped ray is seen where escaped(from, at_sphere) says (trace/sky_continuation.hpp: from
 /// is the last accepted step, at_sphere the sky sphere's crossing).
 template <MetricPolicy Metric, class SceneT, class EscapedDirection>
-RayOutcome scene_outcome(const Metric& m, const SceneT& scene, const TraceResult& r, const EscapedDirection& escaped) {
+GRTRACE_HD RayOutcome scene_outcome(const Metric& m, const SceneT& scene, const TraceResult& r,
+                                    const EscapedDirection& escaped) {
   RayOutcome out;
   out.status = r.status;
   out.steps = r.accepted;
@@ -105,7 +107,7 @@ RayOutcome scene_outcome(const Metric& m, const SceneT& scene, const TraceResult
 /// The settings a scene tracer integrates with: the exact continuation starts from the last accepted step, not
 /// from the sky sphere, so refining the sphere's crossing would buy nothing there (TraceSettings::refine_escape).
 template <MetricPolicy Metric>
-TraceSettings with_escape_refinement(TraceSettings s, AngleCorrection correction) {
+GRTRACE_HD TraceSettings with_escape_refinement(TraceSettings s, AngleCorrection correction) {
   if (continues_exactly<Metric>(correction)) s.refine_escape = false;
   return s;
 }
@@ -124,11 +126,21 @@ class GeneralSceneTracer {
         scene_(std::move(scene)) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
-    const Metric& m = tracer_.metric();
-    return scene_outcome(
-        m, scene_,
-        std::apply([&](const auto&... o) { return tracer_.trace(y0, bind_to_metric(o, m)...); }, scene_.objects),
-        escaped());
+    return trace_noting(y0, [this](const GeodesicState& at_sphere) { note_escape(at_sphere); });
+  }
+
+  /// trace() as a GPU runs it (core/host_device.hpp): the same outcome, bit for bit in the same arithmetic, without
+  /// noting an escaped ray's impact parameter for the flat continuation's estimate (a frame traced elsewhere notes
+  /// its outcomes afterwards: note_escaped).
+  GRTRACE_HD RayOutcome trace_quietly(const GeodesicState& y0) const {
+    return trace_noting(y0, [](const GeodesicState&) {});
+  }
+
+  /// What trace() notes of each escaped ray, for outcomes traced by trace_quietly: its impact parameter when its
+  /// sky is continued flat.
+  void note_escaped(std::span<const RayOutcome> outcomes) const {
+    for (const RayOutcome& o : outcomes)
+      if (o.status == RayStatus::escaped) note_escape(o.state);
   }
 
   /// Many rays, kTraceLanes at a time (trace/batched_trace.hpp): out[i] is trace(y0[i]) bit for bit, for less
@@ -138,11 +150,12 @@ class GeneralSceneTracer {
     std::vector<TraceResult> results(y0.size());
     std::apply([&](const auto&... o) { trace_batched(tracer_, y0, std::span(results), bind_to_metric(o, m)...); },
                scene_.objects);
-    for (std::size_t i = 0; i < y0.size(); ++i) out[i] = scene_outcome(m, scene_, results[i], escaped());
+    const auto note = [this](const GeodesicState& at_sphere) { note_escape(at_sphere); };
+    for (std::size_t i = 0; i < y0.size(); ++i) out[i] = scene_outcome(m, scene_, results[i], escaped(note));
   }
 
   /// Which continuation this tracer's escaped rays get (recorded in a frame's header: trace/tracer_report.hpp).
-  SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
+  GRTRACE_HD SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
 
   /// For a flat continuation: the error estimate of the rays traced so far (trace/sky_continuation.hpp; recorded in
   /// a frame's header), at the largest impact parameter among them; nothing for an exact one, or a metric without
@@ -157,23 +170,38 @@ class GeneralSceneTracer {
     if constexpr (HasMass<Metric>) flat_impact_.raise(b);
   }
 
-  const SceneT& scene() const { return scene_; }
-  const Metric& metric() const { return tracer_.metric(); }
-  const GeodesicTracer<Metric, T, C>& tracer() const { return tracer_; }
-  AngleCorrection correction() const { return correction_; }
+  GRTRACE_HD const SceneT& scene() const { return scene_; }
+  GRTRACE_HD const Metric& metric() const { return tracer_.metric(); }
+  GRTRACE_HD const GeodesicTracer<Metric, T, C>& tracer() const { return tracer_; }
+  GRTRACE_HD AngleCorrection correction() const { return correction_; }
 
  private:
+  /// One ray; note(at_sphere) sees where an escaped ray crossed the sky sphere.
+  template <class Note>
+  GRTRACE_HD RayOutcome trace_noting(const GeodesicState& y0, const Note& note) const {
+    const Metric& m = tracer_.metric();
+    return scene_outcome(
+        m, scene_,
+        apply_to_objects([&](const auto&... o) { return tracer_.trace(y0, bind_to_metric(o, m)...); }, scene_.objects),
+        escaped(note));
+  }
+
   /// Where an escaped ray is seen: trace/sky_continuation.hpp, with this tracer's own method.
-  auto escaped() const {
-    return [this](const GeodesicState& from, const GeodesicState& at_sphere) {
-      // Only where an estimate can come of it: a metric without a mass has none to report.
-      if constexpr (HasMass<Metric>) {
-        if (sky_continuation() == SkyContinuation::flat)
-          note_flat_impact(flat_impact_parameter(tracer_.metric(), at_sphere));
-      }
+  template <class Note>
+  GRTRACE_HD auto escaped(const Note& note) const {
+    return [this, &note](const GeodesicState& from, const GeodesicState& at_sphere) {
+      note(at_sphere);
       return escaped_direction<T>(tracer_.metric(), tracer_.settings().integrator.tolerance, correction_, from,
                                   at_sphere);
     };
+  }
+
+  /// The flat continuation's record of an escaped ray that crossed the sky sphere at y.
+  void note_escape(const GeodesicState& y) const {
+    // Only where an estimate can come of it: a metric without a mass has none to report.
+    if constexpr (HasMass<Metric>) {
+      if (sky_continuation() == SkyContinuation::flat) note_flat_impact(flat_impact_parameter(tracer_.metric(), y));
+    }
   }
 
   GeodesicTracer<Metric, T, C> tracer_;

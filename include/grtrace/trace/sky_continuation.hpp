@@ -24,6 +24,7 @@
 // changes where a ray is seen, not the frequency it arrives with.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/integrate/error_norm.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
@@ -52,7 +53,7 @@ inline constexpr bool continues_on_kerr_mino = std::is_same_v<M, KerrMetric> || 
 
 /// The continuation a tracer of metric M runs for escaped rays under a correction (see the top of this file).
 template <MetricPolicy M>
-constexpr SkyContinuation sky_continuation_of(AngleCorrection correction) {
+constexpr GRTRACE_HD SkyContinuation sky_continuation_of(AngleCorrection correction) {
   if (correction == AngleCorrection::none) return SkyContinuation::sky_sphere;
   if constexpr (FlatMetric<M>) return SkyContinuation::straight_line;
   if (correction == AngleCorrection::flat) return SkyContinuation::flat;
@@ -64,7 +65,7 @@ constexpr SkyContinuation sky_continuation_of(AngleCorrection correction) {
 /// True when the tracer of metric M continues escaped rays exactly from any point of their outgoing leg: it then
 /// needs the sky sphere's crossing only for the redshift, and need not refine it (TraceSettings::refine_escape).
 template <MetricPolicy M>
-constexpr bool continues_exactly(AngleCorrection correction) {
+constexpr GRTRACE_HD bool continues_exactly(AngleCorrection correction) {
   const SkyContinuation c = sky_continuation_of<M>(correction);
   return c == SkyContinuation::exact_elliptic || c == SkyContinuation::exact_mino;
 }
@@ -88,7 +89,7 @@ inline double sky_radius_for_flat_error(double mass, double impact, double toler
 /// The impact parameter of the straight line a ray leaves the traced region on (flat continuation): the distance
 /// of the line through its embedded position with its embedded velocity from the centre of the embedding.
 template <MetricPolicy M>
-double flat_impact_parameter(const M& metric, const GeodesicState& y) {
+GRTRACE_HD double flat_impact_parameter(const M& metric, const GeodesicState& y) {
   const Vec3 p = metric.to_cartesian(y.template head<4>()), v = embedded_velocity_of(metric, y);
   return p.cross(v).norm() / v.norm();
 }
@@ -170,8 +171,8 @@ std::optional<FlatContinuationEstimate> flat_continuation_estimate(const M& metr
 /// does (trace/geodesic_tracer.hpp). Typically two steps and two right-hand sides beyond f(z): about as much as
 /// the sky sphere's refinement it replaces in the tracers.
 template <ExplicitTableau T>
-std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& system, const Tolerance& tol,
-                                                       const KerrMinoSystem::State& z) {
+GRTRACE_HD std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& system, const Tolerance& tol,
+                                                                  const KerrMinoSystem::State& z) {
   using State = KerrMinoSystem::State;
   if constexpr (!has_embedded_pair<T>) {
     return kerr_direction_at_infinity<Fehlberg78>(system, tol, z);
@@ -211,8 +212,8 @@ std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& sys
 
 /// The Mino-time continuation from a Boyer-Lindquist state of an escaping ray, with the tableau T.
 template <ExplicitTableau T>
-std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMetric& metric, const Tolerance& tol,
-                                                       const GeodesicState& y) {
+GRTRACE_HD std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMetric& metric, const Tolerance& tol,
+                                                                  const GeodesicState& y) {
   if (!(y[1] > metric.horizon_radius())) return std::nullopt;
   const KerrMinoSystem system(metric, y);
   return kerr_direction_at_infinity<T>(system, tol, system.initial_state(y));
@@ -221,8 +222,8 @@ std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMetric& metric,
 /// The sky direction of an escaped ray traced with the tableau T at the tolerance tol (see the top of this file):
 /// `from` a point of the outgoing leg (the last accepted step's end), `at_sphere` the sky sphere's crossing.
 template <ExplicitTableau T, MetricPolicy M>
-SkyDirection escaped_direction(const M& metric, const Tolerance& tol, AngleCorrection correction,
-                               const GeodesicState& from, const GeodesicState& at_sphere) {
+GRTRACE_HD SkyDirection escaped_direction(const M& metric, const Tolerance& tol, AngleCorrection correction,
+                                          const GeodesicState& from, const GeodesicState& at_sphere) {
   if constexpr (continues_on_kerr_mino<M>) {
     if (correction == AngleCorrection::exact) {
       std::optional<SkyDirection> d;

@@ -17,8 +17,9 @@
 // Assumes: theta away from the axis; k^v > 0 (ingoing chart) for rays meant to cross the horizon.
 #pragma once
 
-#include "grtrace/metric/schwarzschild_lapse.hpp"
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/auto_metric.hpp"
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 
 #include <array>
 #include <cmath>
@@ -39,31 +40,31 @@ struct EddingtonFinkelstein {
   static constexpr bool meridian_mirror_symmetric = true;
 
   template <class S>
-  Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
+  GRTRACE_HD Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
     using std::sin;
     const S r = x[1], rs = r * sin(x[2]);
     Mat4Of<S> g = diagonal_metric<S>(schwarzschild_f(r, mass), S(0.0), -r * r, -rs * rs);
     g(0, 1) = g(1, 0) = S(outgoing ? 1.0 : -1.0);
     return g;
   }
-  double radius(const Vec4& x) const { return x[1]; }
-  double horizon_radius() const { return capture_radius(); }
-  double capture_radius() const { return capture_fraction * event_horizon_radius(); }
-  double event_horizon_radius() const { return 2.0 * mass; }
+  GRTRACE_HD double radius(const Vec4& x) const { return x[1]; }
+  GRTRACE_HD double horizon_radius() const { return capture_radius(); }
+  GRTRACE_HD double capture_radius() const { return capture_fraction * event_horizon_radius(); }
+  GRTRACE_HD double event_horizon_radius() const { return 2.0 * mass; }
 
   /// sign of the cross term: v = t + sign r*, k^v = k^t + sign k^r / f.
-  double sign() const { return outgoing ? -1.0 : 1.0; }
-  double tortoise(double r) const { return r + 2.0 * mass * std::log(r / (2.0 * mass) - 1.0); }
+  GRTRACE_HD double sign() const { return outgoing ? -1.0 : 1.0; }
+  GRTRACE_HD double tortoise(double r) const { return r + 2.0 * mass * std::log(r / (2.0 * mass) - 1.0); }
 
   /// A state (t, r, theta, phi | k) in Schwarzschild coordinates (r > 2M) in this chart, and back.
-  GeodesicState from_schwarzschild(const GeodesicState& y) const {
+  GRTRACE_HD GeodesicState from_schwarzschild(const GeodesicState& y) const {
     GeodesicState z = y;
     const double f = schwarzschild_f(y[1], mass);
     z[0] = y[0] + sign() * tortoise(y[1]);
     z[4] = y[4] + sign() * y[5] / f;
     return z;
   }
-  GeodesicState to_schwarzschild(const GeodesicState& z) const {
+  GRTRACE_HD GeodesicState to_schwarzschild(const GeodesicState& z) const {
     GeodesicState y = z;
     const double f = schwarzschild_f(z[1], mass);
     y[0] = z[0] - sign() * tortoise(z[1]);
@@ -72,8 +73,8 @@ struct EddingtonFinkelstein {
   }
 
   /// Killing energy E = g_(v) mu k^mu = f k^v - sign k^r, and L_z = r^2 sin^2(theta) k^phi.
-  double energy(const GeodesicState& y) const { return schwarzschild_f(y[1], mass) * y[4] - sign() * y[5]; }
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double energy(const GeodesicState& y) const { return schwarzschild_f(y[1], mass) * y[4] - sign() * y[5]; }
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const double rs = y[1] * std::sin(y[2]);
     return rs * rs * y[7];
   }

@@ -8,6 +8,7 @@
 // Assumes: theta away from the axis. Flat as |l| -> infinity (g_thth / -l^2 - 1 = b0^2 / l^2).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/auto_metric.hpp"
 
 #include <array>
@@ -27,23 +28,23 @@ struct EllisWormhole {
   static constexpr bool meridian_mirror_symmetric = true;
 
   template <class S>
-  Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
+  GRTRACE_HD Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
     using std::sin;
     const S r2 = x[1] * x[1] + throat * throat, st = sin(x[2]);
     return diagonal_metric<S>(S(1.0), S(-1.0), -r2, -r2 * st * st);
   }
-  double areal_radius(double l) const { return std::sqrt(l * l + throat * throat); }
-  double radius(const Vec4& x) const { return areal_radius(x[1]); }
-  double horizon_radius() const { return 0.0; }
+  GRTRACE_HD double areal_radius(double l) const { return std::sqrt(l * l + throat * throat); }
+  GRTRACE_HD double radius(const Vec4& x) const { return areal_radius(x[1]); }
+  GRTRACE_HD double horizon_radius() const { return 0.0; }
   /// Both universes drawn over one another at their areal radius.
-  Vec3 to_cartesian(const Vec4& x) const {
+  GRTRACE_HD Vec3 to_cartesian(const Vec4& x) const {
     Vec4 y = x;
     y[1] = areal_radius(x[1]);
     return spherical_to_cartesian(y);
   }
 
-  double energy(const GeodesicState& y) const { return y[4]; }
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double energy(const GeodesicState& y) const { return y[4]; }
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const double st = std::sin(y[2]);
     return (y[1] * y[1] + throat * throat) * st * st * y[7];
   }

@@ -5,6 +5,7 @@
 // Assumes: nothing (no horizon, no chart singularity).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/auto_metric.hpp"
 
 namespace grtrace {
@@ -14,11 +15,11 @@ struct MinkowskiComponents {
   static constexpr Chart chart = Chart::cartesian;
 
   template <class S>
-  Mat4Of<S> metric_components(const Vec4Of<S>& /*x*/) const {
+  GRTRACE_HD Mat4Of<S> metric_components(const Vec4Of<S>& /*x*/) const {
     return diagonal_metric<S>(1.0, -1.0, -1.0, -1.0);
   }
-  double radius(const Vec4& x) const { return x.tail<3>().norm(); }
-  double horizon_radius() const { return 0.0; }
+  GRTRACE_HD double radius(const Vec4& x) const { return x.tail<3>().norm(); }
+  GRTRACE_HD double horizon_radius() const { return 0.0; }
 };
 
 using AutoMinkowski = AutoMetric<MinkowskiComponents>;

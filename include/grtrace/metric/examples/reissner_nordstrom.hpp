@@ -7,6 +7,7 @@
 // Assumes: r > r_+ where it is evaluated (Schwarzschild-like coordinates, singular at both horizons).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/auto_metric.hpp"
 
 #include <array>
@@ -25,24 +26,22 @@ struct ReissnerNordstrom {
   /// f(r) = 1 - 2M/r + Q^2/r^2 = g_tt (any scalar type; with it the metric is a StaticSphericalMetric, so the
   /// planar tracer can draw it: metric/static_spherical.hpp).
   template <class S>
-  S lapse_squared(const S& r) const {
+  GRTRACE_HD S lapse_squared(const S& r) const {
     return 1.0 - 2.0 * mass / r + charge * charge / (r * r);
   }
 
   template <class S>
-  Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
+  GRTRACE_HD Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
     using std::sin;
     const S r = x[1], f = lapse_squared(r), rs = r * sin(x[2]);
     return diagonal_metric<S>(f, -1.0 / f, -r * r, -rs * rs);
   }
-  double radius(const Vec4& x) const { return x[1]; }
-  double horizon_radius() const { return mass + std::sqrt(mass * mass - charge * charge); }
-  double inner_horizon_radius() const { return mass - std::sqrt(mass * mass - charge * charge); }
+  GRTRACE_HD double radius(const Vec4& x) const { return x[1]; }
+  GRTRACE_HD double horizon_radius() const { return mass + std::sqrt(mass * mass - charge * charge); }
+  GRTRACE_HD double inner_horizon_radius() const { return mass - std::sqrt(mass * mass - charge * charge); }
 
-  double energy(const GeodesicState& y) const {
-    return lapse_squared(y[1]) * y[4];
-  }
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double energy(const GeodesicState& y) const { return lapse_squared(y[1]) * y[4]; }
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const double rs = y[1] * std::sin(y[2]);
     return rs * rs * y[7];
   }

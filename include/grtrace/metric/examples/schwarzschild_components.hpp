@@ -7,8 +7,9 @@
 // Assumes: r > 2M and theta away from the axis, like SchwarzschildMetric.
 #pragma once
 
-#include "grtrace/metric/schwarzschild_lapse.hpp"
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/auto_metric.hpp"
+#include "grtrace/metric/schwarzschild_lapse.hpp"
 
 #include <array>
 #include <cmath>
@@ -27,17 +28,17 @@ struct SchwarzschildComponents {
   static constexpr bool meridian_mirror_symmetric = true;
 
   template <class S>
-  Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
+  GRTRACE_HD Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
     using std::sin;
     const S r = x[1], f = schwarzschild_f(r, mass), rs = r * sin(x[2]);
     return diagonal_metric<S>(f, -1.0 / f, -r * r, -rs * rs);
   }
-  double radius(const Vec4& x) const { return x[1]; }
-  double horizon_radius() const { return 2.0 * mass; }
+  GRTRACE_HD double radius(const Vec4& x) const { return x[1]; }
+  GRTRACE_HD double horizon_radius() const { return 2.0 * mass; }
 
   /// Killing energy E = (1 - 2M/r) k^t and axial angular momentum L_z = r^2 sin^2(theta) k^phi.
-  double energy(const GeodesicState& y) const { return schwarzschild_f(y[1], mass) * y[4]; }
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double energy(const GeodesicState& y) const { return schwarzschild_f(y[1], mass) * y[4]; }
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const double rs = y[1] * std::sin(y[2]);
     return rs * rs * y[7];
   }

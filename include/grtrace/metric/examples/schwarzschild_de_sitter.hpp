@@ -12,6 +12,7 @@
 //          Not asymptotically flat: g_tt -> -infinity beyond r_c.
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/auto_metric.hpp"
 
 #include <array>
@@ -33,32 +34,32 @@ struct SchwarzschildDeSitter {
   static constexpr bool meridian_mirror_symmetric = true;
 
   template <class S>
-  Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
+  GRTRACE_HD Mat4Of<S> metric_components(const Vec4Of<S>& x) const {
     using std::sin;
     const S r = x[1], f = 1.0 - 2.0 * mass / r - (lambda / 3.0) * r * r, rs = r * sin(x[2]);
     return diagonal_metric<S>(f, -1.0 / f, -r * r, -rs * rs);
   }
-  double radius(const Vec4& x) const { return x[1]; }
-  double horizon_radius() const { return black_hole_horizon_radius(); }
+  GRTRACE_HD double radius(const Vec4& x) const { return x[1]; }
+  GRTRACE_HD double horizon_radius() const { return black_hole_horizon_radius(); }
 
   /// The k-th root of Lambda r^3 / 3 - r + 2M (k = 0: r_c, 1: r_b, 2: the negative one), Newton-polished.
-  double cubic_root(int k) const {
+  GRTRACE_HD double cubic_root(int k) const {
     const double s = std::sqrt(lambda);
     const double angle = std::acos(-3.0 * mass * s) / 3.0 - 2.0 * std::numbers::pi * k / 3.0;
     double r = 2.0 / s * std::cos(angle);
     for (int i = 0; i < 3; ++i) r -= horizon_cubic(r) / (lambda * r * r - 1.0);
     return r;
   }
-  double black_hole_horizon_radius() const { return cubic_root(1); }
-  double cosmological_horizon_radius() const { return cubic_root(0); }
+  GRTRACE_HD double black_hole_horizon_radius() const { return cubic_root(1); }
+  GRTRACE_HD double cosmological_horizon_radius() const { return cubic_root(0); }
   /// r f(r) = r - 2M - Lambda r^3 / 3, up to sign: zero exactly at the horizons.
-  double horizon_cubic(double r) const { return lambda * r * r * r / 3.0 - r + 2.0 * mass; }
+  GRTRACE_HD double horizon_cubic(double r) const { return lambda * r * r * r / 3.0 - r + 2.0 * mass; }
 
-  double energy(const GeodesicState& y) const {
+  GRTRACE_HD double energy(const GeodesicState& y) const {
     const double r = y[1];
     return (1.0 - 2.0 * mass / r - lambda * r * r / 3.0) * y[4];
   }
-  double angular_momentum(const GeodesicState& y) const {
+  GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
     const double rs = y[1] * std::sin(y[2]);
     return rs * rs * y[7];
   }

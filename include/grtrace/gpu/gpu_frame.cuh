@@ -1,0 +1,172 @@
+// grtrace/gpu/gpu_frame.cuh
+// A frame traced on a CUDA GPU: one GPU thread per traced pixel runs the tracer's own trace_quietly, the same source
+// the CPU runs (the hot path is marked GRTRACE_HD: core/host_device.hpp); the host then shades, mirrors, counts and
+// records the frame exactly as render_frame does (render/frame.hpp), from those outcomes.
+//
+//   #include "grtrace/gpu/gpu_frame.cuh"          // in a .cu file, compiled by nvcc -std=c++20
+//   --expt-relaxed-constexpr const auto tracer = make_general_tracer<Fehlberg78, IController>(metric, settings,
+//   AngleCorrection::exact, scene); if (gpu::first_gpu().present) frame = gpu::render_frame_on_gpu(camera, tracer);
+//
+// Takes:   a Camera and a scene tracer with trace_quietly (GeneralSceneTracer, KerrMinoSceneTracer), whose metric and
+//          scene objects are GPU-callable (their surface, accepts, emitter_velocity, metric and acceleration marked
+//          GRTRACE_HD; a user's own metric or object marks its functions the same way).
+// Returns: the Frame render_frame returns, its rays traced on the GPU (fp64, the same tableau, controller, events and
+//          continuation), and the device's name in the header ("device").
+// Assumes: the tracer is copied to the GPU byte for byte: the device reads only what tracing reads (the metric,
+//          settings, controller and scene objects, which are plain values); the sky and horizon painters and the
+//          CPU-side statistics travel along unread. Throws GpuError when CUDA reports an error.
+#pragma once
+
+#if !defined(__CUDACC__)
+#error "grtrace/gpu/gpu_frame.cuh is CUDA source: include it from a .cu file compiled by nvcc"
+#endif
+
+#include "grtrace/observer/camera.hpp"
+#include "grtrace/render/frame.hpp"
+#include "grtrace/trace/ray_outcome.hpp"
+
+#include <cuda_runtime.h>
+
+#include <chrono>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace grtrace::gpu {
+
+/// A CUDA call that failed: the call and CUDA's own words.
+class GpuError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The first CUDA device, or why there is none (no driver, no device: CUDA's message).
+struct GpuDevice {
+  bool present = false;
+  std::string name;     ///< e.g. "NVIDIA H100 80GB HBM3"
+  std::string why_not;  ///< when not present
+};
+
+inline GpuDevice first_gpu() {
+  GpuDevice d;
+  int count = 0;
+  if (const cudaError_t e = cudaGetDeviceCount(&count); e != cudaSuccess) {
+    d.why_not = std::string("CUDA reports: ") + cudaGetErrorString(e);
+    cudaGetLastError();  // clear it
+    return d;
+  }
+  if (count < 1) {
+    d.why_not = "CUDA finds no device";
+    return d;
+  }
+  cudaDeviceProp prop{};
+  if (const cudaError_t e = cudaGetDeviceProperties(&prop, 0); e != cudaSuccess) {
+    d.why_not = std::string("CUDA reports: ") + cudaGetErrorString(e);
+    return d;
+  }
+  d.present = true;
+  d.name = prop.name;
+  return d;
+}
+
+namespace detail {
+
+inline void check(cudaError_t e, const char* what) {
+  if (e != cudaSuccess) throw GpuError(std::string("GPU: ") + what + " failed: " + cudaGetErrorString(e));
+}
+
+/// Device memory for n values of T, freed on every path out.
+template <class T>
+class DeviceArray {
+ public:
+  explicit DeviceArray(std::size_t n) : n_(n) { check(cudaMalloc(&p_, n * sizeof(T)), "cudaMalloc"); }
+  ~DeviceArray() { cudaFree(p_); }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+  T* get() const { return static_cast<T*>(p_); }
+  /// The bytes of n host values (a byte copy: see the top of this file).
+  void upload(const T* host) {
+    check(cudaMemcpy(p_, static_cast<const void*>(host), n_ * sizeof(T), cudaMemcpyHostToDevice), "upload");
+  }
+  void download(T* host) const {
+    check(cudaMemcpy(static_cast<void*>(host), p_, n_ * sizeof(T), cudaMemcpyDeviceToHost), "download");
+  }
+
+ private:
+  void* p_ = nullptr;
+  std::size_t n_;
+};
+
+/// Pixel i of the traced block (width to a row): its outcome, as the CPU's trace would give it.
+template <class Tracer>
+__global__ void trace_pixel_block(const Tracer* tracer, const Camera* camera, int width, long count, RayOutcome* out) {
+  const long i = static_cast<long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i >= count) return;
+  const int col = static_cast<int>(i % width), row = static_cast<int>(i / width);
+  out[i] = tracer->trace_quietly(camera->pixel_state(col, row));
+}
+
+}  // namespace detail
+
+/// A scene tracer the GPU can run: it traces a ray without touching CPU-side state (trace_quietly) and takes the
+/// outcomes' statistics back afterwards (note_escaped).
+template <class Tracer>
+concept GpuSceneTracer = SceneTracer<Tracer> &&
+    requires(const Tracer& t, const GeodesicState& y, const std::vector<RayOutcome>& outcomes) {
+  { t.trace_quietly(y) } -> std::same_as<RayOutcome>;
+  t.note_escaped(outcomes);
+};
+
+/// What the GPU spent on a block of pixels (wall clock on the host, seconds).
+struct GpuTiming {
+  double upload = 0.0, trace = 0.0, download = 0.0;
+};
+
+/// The outcomes of the camera's top-left width x height pixels, row by row, each traced by one GPU thread.
+template <GpuSceneTracer Tracer>
+std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer, int width, int height,
+                                     GpuTiming* timing = nullptr) {
+  using Clock = std::chrono::steady_clock;
+  const auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  const long count = static_cast<long>(width) * height;
+  std::vector<RayOutcome> outcomes(static_cast<std::size_t>(count));
+  if (count == 0) return outcomes;
+  const auto t0 = Clock::now();
+  detail::DeviceArray<Tracer> d_tracer(1);
+  detail::DeviceArray<Camera> d_camera(1);
+  detail::DeviceArray<RayOutcome> d_out(static_cast<std::size_t>(count));
+  d_tracer.upload(&tracer);
+  d_camera.upload(&camera);
+  const auto t1 = Clock::now();
+  constexpr int threads = 128;  // fp64 and many registers a thread: small blocks keep more of them resident
+  const auto blocks = static_cast<unsigned>((count + threads - 1) / threads);
+  detail::trace_pixel_block<<<blocks, threads>>>(d_tracer.get(), d_camera.get(), width, count, d_out.get());
+  detail::check(cudaGetLastError(), "kernel launch");
+  detail::check(cudaDeviceSynchronize(), "tracing kernel");
+  const auto t2 = Clock::now();
+  d_out.download(outcomes.data());
+  const auto t3 = Clock::now();
+  if (timing) *timing = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3)};
+  return outcomes;
+}
+
+/// render_frame (render/frame.hpp) with the traced region's rays traced on the GPU; the header records the device
+/// ("device") and the GPU's share of the time ("gpu_trace_seconds").
+template <GpuSceneTracer Tracer>
+Frame render_frame_on_gpu(const Camera& camera, const Tracer& tracer, const RenderOptions& options = {},
+                          std::vector<SkyDirection>* directions = nullptr, const std::string& device_name = "") {
+  const TracedRegion region = traced_region(tracer, camera, options);
+  GpuTiming timing;
+  const std::vector<RayOutcome> outcomes = trace_pixels(camera, tracer, region.width, region.height, &timing);
+  tracer.note_escaped(outcomes);
+  Frame frame = render_frame(camera, tracer, options, directions, &outcomes);
+  frame.image.metadata["device"] = device_name.empty() ? first_gpu().name : device_name;
+  frame.image.metadata["gpu_trace_seconds"] = exact_number(timing.trace);
+  return frame;
+}
+
+}  // namespace grtrace::gpu

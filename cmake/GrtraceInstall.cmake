@@ -19,7 +19,7 @@ mark_as_advanced(GRTRACE_INSTALL_CMAKEDIR)
 # ---- headers and the core target --------------------------------------------------------------------
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/grtrace"
         DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
-        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h" PATTERN "*.inl")
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.cuh" PATTERN "*.h" PATTERN "*.inl")
 install(FILES "${PROJECT_BINARY_DIR}/include/grtrace/version.hpp"    # generated from cmake/version.hpp.in
         DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/grtrace")
 

@@ -2,13 +2,19 @@
 // and the frame and flight loops over a FrameTracer, compiled once (grtrace/app/frame_tracer.hpp).
 #include "frame_tracers.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace grtrace::app {
 
 void check_frame_request(const FrameRequest& q) {
   check_tool_method(q.tableau, q.control);
+  if (q.device != "cpu" && q.device != "cuda")
+    throw std::invalid_argument("grtrace_app: device '" + q.device + "' (choose_device gives cpu or cuda)");
+  if (q.device == "cuda")
+    if (const auto refusal = gpu_refusal(q)) throw std::invalid_argument("--device cuda: " + *refusal);
   const std::string& metric = q.metric.name;
   // The older sky-and-horizon table is the library's (trace/symmetric_scene_tracer.hpp), no longer the tools': the
   // planar tracer draws every frame it drew, more accurately (tests/render/planar_tracer_test.cpp,
@@ -26,6 +32,28 @@ void check_frame_request(const FrameRequest& q) {
   if (q.tracer == "planar" && q.control == "fixed")
     throw std::invalid_argument("--tracer planar integrates its table in swept angle, where a fixed --step would mean "
                                 "something else; use --control i, pi or doubling, or --tracer general");
+}
+
+std::optional<std::string> gpu_refusal(const FrameRequest& q) {
+  if (q.tableau != kGpuTableau || q.control != kGpuControl)
+    return "the GPU traces with --tableau " + std::string(kGpuTableau) + " --control " + std::string(kGpuControl) +
+           " only; use those, or --device cpu for the other methods";
+  if (q.tracer == "planar")
+    return "--tracer planar is the CPU's table tracer (the GPU integrates every pixel); use --tracer general or auto, "
+           "or --device cpu";
+  if (q.metric.name == "minkowski") return "flat space is drawn with straight lines, on the CPU; use --device cpu";
+  const GpuStatus& gpu = gpu_status();
+  if (!gpu.built || !gpu.present) return gpu.why_not + "; use --device cpu";
+  return std::nullopt;
+}
+
+std::string choose_device(std::string_view asked, const FrameRequest& q) {
+  if (asked == "cpu") return "cpu";
+  if (asked != "auto" && asked != "cuda")
+    throw std::invalid_argument("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
+  const auto refusal = gpu_refusal(q);
+  if (asked == "cuda" && refusal) throw std::invalid_argument("--device cuda: " + *refusal);
+  return refusal ? "cpu" : "cuda";
 }
 
 void with_frame_tracer(const FrameRequest& q, const Camera& camera, const FrameTracerUser& f) {

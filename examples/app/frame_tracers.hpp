@@ -1,5 +1,5 @@
 // The application layer's instantiations (private to grtrace_app): one function per group of metrics, each in its
-// own translation unit so that they compile in parallel:
+// own translation unit so that they compile in parallel (with the CUDA backend, gpu_tracers.hpp):
 //   frame_tracers_schwarzschild.cpp  schwarzschild (auto/planar, general), minkowski (straight lines)
 //   frame_tracers_kerr.cpp           kerr in Boyer-Lindquist coordinates (auto/kerr-mino, general)
 //   frame_tracers_kerr_schild.cpp    kerr in Cartesian Kerr-Schild coordinates (general)
@@ -9,6 +9,7 @@
 
 #include "grtrace/app/frame_tracer.hpp"
 #include "grtrace/app/tool_methods.hpp"
+#include "gpu_tracers.hpp"
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
@@ -18,34 +19,71 @@
 
 namespace grtrace::app {
 
-/// The FrameTracer of a concrete scene tracer, by reference (the tracer lives in with_frame_tracer's frame).
+/// The FrameTracer of a concrete scene tracer, by reference (the tracer lives in with_frame_tracer's frame), tracing
+/// on the CPU or, for the tracers gpu_traces lists, on the GPU; the header says which ("device").
 template <SceneTracer Tracer>
 class FrameTracerOf final : public FrameTracer {
  public:
-  explicit FrameTracerOf(const Tracer& tracer) : tracer_(&tracer) {}
+  FrameTracerOf(const Tracer& tracer, bool on_gpu) : tracer_(&tracer), on_gpu_(on_gpu) {}
   Frame render(const Camera& camera, const RenderOptions& options,
                std::vector<SkyDirection>* directions) const override {
-    return grtrace::render_frame(camera, *tracer_, options, directions);
+    if constexpr (kAppHasCuda && gpu_traces<Tracer>) {
+      if (on_gpu_) {
+        double seconds = 0.0;
+        Frame frame = render_frame_traced_by(
+            camera, *tracer_,
+            [&](int width, int height) { return trace_on_gpu(camera, *tracer_, width, height, &seconds); },
+            options, directions);
+        frame.image.metadata["device"] = gpu_status().name;
+        frame.image.metadata["gpu_trace_seconds"] = exact_number(seconds);
+        return frame;
+      }
+    }
+    if (on_gpu_) throw std::logic_error("grtrace_app: a tracer the GPU does not run was sent to the GPU");
+    Frame frame = grtrace::render_frame(camera, *tracer_, options, directions);
+    frame.image.metadata["device"] = "cpu";
+    return frame;
   }
   TracerReport report() const override { return grtrace::tracer_report(*tracer_); }
 
  private:
   const Tracer* tracer_;
+  bool on_gpu_;
 };
 
 /// Calls f with the concrete tracer wrapped.
 template <class Tracer>
-void hand_over(const Tracer& tracer, const FrameTracerUser& f) {
-  f(FrameTracerOf<Tracer>(tracer));
+void hand_over(const Tracer& tracer, const FrameTracerUser& f, bool on_gpu = false) {
+  f(FrameTracerOf<Tracer>(tracer, on_gpu));
 }
 
-/// The tracer q names for Metric (auto or general) with every offered method and both preset scene types.
+/// The GPU's tracer for q (device cuda: checked by choose_device): kerr-mino for Kerr in Boyer-Lindquist
+/// coordinates with tracer auto, else general; with the GPU's one method.
+template <MetricPolicy Metric, class Scene>
+void with_gpu_tracer(const FrameRequest& q, const Metric& metric, const Scene& scene, const FrameTracerUser& f) {
+  if constexpr (kerr_mino_tracer_applies<Metric, Scene, GpuController>) {
+    if (q.tracer == "auto") {
+      hand_over(make_kerr_mino_tracer<GpuTableau, GpuController>(metric, q.settings, q.correction, scene), f, true);
+      return;
+    }
+  }
+  hand_over(make_general_tracer<GpuTableau, GpuController>(metric, q.settings, q.correction, scene), f, true);
+}
+
+/// The tracer q names for Metric (auto or general) with every offered method and both preset scene types, on the
+/// device q names.
 template <MetricPolicy Metric>
 void with_integrating_tracer(const FrameRequest& q, const Metric& metric, const Camera& camera,
                              const FrameTracerUser& f) {
   const bool known = dispatch_tool_method(q.tableau, q.control, [&]<class T, class C>() {
     with_standard_scene(q.scene, [&]<class Scene>(Scene scene) {
       if constexpr (scene_fits_metric<Metric, Scene>) {
+        if (q.device == "cuda") {
+          if constexpr (std::is_same_v<T, GpuTableau> && std::is_same_v<C, GpuController> && gpu_metric<Metric>)
+            with_gpu_tracer(q, metric, scene, f);
+          else throw std::logic_error("grtrace_app: a request the GPU does not run was sent to the GPU");
+          return;
+        }
         const auto call = [&](const auto& tracer) { hand_over(tracer, f); };
         if (q.tracer == "general") call(make_general_tracer<T, C>(metric, q.settings, q.correction, scene));
         else with_auto_tracer<T, C>(metric, q.settings, camera, q.correction, scene, q.table_rays, call);

@@ -71,6 +71,11 @@ CommandLine make_command_line() {
                                 "every pixel integrated (any metric). auto picks kerr-mino for --metric kerr --chart "
                                 "bl with an adaptive --control: every pixel on Kerr's separated equations in Mino "
                                 "time, 3x cheaper per ray than general")
+      .option("device", "auto", "auto | cpu | cuda. cuda: rays traced on the GPU (a build with the CUDA backend and "
+                                "a CUDA device; --tableau rkf78 --control i; every pixel integrated: --tracer "
+                                "general, or auto = kerr-mino for --metric kerr --chart bl, general otherwise); auto: "
+                                "the GPU where it can draw the request, else the CPU. The JSON line and the EXR header "
+                                "(device) name the device that ran")
       .option("table-rays", std::to_string(grtrace::default_table_rays),
               "planar tracer: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
@@ -298,7 +303,10 @@ Request read_request(const CommandLine& cli) {
   // Which tracer can draw this metric, scene and method is the application layer's answer (check_frame_request);
   // auto picks the fastest tracer whose assumptions hold (trace/auto_tracer.hpp), and the JSON line and the EXR
   // header say which one ran.
+  // The device likewise (choose_device): --device cuda where the GPU cannot draw the request is refused here,
+  // before any work, saying what to use instead.
   try {
+    q.device = app::choose_device(cli.text("device"), render_tool::frame_request(q));
     app::check_frame_request(render_tool::frame_request(q));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
@@ -543,6 +551,7 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds).add("traced_rays", stats.traced_rays);
   json.add("status_counts", status_counts_json(stats.status_counts));
   json.add("tracer", table.name).add("tableau", q.tableau).add("control", q.control);
+  json.add("device", q.device == "cuda" ? app::gpu_status().name : q.device);
   json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
   json.add("first_frame", flight_exr_path(q, 0)).add("last_frame", flight_exr_path(q, frames - 1));
   if (!mp4.empty()) json.add("mp4", mp4);
@@ -610,6 +619,7 @@ int main(int argc, char** argv) {
     const double mean_steps = tabulated ? static_cast<double>(table.table_steps) / static_cast<double>(st.rays) : st.mean_steps;
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
+    json.add("device", image.metadata["device"]);
     json.add("sky_continuation", image.metadata["sky_continuation"]);
     if (image.metadata.count("sky_continuation_error"))  // a flat continuation's estimated error (render_frame)
       json.add("sky_continuation_error", std::stod(image.metadata["sky_continuation_error"]))

@@ -41,6 +41,7 @@ struct Request {
   StandardSceneSpec scene;
   MetricSpec metric;
   std::string tableau, control, tracer, correction_name, out;
+  std::string device = "cpu";  ///< cpu or cuda (app::choose_device's answer to --device)
   TraceSettings settings;
   AngleCorrection correction = AngleCorrection::exact;
   std::optional<Camera> camera;
@@ -73,6 +74,7 @@ inline app::FrameRequest frame_request(const Request& q) {
   f.settings = q.settings;
   f.correction = q.correction;
   f.table_rays = q.table_nodes;
+  f.device = q.device;
   return f;
 }
 

@@ -4,8 +4,11 @@
 // a blackbody whose colour and brightness follow the redshift of each ray that reaches it. Faint meridians and a
 // bright equator band (in the star's own axes) show which part of it an image shows, so its secondary image,
 // seen around the far side of the hole, is recognisable.
+// Its surface and its matter's motion are marked GRTRACE_HD (grtrace/core/host_device.hpp): callable where the rays
+// are traced, a CPU or a GPU (star_beside_hole_gpu.cu); its colour is the host's (shading happens there).
 #pragma once
 
+#include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/spherical_chart.hpp"
 #include "grtrace/observer/observers.hpp"
@@ -25,13 +28,13 @@ struct GlowingStar {
   double radius = 1.5;
   double temperature = 6500.0;                 // kelvin, as emitted
 
-  double operator()(const grtrace::GeodesicState& y) const {
+  GRTRACE_HD double operator()(const grtrace::GeodesicState& y) const {
     return (grtrace::spherical_to_cartesian(y.head<4>()) - centre).norm() - radius;
   }
 
   /// The star is static: its matter moves along the Killing time (observer/observers.hpp).
   template <grtrace::MetricPolicy M>
-  grtrace::Vec4 emitter_velocity(const M& metric, const grtrace::Vec4& x) const {
+  GRTRACE_HD grtrace::Vec4 emitter_velocity(const M& metric, const grtrace::Vec4& x) const {
     return grtrace::rest_emitter_velocity(metric, x);
   }
 

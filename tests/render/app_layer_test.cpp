@@ -141,4 +141,45 @@ TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
   EXPECT_FALSE(app::is_tool_method("rkf45", "i"));
 }
 
+TEST(AppLayer, ChoosesTheDeviceAndSaysWhyTheGpuCannotDrawARequest) {
+  const app::FrameRequest q = request("kerr", "disk", "rkf78", "i", "auto");
+  EXPECT_EQ(app::choose_device("cpu", q), "cpu");
+  EXPECT_THROW(app::choose_device("teapot", q), std::invalid_argument);
+  // What the GPU does not run is refused whatever the machine has, naming what to use instead.
+  struct Case {
+    app::FrameRequest q;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {request("kerr", "disk", "tsit5", "i", "auto"), "--tableau rkf78 --control i only"},
+      {request("schwarzschild", "disk", "rkf78", "i", "planar"), "use --tracer general or auto"},
+      {request("minkowski", "checker", "rkf78", "i", "auto"), "straight lines, on the CPU"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.says);
+    const auto refusal = app::gpu_refusal(c.q);
+    ASSERT_TRUE(refusal.has_value());
+    EXPECT_NE(refusal->find(c.says), std::string::npos) << *refusal;
+    EXPECT_EQ(app::choose_device("auto", c.q), "cpu");
+    app::FrameRequest on_gpu = c.q;
+    on_gpu.device = "cuda";
+    EXPECT_THROW(app::check_frame_request(on_gpu), std::invalid_argument);
+  }
+  // The request itself is the GPU's: whether it runs there is the machine's answer.
+  const app::GpuStatus& gpu = app::gpu_status();
+  if (gpu.present) {
+    EXPECT_FALSE(app::gpu_refusal(q).has_value());
+    EXPECT_EQ(app::choose_device("auto", q), "cuda");
+  } else {
+    ASSERT_TRUE(app::gpu_refusal(q).has_value());
+    EXPECT_NE(app::gpu_refusal(q)->find("use --device cpu"), std::string::npos);
+    EXPECT_FALSE(gpu.why_not.empty());
+    EXPECT_EQ(app::choose_device("auto", q), "cpu");
+    EXPECT_THROW(app::choose_device("cuda", q), std::invalid_argument);
+  }
+  // A frame drawn on the CPU says so in its header.
+  const Camera camera = small_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0);
+  EXPECT_EQ(app::render_frame(q, camera).image.metadata.at("device"), "cpu");
+}
+
 }  // namespace

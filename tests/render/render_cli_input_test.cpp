@@ -232,3 +232,40 @@ TEST_F(RenderCliInput, FlatSpaceIsNeverIntegrated) {
   EXPECT_NE(r.out.find("\"escaped\":384"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"mean_steps\":0"), std::string::npos) << r.out;
 }
+
+TEST_F(RenderCliInput, TheDeviceIsChosenBeforeAnyWorkAndNamedInTheJsonAndHeader) {
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--device", "teapot"}, "choose auto, cpu or cuda"},
+      {{"--device", "cuda", "--tableau", "tsit5"}, "--tableau rkf78 --control i only"},
+      {{"--device", "cuda", "--tracer", "planar"}, "use --tracer general or auto"},
+      {{"--device", "cuda", "--metric", "minkowski"}, "use --device cpu"},
+  };
+  for (const auto& [args, says] : cases) {
+    std::vector<std::string> full = args;
+    full.insert(full.end(), {"--out", out("frame.exr").string(), "--width", "8", "--height", "8"});
+    const ToolRun r = run(full);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << "expected '" << says << "' in: " << r.err;
+    EXPECT_TRUE(out_listing().empty());
+  }
+  // auto: the GPU where this build and machine have one, else the CPU; the JSON line and the header say which.
+  const fs::path exr = out("frame.exr");
+  const ToolRun a = run(small({"--tracer", "general", "--out", exr.string()}));
+  ASSERT_EQ(a.status, 0) << a.err;
+  const std::string key = "\"device\":\"";
+  const std::size_t at = a.out.find(key);
+  ASSERT_NE(at, std::string::npos) << a.out;
+  const std::string device = a.out.substr(at + key.size(), a.out.find('"', at + key.size()) - at - key.size());
+  EXPECT_EQ(grtrace::read_exr(exr).metadata.at("device"), device);
+  fs::remove(exr);
+  fs::remove(out("frame.png"));
+  const ToolRun c = run(small({"--tracer", "general", "--device", "cuda", "--out", exr.string()}));
+  if (device == "cpu") {  // no GPU here: --device cuda is refused, saying what to use
+    EXPECT_EQ(c.status, 2) << c.err;
+    EXPECT_NE(c.err.find("use --device cpu"), std::string::npos) << c.err;
+    EXPECT_TRUE(out_listing().empty());
+  } else {
+    EXPECT_EQ(c.status, 0) << c.err;
+    EXPECT_NE(c.out.find(key + device + "\""), std::string::npos) << c.out;
+  }
+}

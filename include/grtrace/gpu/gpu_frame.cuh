@@ -154,17 +154,16 @@ std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer,
   return outcomes;
 }
 
-/// render_frame (render/frame.hpp) with the traced region's rays traced on the GPU; the header records the device
-/// ("device") and the GPU's share of the time ("gpu_trace_seconds").
+/// render_frame (render/frame.hpp) with the traced region's rays traced on the GPU (render_frame_traced_by); the
+/// header records the device ("device") and the GPU's share of the time ("gpu_trace_seconds").
 template <GpuSceneTracer Tracer>
 Frame render_frame_on_gpu(const Camera& camera, const Tracer& tracer, const RenderOptions& options = {},
-                          std::vector<SkyDirection>* directions = nullptr, const std::string& device_name = "") {
-  const TracedRegion region = traced_region(tracer, camera, options);
+                          std::vector<SkyDirection>* directions = nullptr) {
   GpuTiming timing;
-  const std::vector<RayOutcome> outcomes = trace_pixels(camera, tracer, region.width, region.height, &timing);
-  tracer.note_escaped(outcomes);
-  Frame frame = render_frame(camera, tracer, options, directions, &outcomes);
-  frame.image.metadata["device"] = device_name.empty() ? first_gpu().name : device_name;
+  Frame frame = render_frame_traced_by(
+      camera, tracer, [&](int width, int height) { return trace_pixels(camera, tracer, width, height, &timing); },
+      options, directions);
+  frame.image.metadata["device"] = first_gpu().name;
   frame.image.metadata["gpu_trace_seconds"] = exact_number(timing.trace);
   return frame;
 }

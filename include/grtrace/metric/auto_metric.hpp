@@ -232,9 +232,11 @@ struct AutoMetric : C {
   /// exact zeros), else the general 4x4 inverse.
   GRTRACE_HD Vec4 acceleration(const Vec4& x, const Vec4& k) const {
     using D = Dual<active_count>;
+    // A local copy of the static member: device code cannot read a host variable (core/host_device.hpp).
+    constexpr auto coords = auto_metric_detail::active_coordinates<C>();
     Vec4Of<D> xd;
     for (int i = 0; i < 4; ++i) xd[i] = D(x[i]);
-    for (std::size_t j = 0; j < active.size(); ++j) xd[active[j]] = D::variable(x[active[j]], static_cast<int>(j));
+    for (std::size_t j = 0; j < coords.size(); ++j) xd[coords[j]] = D::variable(x[coords[j]], static_cast<int>(j));
     const Mat4Of<D> G = C::metric_components(xd);
     Mat4 g, dk;
     Vec4 q = Vec4::Zero();
@@ -244,9 +246,9 @@ struct AutoMetric : C {
         g(a, b) = g(b, a) = e.v;
         const double w = (a == b ? 1.0 : 2.0) * k[a] * k[b];
         double along_k = 0.0;
-        for (std::size_t j = 0; j < active.size(); ++j) {
-          along_k += e.d[j] * k[active[j]];
-          q[active[j]] += w * e.d[j];
+        for (std::size_t j = 0; j < coords.size(); ++j) {
+          along_k += e.d[j] * k[coords[j]];
+          q[coords[j]] += w * e.d[j];
         }
         dk(a, b) = dk(b, a) = along_k;
       }
@@ -268,7 +270,7 @@ struct AutoMetric : C {
   }
 
  private:
-  Mat4Of<MetricDual> dual_components(const Vec4& x) const {
+  GRTRACE_HD Mat4Of<MetricDual> dual_components(const Vec4& x) const {
     Vec4Of<MetricDual> xd;
     for (int i = 0; i < 4; ++i) xd[i] = MetricDual::variable(x[i], i);
     return C::metric_components(xd);

@@ -135,7 +135,7 @@ struct KerrSchildMetric {
   /// Optional trait (metric/metric_traits.hpp): the spherical chart of this spacetime (Boyer-Lindquist) and the BL
   /// coordinates of an event outside r_+ (ks_to_bl_position, defined below).
   GRTRACE_HD KerrMetric spherical_chart() const { return boyer_lindquist(); }
-  Vec4 spherical_event(const Vec4& x) const;
+  GRTRACE_HD Vec4 spherical_event(const Vec4& x) const;
 
   static GRTRACE_HD Mat4 eta() { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
 
@@ -285,12 +285,12 @@ struct KerrSchildMetric {
     return -(y[1] * p[2] - y[2] * p[1]);
   }
   /// Carter's constant, evaluated at the corresponding Boyer-Lindquist state (valid for r > r_+).
-  double carter_constant(const GeodesicState& y) const;
+  GRTRACE_HD double carter_constant(const GeodesicState& y) const;
 
   /// Optional trait (metric/metric_traits.hpp): cameras and tools state events in Boyer-Lindquist (t, r, theta,
   /// phi); these map an event and the BL coordinate basis into this chart (defined below the free functions).
-  Vec4 event_from_spherical(const Vec4& x_bl) const;
-  Mat4 jacobian_from_spherical(const Vec4& x_bl) const;
+  GRTRACE_HD Vec4 event_from_spherical(const Vec4& x_bl) const;
+  GRTRACE_HD Mat4 jacobian_from_spherical(const Vec4& x_bl) const;
 
   /// Kretschmann scalar, the BL formula at r and cos(theta) = z / r.
   GRTRACE_HD double kretschmann(const Vec4& x) const {
@@ -391,11 +391,11 @@ inline GRTRACE_HD KerrSchildMetric kerr_schild_for_flights(double mass, double s
   return KerrSchildMetric::checked(mass, spin, KerrSchildSlicing::ingoing);
 }
 
-inline Vec4 KerrSchildMetric::spherical_event(const Vec4& x) const { return ks_to_bl_position(*this, x); }
-inline Vec4 KerrSchildMetric::event_from_spherical(const Vec4& x_bl) const { return bl_to_ks_position(*this, x_bl); }
-inline Mat4 KerrSchildMetric::jacobian_from_spherical(const Vec4& x_bl) const { return bl_to_ks_jacobian(*this, x_bl); }
+inline GRTRACE_HD Vec4 KerrSchildMetric::spherical_event(const Vec4& x) const { return ks_to_bl_position(*this, x); }
+inline GRTRACE_HD Vec4 KerrSchildMetric::event_from_spherical(const Vec4& x_bl) const { return bl_to_ks_position(*this, x_bl); }
+inline GRTRACE_HD Mat4 KerrSchildMetric::jacobian_from_spherical(const Vec4& x_bl) const { return bl_to_ks_jacobian(*this, x_bl); }
 
-inline double KerrSchildMetric::carter_constant(const GeodesicState& y) const {
+inline GRTRACE_HD double KerrSchildMetric::carter_constant(const GeodesicState& y) const {
   return boyer_lindquist().carter_constant(ks_to_bl(*this, y));
 }
 

@@ -26,6 +26,7 @@
 #include "grtrace/trace/scene_tracer_concept.hpp"
 #include "grtrace/trace/sky_continuation_kind.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -212,6 +213,26 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
   image.metadata["object_names"] = names;
   record_camera(image, camera);
   record_render_stats(image, frame.stats);
+  return frame;
+}
+
+/// A frame whose rays are traced elsewhere (a GPU: gpu/gpu_frame.cuh): trace(width, height) returns the outcomes of
+/// the camera's top-left width x height pixels (traced_region's), row by row, as tracer.trace would give them; the
+/// tracer takes their statistics back (note_escaped, where it keeps any) and render_frame shades, mirrors, counts and
+/// records them. The same Frame as render_frame(camera, tracer, options, directions) when trace is the tracer's own.
+template <SceneTracer Tracer, class Trace>
+Frame render_frame_traced_by(const Camera& camera, const Tracer& tracer, const Trace& trace,
+                             const RenderOptions& options = {}, std::vector<SkyDirection>* directions = nullptr) {
+  const auto start = std::chrono::steady_clock::now();
+  const TracedRegion region = traced_region(tracer, camera, options);
+  const std::vector<RayOutcome> outcomes = trace(region.width, region.height);
+  if constexpr (requires { tracer.note_escaped(outcomes); }) tracer.note_escaped(outcomes);
+  Frame frame = render_frame(camera, tracer, options, directions, &outcomes);
+  // The frame's time is the tracing's too, wherever it ran.
+  RenderStats& stats = frame.stats;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.rays_per_second = stats.seconds > 0.0 ? static_cast<double>(stats.rays) / stats.seconds : 0.0;
+  record_render_stats(frame.image, stats);
   return frame;
 }
 

@@ -28,7 +28,9 @@
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/tracer_report.hpp"
 
+#include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,7 +50,32 @@ struct FrameRequest {
   TraceSettings settings;
   AngleCorrection correction = AngleCorrection::exact;
   int table_rays = grtrace::default_table_rays;  ///< planar tracer: table rays per side
+  /// Where the rays are traced: cpu, or cuda (the GPU backend: every pixel integrated, the default method only;
+  /// tracer auto means kerr-mino for Kerr in Boyer-Lindquist coordinates and general otherwise). Tools turn the
+  /// user's auto into one of them with choose_device.
+  std::string device = "cpu";
 };
+
+inline constexpr std::array<std::string_view, 3> kDeviceNames = {"auto", "cpu", "cuda"};
+
+/// The GPU this build can trace on: whether the CUDA backend was compiled in, and the first CUDA device's name or
+/// why there is none. Asked once per process.
+struct GpuStatus {
+  bool built = false;
+  bool present = false;
+  std::string name;     ///< e.g. "NVIDIA H100 80GB HBM3"
+  std::string why_not;  ///< when not present
+};
+const GpuStatus& gpu_status();
+
+/// Why the GPU cannot draw the request (a method, tracer or metric it does not run, then no backend or no device),
+/// in words that say what to use instead; nothing when it can.
+std::optional<std::string> gpu_refusal(const FrameRequest& q);
+
+/// The device the request runs on when the user asks for `asked`: cpu; cuda (std::invalid_argument saying what to
+/// change when gpu_refusal refuses); auto: cuda where gpu_refusal has nothing against it, else cpu. Refuses names
+/// outside kDeviceNames.
+std::string choose_device(std::string_view asked, const FrameRequest& q);
 
 inline constexpr std::array<std::string_view, 3> kTracerNames = {"auto", "general", "planar"};
 

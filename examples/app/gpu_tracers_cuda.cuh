@@ -1,0 +1,37 @@
+// trace_on_gpu (gpu_tracers.hpp) for the tracers the CUDA units list: gpu::trace_pixels (gpu/gpu_frame.cuh), one
+// explicit instantiation per tracer type, each checked against gpu_traces (a type the frame tracer units would never
+// ask for, or one they ask for and no unit instantiates, is a compile or link error, not a silent CPU fallback).
+#pragma once
+
+#include "gpu_tracers.hpp"
+
+#include "grtrace/gpu/gpu_frame.cuh"
+
+namespace grtrace::app {
+
+template <class Tracer>
+std::vector<RayOutcome> trace_on_gpu(const Camera& camera, const Tracer& tracer, int width, int height,
+                                     double* trace_seconds) {
+  static_assert(gpu_traces<Tracer>, "trace_on_gpu: add the tracer to gpu_traces (gpu_tracers.hpp) first");
+  gpu::GpuTiming timing;
+  std::vector<RayOutcome> outcomes = gpu::trace_pixels(camera, tracer, width, height, &timing);
+  if (trace_seconds) *trace_seconds = timing.trace;
+  return outcomes;
+}
+
+}  // namespace grtrace::app
+
+/// The general tracer of Metric for both preset scene types.
+#define GRTRACE_APP_GPU_GENERAL(Metric)                                                                           \
+  template std::vector<RayOutcome> trace_on_gpu(                                                                 \
+      const Camera&, const GeneralSceneTracer<Metric, GpuTableau, GpuController, BackgroundScene>&, int, int,   \
+      double*);                                                                                                   \
+  template std::vector<RayOutcome> trace_on_gpu(                                                                 \
+      const Camera&, const GeneralSceneTracer<Metric, GpuTableau, GpuController, DiskScene>&, int, int, double*);
+
+/// The reduced Kerr tracer for both preset scene types.
+#define GRTRACE_APP_GPU_KERR_MINO()                                                                               \
+  template std::vector<RayOutcome> trace_on_gpu(                                                                 \
+      const Camera&, const KerrMinoSceneTracer<GpuTableau, GpuController, BackgroundScene>&, int, int, double*); \
+  template std::vector<RayOutcome> trace_on_gpu(                                                                 \
+      const Camera&, const KerrMinoSceneTracer<GpuTableau, GpuController, DiskScene>&, int, int, double*);

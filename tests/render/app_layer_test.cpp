@@ -114,12 +114,14 @@ TEST(AppLayer, FlightFramesAreItsSingleFrames) {
   }
 }
 
+/// A request and what its refusal must say.
+struct Refused {
+  app::FrameRequest q;
+  std::string says;
+};
+
 TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
-  struct Case {
-    app::FrameRequest q;
-    std::string says;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<Refused> cases = {
       {request("schwarzschild", "checker", "dopri5", "i", "auto"), "rkf78 + i, rkf78 + pi"},
       {request("schwarzschild", "checker", "rk4", "pi", "auto"), "embedded error estimate"},
       {request("kerr", "checker", "rkf78", "i", "planar"), "--tracer planar needs"},
@@ -127,7 +129,7 @@ TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
       {request("schwarzschild", "checker", "rkf78", "i", "symmetric"), "use --tracer planar"},
       {request("schwarzschild", "checker", "rkf78", "i", "teapot"), "choose auto, general or planar"},
   };
-  for (const Case& c : cases) {
+  for (const Refused& c : cases) {
     SCOPED_TRACE(c.says);
     try {
       app::check_frame_request(c.q);
@@ -146,16 +148,12 @@ TEST(AppLayer, ChoosesTheDeviceAndSaysWhyTheGpuCannotDrawARequest) {
   EXPECT_EQ(app::choose_device("cpu", q), "cpu");
   EXPECT_THROW(app::choose_device("teapot", q), std::invalid_argument);
   // What the GPU does not run is refused whatever the machine has, naming what to use instead.
-  struct Case {
-    app::FrameRequest q;
-    std::string says;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<Refused> cases = {
       {request("kerr", "disk", "tsit5", "i", "auto"), "--tableau rkf78 --control i only"},
       {request("schwarzschild", "disk", "rkf78", "i", "planar"), "use --tracer general or auto"},
       {request("minkowski", "checker", "rkf78", "i", "auto"), "straight lines, on the CPU"},
   };
-  for (const Case& c : cases) {
+  for (const Refused& c : cases) {
     SCOPED_TRACE(c.says);
     const auto refusal = app::gpu_refusal(c.q);
     ASSERT_TRUE(refusal.has_value());

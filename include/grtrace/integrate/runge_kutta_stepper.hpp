@@ -150,10 +150,12 @@ class RungeKuttaStepper {
 
   /// y(theta) on the last step, for tableaux that carry their own continuous extension.
   GRTRACE_HD State interpolate(const State& y, double h, double theta) const requires TableauWithDenseOutput<T> {
+    // A local copy of the tableau's table: device code cannot read a host variable (core/host_device.hpp).
+    constexpr auto dense = T::dense;
     State acc = State::Zero();
     for (std::size_t i = 0; i < S; ++i) {
       double w = 0.0, power = theta;
-      for (int d = 0; d < T::dense_degree; ++d, power *= theta) w += T::dense[i][static_cast<std::size_t>(d)] * power;
+      for (int d = 0; d < T::dense_degree; ++d, power *= theta) w += dense[i][static_cast<std::size_t>(d)] * power;
       acc.noalias() += w * k_[i];
     }
     return y + h * acc;

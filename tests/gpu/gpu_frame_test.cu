@@ -1,4 +1,5 @@
-// The CUDA backend (include/grtrace/gpu/gpu_frame.cuh, examples/app/gpu_tracers.hpp), compiled by nvcc.
+// The CUDA backend (include/grtrace/gpu/gpu_frame.cuh, examples/app/gpu_tracers.hpp), compiled by nvcc; the kernels
+// are the application layer's (app::trace_on_gpu), not instantiated again here.
 //   - On any machine: the host pass of this nvcc build runs the same source a GPU thread runs (trace_quietly) and
 //     draws the CPU build's frame (the application layer, compiled by the C++ compiler) bit for bit: one source, the
 //     same arithmetic (no contraction, fused where core/mul_add.hpp says).
@@ -6,8 +7,9 @@
 //     object channel identical but for silhouette pixels (counted: a ray grazing an edge may end on either side
 //     when the last bits of its path differ), redshift and sky direction within 1e-9; the Kerr disk frame's hit
 //     radius within 1e-6 of the CPU's rkf78 + I at rtol 1e-12.
+#include "gpu_tracers.hpp"  // examples/app: the application layer's kernels (trace_on_gpu), instantiated there only
+
 #include "grtrace/app/frame_tracer.hpp"
-#include "grtrace/gpu/gpu_frame.cuh"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
@@ -75,7 +77,7 @@ TEST(GpuNvccHostPass, DrawsTheCpuBuildsFrameBitForBit) {
 /// The GPU's outcomes against the CPU's trace, pixel by pixel, in double precision (see the top of this file).
 template <class Tracer>
 void expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const Tracer& tracer) {
-  const std::vector<RayOutcome> gpu = gpu::trace_pixels(camera, tracer, camera.width(), camera.height());
+  const std::vector<RayOutcome> gpu = app::trace_on_gpu(camera, tracer, camera.width(), camera.height(), nullptr);
   long silhouette = 0, status_differs = 0, compared = 0;
   double worst_redshift = 0.0, worst_sky = 0.0;
   for (int row = 0; row < camera.height(); ++row)
@@ -158,7 +160,8 @@ TEST(GpuDevice, KerrDiskHitRadiusAgreesWithTheCpuAtTightTolerance) {
   const app::FrameRequest q = request("kerr", "disk", "auto");
   const auto gpu_tracer =
       make_kerr_mino_tracer<Fehlberg78, IController>(kerr, q.settings, q.correction, disk_scene(q.scene));
-  const std::vector<RayOutcome> gpu = gpu::trace_pixels(camera, gpu_tracer, camera.width(), camera.height());
+  const std::vector<RayOutcome> gpu =
+      app::trace_on_gpu(camera, gpu_tracer, camera.width(), camera.height(), nullptr);
   TraceSettings tight = q.settings;
   tight.integrator.tolerance = {1e-12, 1e-14};
   const auto cpu_tracer = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, tight, q.correction, disk_scene(q.scene));

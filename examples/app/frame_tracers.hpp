@@ -57,19 +57,6 @@ void hand_over(const Tracer& tracer, const FrameTracerUser& f, bool on_gpu = fal
   f(FrameTracerOf<Tracer>(tracer, on_gpu));
 }
 
-/// The GPU's tracer for q (device cuda: checked by choose_device): kerr-mino for Kerr in Boyer-Lindquist
-/// coordinates with tracer auto, else general; with the GPU's one method.
-template <MetricPolicy Metric, class Scene>
-void with_gpu_tracer(const FrameRequest& q, const Metric& metric, const Scene& scene, const FrameTracerUser& f) {
-  if constexpr (kerr_mino_tracer_applies<Metric, Scene, GpuController>) {
-    if (q.tracer == "auto") {
-      hand_over(make_kerr_mino_tracer<GpuTableau, GpuController>(metric, q.settings, q.correction, scene), f, true);
-      return;
-    }
-  }
-  hand_over(make_general_tracer<GpuTableau, GpuController>(metric, q.settings, q.correction, scene), f, true);
-}
-
 /// The tracer q names for Metric (auto or general) with every offered method and both preset scene types, on the
 /// device q names.
 template <MetricPolicy Metric>
@@ -78,14 +65,13 @@ void with_integrating_tracer(const FrameRequest& q, const Metric& metric, const 
   const bool known = dispatch_tool_method(q.tableau, q.control, [&]<class T, class C>() {
     with_standard_scene(q.scene, [&]<class Scene>(Scene scene) {
       if constexpr (scene_fits_metric<Metric, Scene>) {
-        if (q.device == "cuda") {
-          if constexpr (std::is_same_v<T, GpuTableau> && std::is_same_v<C, GpuController> && gpu_metric<Metric>)
-            with_gpu_tracer(q, metric, scene, f);
-          else throw std::logic_error("grtrace_app: a request the GPU does not run was sent to the GPU");
-          return;
-        }
-        const auto call = [&](const auto& tracer) { hand_over(tracer, f); };
-        if (q.tracer == "general") call(make_general_tracer<T, C>(metric, q.settings, q.correction, scene));
+        // On the GPU (device cuda, checked by check_frame_request: the GPU's method, no planar tracer) auto means
+        // kerr-mino where it applies and general otherwise; the same call sites as the CPU's, so no tracer is
+        // instantiated twice (FrameTracerOf sends the frame to the GPU's kernels, gpu_tracers.hpp).
+        const bool on_gpu = q.device == "cuda";
+        const auto call = [&](const auto& tracer) { hand_over(tracer, f, on_gpu); };
+        if (q.tracer == "general" || (on_gpu && !kerr_mino_tracer_applies<Metric, Scene, C>))
+          call(make_general_tracer<T, C>(metric, q.settings, q.correction, scene));
         else with_auto_tracer<T, C>(metric, q.settings, camera, q.correction, scene, q.table_rays, call);
       } else {
         throw std::invalid_argument("--scene " + q.scene.name + " cannot be drawn in the " +

@@ -2,6 +2,7 @@
 // and the frame and flight loops over a FrameTracer, compiled once (grtrace/app/frame_tracer.hpp).
 #include "frame_tracers.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -49,12 +50,14 @@ std::optional<std::string> gpu_refusal(const FrameRequest& q) {
 
 std::string choose_device(std::string_view asked, const FrameRequest& q) {
   if (asked == "cpu") return "cpu";
-  if (asked != "auto" && asked != "cuda")
+  if (std::find(kDeviceNames.begin(), kDeviceNames.end(), asked) == kDeviceNames.end())
     throw std::invalid_argument("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
   const auto refusal = gpu_refusal(q);
   if (asked == "cuda" && refusal) throw std::invalid_argument("--device cuda: " + *refusal);
   return refusal ? "cpu" : "cuda";
 }
+
+std::string device_name(std::string_view device) { return device == "cuda" ? gpu_status().name : "cpu"; }
 
 void with_frame_tracer(const FrameRequest& q, const Camera& camera, const FrameTracerUser& f) {
   check_frame_request(q);

@@ -34,14 +34,14 @@ class FrameTracerOf final : public FrameTracer {
             camera, *tracer_,
             [&](int width, int height) { return trace_on_gpu(camera, *tracer_, width, height, &seconds); },
             options, directions);
-        frame.image.metadata["device"] = gpu_status().name;
+        frame.image.metadata["device"] = device_name("cuda");
         frame.image.metadata["gpu_trace_seconds"] = exact_number(seconds);
         return frame;
       }
     }
     if (on_gpu_) throw std::logic_error("grtrace_app: a tracer the GPU does not run was sent to the GPU");
     Frame frame = grtrace::render_frame(camera, *tracer_, options, directions);
-    frame.image.metadata["device"] = "cpu";
+    frame.image.metadata["device"] = device_name("cpu");
     return frame;
   }
   TracerReport report() const override { return grtrace::tracer_report(*tracer_); }

@@ -551,7 +551,7 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   json.add("rays_per_second", static_cast<double>(stats.rays) / stats.seconds).add("traced_rays", stats.traced_rays);
   json.add("status_counts", status_counts_json(stats.status_counts));
   json.add("tracer", table.name).add("tableau", q.tableau).add("control", q.control);
-  json.add("device", q.device == "cuda" ? app::gpu_status().name : q.device);
+  json.add("device", app::device_name(q.device));
   json.add("rtol", q.settings.integrator.tolerance.rtol).add("atol", q.settings.integrator.tolerance.atol);
   json.add("first_frame", flight_exr_path(q, 0)).add("last_frame", flight_exr_path(q, frames - 1));
   if (!mp4.empty()) json.add("mp4", mp4);

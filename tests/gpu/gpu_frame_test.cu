@@ -7,6 +7,7 @@
 //     object channel identical but for silhouette pixels (counted: a ray grazing an edge may end on either side
 //     when the last bits of its path differ), redshift and sky direction within 1e-9; the Kerr disk frame's hit
 //     radius within 1e-6 of the CPU's rkf78 + I at rtol 1e-12.
+#include "../common/quiet_trace.hpp"
 #include "gpu_tracers.hpp"  // examples/app: the application layer's kernels (trace_on_gpu), instantiated there only
 
 #include "grtrace/app/frame_tracer.hpp"
@@ -54,10 +55,7 @@ TEST(GpuNvccHostPass, DrawsTheCpuBuildsFrameBitForBit) {
   const app::FrameRequest q = request("kerr", "disk", "auto");
   const auto tracer = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, q.settings, q.correction, disk_scene(q.scene));
   const Frame here = render_frame_traced_by(camera, tracer, [&](int width, int height) {
-    std::vector<RayOutcome> outcomes;
-    for (int row = 0; row < height; ++row)
-      for (int col = 0; col < width; ++col) outcomes.push_back(tracer.trace_quietly(camera.pixel_state(col, row)));
-    return outcomes;
+    return testing_support::trace_quietly_here(camera, tracer, width, height);
   });
   const Frame cpu = app::render_frame(q, camera);
   for (const char* c : Image::kStandardChannels) {

@@ -3,6 +3,8 @@
 // render/frame.hpp: traced region, note_escaped, shading, mirrors) is render_frame's frame bit for bit, header
 // included (the flat continuation's error estimate comes from the noted escapes). The same functions compiled by
 // nvcc for the device are compared with these on a GPU in tests/gpu/gpu_frame_test.cu.
+#include "../common/quiet_trace.hpp"
+
 #include "grtrace/core/elliptic.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/grtrace.hpp"
@@ -40,10 +42,7 @@ void expect_frame_from_quiet_outcomes(const Camera& camera, const Tracer& tracer
   int rows = 0;
   const Frame elsewhere = render_frame_traced_by(camera, tracer, [&](int width, int height) {
     rows = height;
-    std::vector<RayOutcome> outcomes;
-    for (int row = 0; row < height; ++row)
-      for (int col = 0; col < width; ++col) outcomes.push_back(tracer.trace_quietly(camera.pixel_state(col, row)));
-    return outcomes;
+    return testing_support::trace_quietly_here(camera, tracer, width, height);
   });
   const Frame here = render_frame(camera, tracer);
   EXPECT_EQ(rows, expected_traced_rows);

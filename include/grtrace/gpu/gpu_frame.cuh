@@ -3,9 +3,11 @@
 // the CPU runs (the hot path is marked GRTRACE_HD: core/host_device.hpp); the host then shades, mirrors, counts and
 // records the frame exactly as render_frame does (render/frame.hpp), from those outcomes.
 //
-//   #include "grtrace/gpu/gpu_frame.cuh"          // in a .cu file, compiled by nvcc -std=c++20
-//   --expt-relaxed-constexpr const auto tracer = make_general_tracer<Fehlberg78, IController>(metric, settings,
-//   AngleCorrection::exact, scene); if (gpu::first_gpu().present) frame = gpu::render_frame_on_gpu(camera, tracer);
+// clang-format off
+//   #include "grtrace/gpu/gpu_frame.cuh"   // in a .cu file: nvcc -std=c++20 --expt-relaxed-constexpr
+//   const auto tracer = make_general_tracer<Fehlberg78, IController>(metric, settings, AngleCorrection::exact, scene);
+//   if (gpu::first_gpu().present) frame = gpu::render_frame_on_gpu(camera, tracer);
+// clang-format on
 //
 // Takes:   a Camera and a scene tracer with trace_quietly (GeneralSceneTracer, KerrMinoSceneTracer), whose metric and
 //          scene objects are GPU-callable (their surface, accepts, emitter_velocity, metric and acceleration marked
@@ -31,7 +33,6 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 namespace grtrace::gpu {

@@ -77,6 +77,9 @@ std::optional<std::string> gpu_refusal(const FrameRequest& q);
 /// outside kDeviceNames.
 std::string choose_device(std::string_view asked, const FrameRequest& q);
 
+/// The name a frame's header and the JSON line give the device (cpu or cuda): "cpu", or the GPU's model.
+std::string device_name(std::string_view device);
+
 inline constexpr std::array<std::string_view, 3> kTracerNames = {"auto", "general", "planar"};
 
 /// Refuses (std::invalid_argument, saying what to change) a request whose tracer cannot draw its metric, scene or

@@ -138,8 +138,8 @@ template <class Tracer>
 RenderStats render_answers(const Tracer& tracer, const Camera& cam, Image& image, FrameAnswers& answers) {
   // As render_frame traces (a tracer that traces groups of rays gets each tile at once: TileOutcomes).
   return render_image(
-      image, [&] { return TileOutcomes<Tracer>(cam, tracer); },
-      [&](int col, int row, TileOutcomes<Tracer>& tile) {
+      image, [&] { return TileOutcomes(cam, tracer); },
+      [&](int col, int row, TileOutcomes& tile) {
         const RayOutcome o = tile.at(col, row);
         answers.store(image.index(col, row), o);
         return tracer.scene().shade(o);
@@ -251,8 +251,8 @@ template <class Tracer>
 RenderStats render_metric_answers(const Tracer& tracer, const Camera& cam, Image& image, MetricAnswers& answers) {
   // As render_frame traces (a tracer that traces groups of rays gets each tile at once: TileOutcomes).
   return render_image(
-      image, [&] { return TileOutcomes<Tracer>(cam, tracer); },
-      [&](int col, int row, TileOutcomes<Tracer>& tile) {
+      image, [&] { return TileOutcomes(cam, tracer); },
+      [&](int col, int row, TileOutcomes& tile) {
         const RayOutcome o = tile.at(col, row);
         answers.store(image.index(col, row), o);
         return tracer.scene().shade(o);

@@ -28,6 +28,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -89,53 +90,127 @@ TracedRegion traced_region(const Tracer& tracer, const Camera& camera, const Ren
   return r;
 }
 
-/// One thread's way to each pixel's outcome, the scratch object of render_image_by_orbits: outcomes traced
-/// elsewhere beforehand (a GPU: gpu/gpu_frame.cuh) are read from there; a tracer that traces groups of rays
-/// (TracesMany, trace/scene_tracer_concept.hpp) traces each tile's pixels together when the tile begins
-/// (begin_tile); any other traces a pixel when at(col, row) asks for it. Either way at(col, row) is
-/// tracer.trace(camera.pixel_state(col, row)), bit for bit.
+/// Traces the pixels x0 <= col < x1, y0 <= row < y1 of `camera` with `tracer` into `out` (row by row, resized to the
+/// tile), each outcome tracer.trace(camera.pixel_state(col, row)) bit for bit; a tracer that traces groups of rays
+/// (TracesMany, trace/scene_tracer_concept.hpp) gets them in one call, through `states`. The one place where a frame
+/// meets its tracer's type: render_frame calls it through a function pointer once per tile, so that the image loop
+/// (shading, mirrors, counting) is compiled once per scene type rather than once per tracer.
 template <SceneTracer Tracer>
+void trace_tile(const Tracer& tracer, const Camera& camera, int x0, int y0, int x1, int y1,
+                std::vector<GeodesicState>& states, std::vector<RayOutcome>& out) {
+  const std::size_t count = static_cast<std::size_t>(x1 - x0) * static_cast<std::size_t>(y1 - y0);
+  out.resize(count);
+  if constexpr (TracesMany<Tracer>) {
+    states.clear();
+    for (int row = y0; row < y1; ++row)
+      for (int col = x0; col < x1; ++col) states.push_back(camera.pixel_state(col, row));
+    tracer.trace_many(states, out);
+  } else {
+    std::size_t i = 0;
+    for (int row = y0; row < y1; ++row)
+      for (int col = x0; col < x1; ++col) out[i++] = tracer.trace(camera.pixel_state(col, row));
+  }
+}
+
+/// One thread's way to each pixel's outcome, the scratch object of render_image_by_orbits: outcomes traced
+/// elsewhere beforehand (a GPU: gpu/gpu_frame.cuh) are read from there; otherwise each tile's pixels are traced
+/// together when the tile begins (begin_tile, trace_tile above). Either way at(col, row) is
+/// tracer.trace(camera.pixel_state(col, row)), bit for bit. The tracer's type is erased here (a function pointer,
+/// called once per tile), so code that reads outcomes through TileOutcomes is compiled once for all tracers.
 class TileOutcomes {
  public:
   /// traced: nothing, or the outcomes of the traced region's pixels, row by row, traced_width to a row.
+  template <SceneTracer Tracer>
   TileOutcomes(const Camera& camera, const Tracer& tracer, const std::vector<RayOutcome>* traced = nullptr,
                int traced_width = 0)
-      : camera_(&camera), tracer_(&tracer), traced_(traced), traced_width_(traced_width) {}
+      : camera_(&camera),
+        tracer_(&tracer),
+        trace_(+[](const void* t, const Camera& c, int x0, int y0, int x1, int y1, std::vector<GeodesicState>& states,
+                   std::vector<RayOutcome>& out) {
+          trace_tile(*static_cast<const Tracer*>(t), c, x0, y0, x1, y1, states, out);
+        }),
+        traced_(traced),
+        traced_width_(traced_width) {}
 
   void begin_tile(int x0, int y0, int x1, int y1) {
-    if constexpr (TracesMany<Tracer>) {
-      if (traced_) return;
-      x0_ = x0;
-      y0_ = y0;
-      width_ = x1 - x0;
-      states_.clear();
-      for (int row = y0; row < y1; ++row)
-        for (int col = x0; col < x1; ++col) states_.push_back(camera_->pixel_state(col, row));
-      outcomes_.resize(states_.size());
-      tracer_->trace_many(states_, outcomes_);
-    }
+    if (traced_) return;
+    x0_ = x0;
+    y0_ = y0;
+    width_ = x1 - x0;
+    trace_(tracer_, *camera_, x0, y0, x1, y1, states_, outcomes_);
   }
 
   /// The outcome of pixel (col, row) of the current tile.
-  RayOutcome at(int col, int row) const {
+  const RayOutcome& at(int col, int row) const {
     if (traced_)
       return (*traced_)[static_cast<std::size_t>(row) * static_cast<std::size_t>(traced_width_) +
                         static_cast<std::size_t>(col)];
-    if constexpr (TracesMany<Tracer>)
-      return outcomes_[static_cast<std::size_t>(row - y0_) * static_cast<std::size_t>(width_) +
-                       static_cast<std::size_t>(col - x0_)];
-    else return tracer_->trace(camera_->pixel_state(col, row));
+    return outcomes_[static_cast<std::size_t>(row - y0_) * static_cast<std::size_t>(width_) +
+                     static_cast<std::size_t>(col - x0_)];
   }
 
  private:
+  using TraceTileFn = void (*)(const void*, const Camera&, int, int, int, int, std::vector<GeodesicState>&,
+                               std::vector<RayOutcome>&);
   const Camera* camera_;
-  const Tracer* tracer_;
+  const void* tracer_;
+  TraceTileFn trace_;
   const std::vector<RayOutcome>* traced_;
   int traced_width_;
   int x0_ = 0, y0_ = 0, width_ = 0;
   std::vector<GeodesicState> states_;
   std::vector<RayOutcome> outcomes_;
 };
+
+namespace detail {
+
+/// render_frame's image loop for one scene type: each traced pixel's outcome (from the thread's TileOutcomes) shaded
+/// into its own pixel and, in a mirror-symmetric frame, reflected into the pixels it mirrors; the directions kept
+/// when asked. Returns the loop's statistics.
+template <class SceneT>
+RenderStats shade_frame(Image& image, const SceneT& scene, const TracedRegion& region,
+                        const std::function<TileOutcomes()>& make_scratch, const RenderOptions& options,
+                        std::vector<SkyDirection>* directions) {
+  const FrameMirrors& mirrors = region.mirrors;
+  const int width = image.width(), height = image.height();
+  const auto shade = [&](int col, int row, const RayOutcome& o) {
+    if (directions) (*directions)[image.index(col, row)] = o.where;  // distinct pixels: no data race
+    return scene.shade(o);
+  };
+  if (!mirrors.any()) {
+    // Every pixel traced: one shade per pixel, the loop frames had before mirrors (the mirrored loop below
+    // measured up to ~5 % slower on such frames, within the noise of one run).
+    return render_image(
+        image, make_scratch,
+        [&](int col, int row, TileOutcomes& scratch) { return shade(col, row, scratch.at(col, row)); }, options);
+  }
+  return render_image_by_orbits(
+      image, region.width, region.height, make_scratch,
+      [&](int col, int row, TileOutcomes& scratch, const auto& emit) {
+        RayOutcome o = scratch.at(col, row);
+        emit(col, row, shade(col, row, o));
+        const int mirror_col = width - 1 - col, mirror_row = height - 1 - row;
+        const bool rows = mirrors.equator && mirror_row != row, cols = mirrors.meridian && mirror_col != col;
+        // Reflected in place, at most one copy: building each image as a new outcome from a reflected copy cost
+        // more than the reflections (a store-forwarding stall per copy, a third of this loop's time in perf).
+        if (cols) {
+          RayOutcome m = o;
+          reflect_in_meridian(m, mirrors.camera_phi);
+          emit(mirror_col, row, shade(mirror_col, row, m));
+          if (rows) {
+            reflect_in_equator(m);
+            emit(mirror_col, mirror_row, shade(mirror_col, mirror_row, m));
+          }
+        }
+        if (rows) {
+          reflect_in_equator(o);
+          emit(col, mirror_row, shade(col, mirror_row, o));
+        }
+      },
+      options);
+}
+
+}  // namespace detail
 
 /// traced: nothing (the tracer traces every pixel here), or the outcomes of traced_region's pixels traced
 /// elsewhere (row by row; a GPU, gpu/gpu_frame.cuh), which are then shaded, mirrored and counted as if traced here.
@@ -149,52 +224,13 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
   // A mirror-symmetric frame traces the top-left half or quarter (the middle row and column of odd sizes
   // included) and reflects each outcome into the pixels it mirrors (render/mirror_symmetry.hpp).
   const TracedRegion region = traced_region(tracer, camera, options);
-  const FrameMirrors& mirrors = region.mirrors;
-  const int width = image.width(), height = image.height();
-  const int traced_width = region.width, traced_height = region.height;
   if (traced && traced->size() != region.pixel_count())
     throw std::invalid_argument("render_frame: " + std::to_string(traced->size()) +
                                 " outcomes given for a traced "
                                 "region of " +
                                 std::to_string(region.pixel_count()) + " pixels (traced_region)");
-  const auto shade = [&](int col, int row, const RayOutcome& o) {
-    if (directions) (*directions)[image.index(col, row)] = o.where;  // distinct pixels: no data race
-    return scene.shade(o);
-  };
-  // A tracer that traces groups of rays gets each tile's pixels at once (TileOutcomes), others pixel by pixel.
-  const auto make_scratch = [&] { return TileOutcomes<Tracer>(camera, tracer, traced, traced_width); };
-  if (!mirrors.any()) {
-    // Every pixel traced: one trace and one shade per pixel, the loop frames had before mirrors (the mirrored loop
-    // below measured up to ~5 % slower on such frames, within the noise of one run).
-    frame.stats = render_image(
-        image, make_scratch,
-        [&](int col, int row, TileOutcomes<Tracer>& scratch) { return shade(col, row, scratch.at(col, row)); }, options);
-  } else {
-    frame.stats = render_image_by_orbits(
-        image, traced_width, traced_height, make_scratch,
-        [&](int col, int row, TileOutcomes<Tracer>& scratch, const auto& emit) {
-          RayOutcome o = scratch.at(col, row);
-          emit(col, row, shade(col, row, o));
-          const int mirror_col = width - 1 - col, mirror_row = height - 1 - row;
-          const bool rows = mirrors.equator && mirror_row != row, cols = mirrors.meridian && mirror_col != col;
-          // Reflected in place, at most one copy: building each image as a new outcome from a reflected copy cost
-          // more than the reflections (a store-forwarding stall per copy, a third of this loop's time in perf).
-          if (cols) {
-            RayOutcome m = o;
-            reflect_in_meridian(m, mirrors.camera_phi);
-            emit(mirror_col, row, shade(mirror_col, row, m));
-            if (rows) {
-              reflect_in_equator(m);
-              emit(mirror_col, mirror_row, shade(mirror_col, mirror_row, m));
-            }
-          }
-          if (rows) {
-            reflect_in_equator(o);
-            emit(col, mirror_row, shade(col, mirror_row, o));
-          }
-        },
-        options);
-  }
+  frame.stats = detail::shade_frame(
+      image, scene, region, [&] { return TileOutcomes(camera, tracer, traced, region.width); }, options, directions);
   image.metadata["tracer"] = Tracer::name;
   if constexpr (requires { tracer.sky_continuation(); })
     image.metadata["sky_continuation"] = sky_continuation_name(tracer.sky_continuation());
@@ -207,7 +243,7 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
       image.metadata["sky_radius_for_rtol"] = exact_number(e->radius_for_tolerance);
     }
   }
-  image.metadata["mirrors"] = mirrors.names();
+  image.metadata["mirrors"] = region.mirrors.names();
   std::string names;
   for (const std::string& n : scene.object_names()) names += (names.empty() ? "" : ",") + n;
   image.metadata["object_names"] = names;

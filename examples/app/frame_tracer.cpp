@@ -59,6 +59,17 @@ std::string choose_device(std::string_view asked, const FrameRequest& q) {
 
 std::string device_name(std::string_view device) { return device == "cuda" ? gpu_status().name : "cpu"; }
 
+#if !defined(GRTRACE_APP_CUDA)
+// A build without the CUDA backend (no CUDA compiler found, or GRTRACE_CUDA=OFF); with it, the backend's own unit
+// (frame_tracers_gpu_exact.cu) asks the driver.
+const GpuStatus& gpu_status() {
+  static const GpuStatus status{false, false, "",
+                                "this build has no CUDA backend (configured without a CUDA compiler, or with "
+                                "-DGRTRACE_CUDA=OFF)"};
+  return status;
+}
+#endif
+
 void with_frame_tracer(const FrameRequest& q, const Camera& camera, const FrameTracerUser& f) {
   check_frame_request(q);
   const std::string& metric = q.metric.name;

@@ -13,6 +13,9 @@
 #include <numbers>
 #include <random>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace camera_scene_test {
+
 namespace {
 
 using namespace grtrace;
@@ -182,3 +185,5 @@ TEST(Minkowski, MovingCameraShowsAberrationAndDoppler) {
 }
 
 }  // namespace
+
+}  // namespace camera_scene_test

@@ -24,6 +24,9 @@
 #include <string>
 #include <unistd.h>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace flight_test {
+
 namespace {
 
 using namespace grtrace;
@@ -429,3 +432,5 @@ TEST(FlightFiles, CameraPathCsvRoundTripsAndRefusesBadRows) {
 }
 
 }  // namespace
+
+}  // namespace flight_test

@@ -21,6 +21,9 @@
 #include <numbers>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace gpu_host_side_test {
+
 namespace {
 
 using namespace grtrace;
@@ -117,3 +120,5 @@ TEST(GpuFrameHostSide, EllipticIntegralOfTheFirstKindMatchesTheStandardLibrary) 
 }
 
 }  // namespace
+
+}  // namespace gpu_host_side_test

@@ -23,6 +23,9 @@
 #include <cmath>
 #include <numbers>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace horizon_crossing_test {
+
 namespace {
 
 using namespace grtrace;
@@ -262,3 +265,5 @@ TEST(HorizonCrossing, KerrCameraInsideTheHorizonTracesEveryPixel) {
 }
 
 }  // namespace
+
+}  // namespace horizon_crossing_test

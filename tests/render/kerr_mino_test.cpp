@@ -38,6 +38,9 @@
 #include <string>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace kerr_mino_test {
+
 using namespace grtrace;
 
 namespace {
@@ -287,3 +290,5 @@ TEST(KerrMino, AutoPicksItWhereItsAssumptionsHold) {
 }
 
 }  // namespace
+
+}  // namespace kerr_mino_test

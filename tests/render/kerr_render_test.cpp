@@ -31,6 +31,9 @@
 #include <string>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace kerr_render_test {
+
 using namespace grtrace;
 
 namespace {
@@ -497,3 +500,5 @@ TEST(KerrCamera, ZamoIsTheStaticObserverWithoutSpin) {
 }
 
 }  // namespace
+
+}  // namespace kerr_render_test

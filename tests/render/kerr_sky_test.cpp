@@ -35,6 +35,9 @@
 #include <numbers>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace kerr_sky_test {
+
 using namespace grtrace;
 
 namespace {
@@ -270,3 +273,5 @@ TEST(KerrSky, TheFrameHeaderNamesTheContinuation) {
   EXPECT_EQ(sky_continuation_of<SchwarzschildMetric>(AngleCorrection::exact), SkyContinuation::exact_elliptic);
   EXPECT_EQ(sky_continuation_of<KerrMetric>(AngleCorrection::none), SkyContinuation::sky_sphere);
 }
+
+}  // namespace kerr_sky_test

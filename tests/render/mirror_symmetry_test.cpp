@@ -35,6 +35,9 @@
 #include <string>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace mirror_symmetry_test {
+
 using namespace grtrace;
 
 namespace {
@@ -269,3 +272,5 @@ TEST(MirrorSymmetry, ReflectedOutcomesKeepTheirAnglesInRange) {
 }
 
 }  // namespace
+
+}  // namespace mirror_symmetry_test

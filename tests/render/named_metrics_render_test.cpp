@@ -33,6 +33,9 @@
 #include <string>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace named_metrics_render_test {
+
 using namespace grtrace;
 namespace fs = std::filesystem;
 
@@ -602,3 +605,5 @@ TEST_F(NamedMetricsCli, TheWormholeSkySceneShowsTheOtherUniverseThroughTheThroat
 }
 
 }  // namespace
+
+}  // namespace named_metrics_render_test

@@ -16,6 +16,9 @@
 #include <stdexcept>
 #include <string>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace observer_test {
+
 using namespace grtrace;
 
 namespace {
@@ -224,3 +227,5 @@ TEST(Camera, RefusesBadSizesAndFieldsOfView) {
   EXPECT_NO_THROW(Camera(s.x, t, 1, 1, 179.9));
   EXPECT_NO_THROW(Camera(s.x, t, 3, 2, 0.01));
 }
+
+}  // namespace observer_test

@@ -20,6 +20,9 @@
 #include <optional>
 #include <string>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace planar_tracer_test {
+
 namespace {
 
 using namespace grtrace;
@@ -520,3 +523,5 @@ TEST(PlanarTracer, DrawsEveryFrameTheSymmetricTracerDrew) {
 }
 
 }  // namespace
+
+}  // namespace planar_tracer_test

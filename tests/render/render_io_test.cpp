@@ -29,14 +29,16 @@
 #include <utility>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace render_io_test {
+
 namespace fs = std::filesystem;
 using grtrace::Image;
 using grtrace::PixelSample;
 using grtrace::RayStatus;
 
-namespace {
-
-/// A fresh empty directory per test, removed afterwards.
+/// A fresh empty directory per test, removed afterwards. (Outside the anonymous namespace: the tests derived from it
+/// live in this file's named one.)
 class TempDir : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -61,6 +63,8 @@ class TempDir : public ::testing::Test {
   }
   fs::path dir_;
 };
+
+namespace {
 
 std::uint32_t bits(float f) { return std::bit_cast<std::uint32_t>(f); }
 float from_bits(std::uint32_t u) { return std::bit_cast<float>(u); }
@@ -809,3 +813,5 @@ TEST(ProgressBar, ThreadSafeRateLimitedAndFinishEndsTheLine) {
   EXPECT_GE(redraws, 2);  // the 0% line and the final one at least
   EXPECT_LE(redraws, static_cast<long>(seconds * 10.0) + 3) << seconds << " s";  // at most ~10 per second
 }
+
+}  // namespace render_io_test

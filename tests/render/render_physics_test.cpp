@@ -24,6 +24,9 @@
 #include <numbers>
 #include <string>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace render_physics_test {
+
 using namespace grtrace;
 
 namespace {
@@ -424,3 +427,5 @@ TEST(FailedRays, GetAFlatVisibleColourNaNDataAndAreCounted) {
       });
     }
 }
+
+}  // namespace render_physics_test

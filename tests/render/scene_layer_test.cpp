@@ -35,6 +35,9 @@
 #include <string>
 #include <vector>
 
+// In a namespace of its own: the render tests compile together in unity batches (tests/render/CMakeLists.txt).
+namespace scene_layer_test {
+
 using namespace grtrace;
 
 namespace {
@@ -485,3 +488,5 @@ TEST(ExamplePrograms, RefuseBadInputWithExitTwoAndWriteNothing) {
 }
 
 }  // namespace
+
+}  // namespace scene_layer_test

@@ -134,13 +134,14 @@ void report(benchmark::State& state, const Camera& cam, const FrameAnswers& answ
   state.counters["failures"] = static_cast<double>(stats.failures());
 }
 
-template <class Tracer>
-RenderStats render_answers(const Tracer& tracer, const Camera& cam, Image& image, FrameAnswers& answers) {
-  // As render_frame traces (a tracer that traces groups of rays gets each tile at once: TileOutcomes).
+/// The frame traced and shaded as render_frame does (each tile's rays traced together: TileOutcomes), every pixel's
+/// outcome also stored in `answers` (FrameAnswers or MetricAnswers, judged after the timed loop).
+template <class Tracer, class Answers>
+RenderStats render_answers(const Tracer& tracer, const Camera& cam, Image& image, Answers& answers) {
   return render_image(
       image, [&] { return TileOutcomes(cam, tracer); },
       [&](int col, int row, TileOutcomes& tile) {
-        const RayOutcome o = tile.at(col, row);
+        const RayOutcome& o = tile.at(col, row);
         answers.store(image.index(col, row), o);
         return tracer.scene().shade(o);
       },
@@ -247,19 +248,6 @@ struct MetricAnswers {
   }
 };
 
-template <class Tracer>
-RenderStats render_metric_answers(const Tracer& tracer, const Camera& cam, Image& image, MetricAnswers& answers) {
-  // As render_frame traces (a tracer that traces groups of rays gets each tile at once: TileOutcomes).
-  return render_image(
-      image, [&] { return TileOutcomes(cam, tracer); },
-      [&](int col, int row, TileOutcomes& tile) {
-        const RayOutcome o = tile.at(col, row);
-        answers.store(image.index(col, row), o);
-        return tracer.scene().shade(o);
-      },
-      quiet_options());
-}
-
 /// One row: the frame traced by `tracer` (a scene tracer for metric and scene), judged against the general tracer.
 template <class Tracer, class Metric, class SceneT>
 void frame_metric_with(benchmark::State& state, const Tracer& tracer, const Metric& metric, const SceneT& scene, int n) {
@@ -270,7 +258,7 @@ void frame_metric_with(benchmark::State& state, const Tracer& tracer, const Metr
   double seconds = 0.0;
   const std::clock_t cpu_start = std::clock();  // the process's processor time, all threads
   for (auto _ : state) {
-    stats = render_metric_answers(tracer, cam, image, answers);
+    stats = render_answers(tracer, cam, image, answers);
     seconds += stats.seconds;
   }
   const double cpu_seconds =
@@ -281,7 +269,7 @@ void frame_metric_with(benchmark::State& state, const Tracer& tracer, const Metr
       make_general_tracer<Fehlberg78, IController>(metric, settings_for(1e-12), AngleCorrection::flat, scene);
   MetricAnswers reference(answers.where.size());
   Image reference_image(n, n);
-  render_metric_answers(reference_tracer, cam, reference_image, reference);
+  render_answers(reference_tracer, cam, reference_image, reference);
   std::vector<double> errors;
   long mismatches = 0;
   double hit_radius_error = 0.0, hit_redshift_error = 0.0;  // relative, over pixels on a scene object (the disk)

@@ -28,7 +28,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -164,13 +163,13 @@ class TileOutcomes {
 
 namespace detail {
 
-/// render_frame's image loop for one scene type: each traced pixel's outcome (from the thread's TileOutcomes) shaded
-/// into its own pixel and, in a mirror-symmetric frame, reflected into the pixels it mirrors; the directions kept
-/// when asked. Returns the loop's statistics.
+/// render_frame's image loop for one scene type: each traced pixel's outcome (from the thread's copy of `tiles`)
+/// shaded into its own pixel and, in a mirror-symmetric frame, reflected into the pixels it mirrors; the directions
+/// kept when asked. Returns the loop's statistics.
 template <class SceneT>
-RenderStats shade_frame(Image& image, const SceneT& scene, const TracedRegion& region,
-                        const std::function<TileOutcomes()>& make_scratch, const RenderOptions& options,
-                        std::vector<SkyDirection>* directions) {
+RenderStats shade_frame(Image& image, const SceneT& scene, const TracedRegion& region, const TileOutcomes& tiles,
+                        const RenderOptions& options, std::vector<SkyDirection>* directions) {
+  const auto make_scratch = [&tiles] { return tiles; };  // each thread its own buffers
   const FrameMirrors& mirrors = region.mirrors;
   const int width = image.width(), height = image.height();
   const auto shade = [&](int col, int row, const RayOutcome& o) {
@@ -229,8 +228,8 @@ Frame render_frame(const Camera& camera, const Tracer& tracer, const RenderOptio
                                 " outcomes given for a traced "
                                 "region of " +
                                 std::to_string(region.pixel_count()) + " pixels (traced_region)");
-  frame.stats = detail::shade_frame(
-      image, scene, region, [&] { return TileOutcomes(camera, tracer, traced, region.width); }, options, directions);
+  frame.stats = detail::shade_frame(image, scene, region, TileOutcomes(camera, tracer, traced, region.width), options,
+                                    directions);
   image.metadata["tracer"] = Tracer::name;
   if constexpr (requires { tracer.sky_continuation(); })
     image.metadata["sky_continuation"] = sky_continuation_name(tracer.sky_continuation());

@@ -5,9 +5,12 @@
 #                                       test and the GPU example with the CUDA backend (release preset, sm_90), and
 #                                       gathers them with the shared libraries they load into build/gpu-pack/
 #                                       (xz-compressed: a device machine lacks OpenEXR, libpng, ...).
-#   bash cmake/gpu-check.sh run [DIR]   on the GPU machine (DIR: the pack, default build/gpu-pack): runs every GPU
-#                                       test, then the timings, each as one JSON line ("check": what it measured),
-#                                       GPU against the machine's own cores in the same run. A few minutes.
+#   bash cmake/gpu-check.sh run [DIR]   on the GPU machine (DIR: the pack, default build/gpu-pack): runs the probe
+#                                       (one ray step by step on the GPU and the host: where a wrong GPU departs),
+#                                       every GPU test, then the timings, each as one JSON line ("check": what it
+#                                       measured), GPU against the machine's own cores in the same run. At most
+#                                       GRTRACE_GPU_CHECK_SECONDS (290): each step has a timeout, and a step that
+#                                       could end later is skipped. Logs and PNGs go to $OUT when it is set.
 #
 # The timings (issue targets in brackets): the Kerr disk frame 1024x1024, kerr-mino (<= 15 ms of tracing, whole
 # process <= 0.5 s); the main frame with --tracer general (<= 10 ms of tracing); a 300-frame Kerr flight at
@@ -36,37 +39,79 @@ pack() {
   echo "gpu-check: packed $(du -sh "$out" | cut -f1) into $out; on the GPU machine: bash cmake/gpu-check.sh run"
 }
 
-# One timed run of grtrace-render: a JSON line with the tool's own line, the wall time and the header's GPU time.
+# One timed run of grtrace-render (at most a minute): a JSON line with the tool's own line and the wall time.
 timed() {
   local check="$1"; shift
-  local t0 t1 line
+  local limit=60
+  local t0 t1 line rc=0
   t0=$(date +%s.%N)
-  if line=$("$bin/grtrace-render" "$@" 2> "$work/err.txt"); then
-    t1=$(date +%s.%N)
-    echo "{\"check\":\"$check\",\"wall\":$(awk "BEGIN {print $t1 - $t0}"),\"render\":$line}"
+  line=$(GRTRACE_TIMING=1 timeout "$limit" "$bin/grtrace-render" "$@" 2> "$work/err.txt") || rc=$?
+  t1=$(date +%s.%N)
+  if [ "$rc" = 0 ]; then
+    local phases  # GRTRACE_TIMING's phase times, as "name ms" pairs
+    phases=$(grep -E '^grtrace-render: ' "$work/err.txt" | awk '{printf "%s%s %s", (NR > 1 ? ", " : ""), $2, $3}')
+    echo "{\"check\":\"$check\",\"wall\":$(awk "BEGIN {print $t1 - $t0}"),\"phases_ms\":\"$phases\",\"render\":$(echo "$line" | tail -1)}"
   else
-    echo "{\"check\":\"$check\",\"failed\":$?,\"stderr\":\"$(tail -c 300 "$work/err.txt" | tr '\n"' ' ')\"}"
+    echo "{\"check\":\"$check\",\"failed\":$rc,\"stderr\":\"$(tail -c 300 "$work/err.txt" | tr '\n"' ' ')\"}"
   fi
+}
+
+# run_step SECONDS NAME COMMAND...: COMMAND under a timeout, skipped (saying so) when it could end past the deadline.
+run_step() {
+  local limit="$1" name="$2"; shift 2
+  if (( SECONDS + limit > deadline )); then
+    echo "{\"check\":\"$name\",\"skipped\":\"would pass the ${deadline} s deadline (at ${SECONDS} s)\"}"
+    return 0
+  fi
+  "$@"
+}
+
+tests() {  # tests LIMIT FILTER LOG: the GPU test program's tests matching FILTER
+  local rc=0
+  timeout "$1" "$bin/gpu_frame_test" --gtest_filter="$2" > "$keep/$3" 2>&1 || rc=$?
+  grep -E '^\[(gpu|  (PASSED|FAILED|SKIPPED))|^\[  FAILED|tests ran|Failure|Expected|Which is|actual|^  (host|device) ' \
+    "$keep/$3" || true
+  echo "{\"check\":\"$3\",\"exit\":$rc}"
+}
+
+example() {
+  local rc=0
+  timeout "$1" "$bin/star_beside_hole_gpu" --size 512 --out "$work/star-gpu.exr" > "$keep/example.log" 2>&1 || rc=$?
+  echo "{\"check\":\"example\",\"exit\":$rc}"
+  cp "$work/star-gpu.png" "$keep/" 2> /dev/null || true
 }
 
 run() {
   local dir="${1:-$here/build/gpu-pack}"
   work="$(mktemp -d)"
   bin="$work/bin"
-  mkdir -p "$bin/lib"
+  # Where the logs and pictures go: $OUT when the caller gives one (the device tool does), else the work folder.
+  keep="${OUT:-$work}"
+  # Every step runs under a timeout and none starts that could end after this many seconds: a GPU that loses its
+  # rays (each one integrated to max_steps) costs minutes, and a lent machine's time is short.
+  deadline="${GRTRACE_GPU_CHECK_SECONDS:-290}"
+  mkdir -p "$bin/lib" "$keep"
   for f in "$dir"/*.xz; do xz -dc "$f" > "$bin/$(basename "$f" .xz)"; chmod +x "$bin/$(basename "$f" .xz)"; done
   for f in "$dir"/lib/*.xz; do xz -dc "$f" > "$bin/lib/$(basename "$f" .xz)"; done
   export LD_LIBRARY_PATH="$bin/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   echo "{\"check\":\"device\",\"gpu\":\"$(nvidia-smi -L 2> /dev/null | head -1 | tr '"' ' ')\",\"cores\":$(nproc)}"
-  "$bin/gpu_frame_test" 2>&1 | grep -E '^\[(gpu|  (PASSED|FAILED|SKIPPED))|^\[  FAILED|tests ran|Failure|Expected|Which is|actual' || true
-  "$bin/star_beside_hole_gpu" --size 512 --out "$work/star-gpu.exr" > /dev/null && echo '{"check":"example","ok":true}'
+  # First the probe (one ray, step by step: where a wrong GPU departs), then the frames.
+  run_step 60 probe tests 60 'GpuNvccHostPass.*:GpuProbe.*' gpu_probe.log
+  run_step 150 frames tests 150 'GpuDevice.*' gpu_frame_test.log
+  run_step 40 example example 40
   local kerr=(--metric kerr --spin 0.9 --scene disk --camera-r 50 --camera-theta 80 --fov 60 --width 1024 --height 1024)
   for device in cuda cpu; do
-    timed "kerr_disk_$device" "${kerr[@]}" --device "$device" --out "$work/kerr-$device.exr"
-    timed "main_general_$device" --tracer general --device "$device" --out "$work/main-$device.exr"
+    run_step 20 "kerr_disk_$device" timed "kerr_disk_$device" "${kerr[@]}" --device "$device" --out "$work/kerr-$device.exr"
+    run_step 20 "main_general_$device" timed "main_general_$device" --tracer general --device "$device" \
+      --out "$work/main-$device.exr"
   done
-  timed kerr_disk_cuda_again "${kerr[@]}" --device cuda --out "$work/kerr-cuda-2.exr"  # warm: driver loaded
-  timed kerr_flight_300_cuda "${kerr[@]}" --device cuda --flight circular --frames 300 --out "$work/flight.exr"
+  cp "$work/kerr-cuda.png" "$work/main-cuda.png" "$keep/" 2> /dev/null || true
+  run_step 20 kerr_disk_cuda_again timed kerr_disk_cuda_again "${kerr[@]}" --device cuda --out "$work/kerr-cuda-2.exr"
+  run_step 20 kerr_disk_2048_cuda timed kerr_disk_2048_cuda "${kerr[@]/1024/2048}" --device cuda \
+    --out "$work/kerr-cuda-2048.exr"
+  run_step 60 kerr_flight_300_cuda timed kerr_flight_300_cuda "${kerr[@]}" --device cuda --flight circular \
+    --frames 300 --out "$work/flight.exr"
+  echo "{\"check\":\"done\",\"seconds\":$SECONDS}"
   rm -rf "$work"
 }
 

@@ -54,7 +54,7 @@ std::string choose_device(std::string_view asked, const FrameRequest& q) {
     throw std::invalid_argument("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
   const auto refusal = gpu_refusal(q);
   if (asked == "cuda" && refusal) throw std::invalid_argument("--device cuda: " + *refusal);
-  return refusal ? "cpu" : "cuda";
+  return refusal || !kAutoPicksGpu ? "cpu" : "cuda";
 }
 
 std::string device_name(std::string_view device) { return device == "cuda" ? gpu_status().name : "cpu"; }

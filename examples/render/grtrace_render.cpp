@@ -65,17 +65,19 @@ CommandLine make_command_line() {
   cli.option("sky-radius", "400", "radius of the sky sphere where rays are taken as escaped")
       .option("angle-correction", "exact", "escaped rays: none | flat (seed eq. 7-8) | exact (bending to infinity)")
       .option("max-steps", "100000", "step budget per ray")
-      .option("tracer", "auto", "auto | general | planar. planar: one table of rays for the frame, every "
-                                "scene of a Schwarzschild hole, disk included (auto's choice there with an adaptive "
-                                "--control; it also draws every frame the retired symmetric table drew); general: "
-                                "every pixel integrated (any metric). auto picks kerr-mino for --metric kerr --chart "
-                                "bl with an adaptive --control: every pixel on Kerr's separated equations in Mino "
-                                "time, 3x cheaper per ray than general")
-      .option("device", "auto", "auto | cpu | cuda. cuda: rays traced on the GPU (a build with the CUDA backend and "
-                                "a CUDA device; --tableau rkf78 --control i; every pixel integrated: --tracer "
-                                "general, or auto = kerr-mino for --metric kerr --chart bl, general otherwise); auto: "
-                                "the GPU where it can draw the request, else the CPU. The JSON line and the EXR header "
-                                "(device) name the device that ran")
+      .option("tracer", "auto",
+              "auto | general | planar. planar: one table of rays for the frame, every "
+              "scene of a Schwarzschild hole, disk included (auto's choice there with an adaptive "
+              "--control; it also draws every frame the retired symmetric table drew); general: "
+              "every pixel integrated (any metric). auto picks kerr-mino for --metric kerr --chart "
+              "bl with an adaptive --control: every pixel on Kerr's separated equations in Mino "
+              "time, 3x cheaper per ray than general")
+      .option("device", "auto",
+              "auto | cpu | cuda. cuda: rays traced on the GPU (a build with the CUDA backend and "
+              "a CUDA device; --tableau rkf78 --control i; every pixel integrated: --tracer "
+              "general, or auto = kerr-mino for --metric kerr --chart bl, general otherwise; not yet "
+              "verified on a GPU: see the README); auto: the CPU until the GPU backend passes its "
+              "device checks. The JSON line and the EXR header (device) name the device that ran")
       .option("table-rays", std::to_string(grtrace::default_table_rays),
               "planar tracer: table rays on each side of the critical angle")
       .option("sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes")
@@ -84,9 +86,10 @@ CommandLine make_command_line() {
       .option("disk-outer", "20", "disk outer radius (disk scene)")
       .option("threads", "0", "OpenMP threads (0 = all cores)")
       .option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
-      .option("exr-compression", "zips", "EXR compression, all lossless (channels read back bit for bit): zips | zip "
-                                         "(deflate level 1; zips: one scanline per chunk) | piz (smallest, slower) | "
-                                         "rle | none (fastest, largest)")
+      .option("exr-compression", "zips",
+              "EXR compression, all lossless (channels read back bit for bit): zips | zip "
+              "(deflate level 1; zips: one scanline per chunk) | piz (smallest, slower) | "
+              "rle | none (fastest, largest)")
       .flag("error-map",
             "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
             "elliptic-integral direction from the camera (Schwarzschild/flat only); write <out>-error.png "
@@ -620,6 +623,8 @@ int main(int argc, char** argv) {
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("device", image.metadata["device"]);
+    if (image.metadata.count("gpu_trace_seconds"))  // the GPU kernel's share of "seconds"
+      json.add("gpu_trace_seconds", std::stod(image.metadata["gpu_trace_seconds"]));
     json.add("sky_continuation", image.metadata["sky_continuation"]);
     if (image.metadata.count("sky_continuation_error"))  // a flat continuation's estimated error (render_frame)
       json.add("sky_continuation_error", std::stod(image.metadata["sky_continuation_error"]))

@@ -8,9 +8,9 @@ namespace grtrace::view {
 
 /// The request's frame as grtrace-render draws it with --tracer auto (trace/auto_tracer.hpp): one table of rays
 /// (planar tracer) around a Schwarzschild hole, disk included; Kerr's separated equations (kerr-mino) in
-/// Boyer-Lindquist coordinates with an adaptive controller; every pixel integrated otherwise. On the GPU where this
-/// build has the CUDA backend, a device is present and the method is the GPU's (app::choose_device, auto). The image
-/// header's "tracer" and "device" say which ran.
+/// Boyer-Lindquist coordinates with an adaptive controller; every pixel integrated otherwise. On the device
+/// app::choose_device's auto picks (the CPU until the GPU backend passes its device checks). The image header's
+/// "tracer" and "device" say which ran.
 app::FrameRequest frame_request(const Request& q) {
   app::FrameRequest f;
   f.metric.name = q.kerr ? "kerr" : "schwarzschild";

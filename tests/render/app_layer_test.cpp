@@ -167,7 +167,8 @@ TEST(AppLayer, ChoosesTheDeviceAndSaysWhyTheGpuCannotDrawARequest) {
   const app::GpuStatus& gpu = app::gpu_status();
   if (gpu.present) {
     EXPECT_FALSE(app::gpu_refusal(q).has_value());
-    EXPECT_EQ(app::choose_device("auto", q), "cuda");
+    EXPECT_EQ(app::choose_device("auto", q), app::kAutoPicksGpu ? "cuda" : "cpu");
+    EXPECT_EQ(app::choose_device("cuda", q), "cuda");
   } else {
     ASSERT_TRUE(app::gpu_refusal(q).has_value());
     EXPECT_NE(app::gpu_refusal(q)->find("use --device cpu"), std::string::npos);

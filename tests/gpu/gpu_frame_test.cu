@@ -109,6 +109,7 @@ struct RayTrail {
   int recorded = 0;
   int status = -1;
   int accepted = 0;
+  int rejected = 0;
   double lambda_end = 0.0;
   double inverse_roots[4] = {};
 };
@@ -135,6 +136,7 @@ struct TrailObserver {
 GRTRACE_HD void note_end(RayTrail& t, const TraceResult& r) {
   t.status = static_cast<int>(r.status);
   t.accepted = r.accepted;
+  t.rejected = r.rejected;
   t.lambda_end = r.lambda;
   const double x[4] = {0.37, 2.5e-3, 1.0, 7.9e4};
   for (int i = 0; i < 4; ++i) t.inverse_roots[i] = inverse_root<8>(x[i]);
@@ -218,8 +220,11 @@ void expect_same_trail(const char* what, const Probe& probe) {
   RayTrail host;
   probe(host);
   const RayTrail gpu = trail_on_gpu(probe);
-  std::printf("[gpu] %s: host %d steps (status %d), device %d steps (status %d); inverse_root<8> device/host - 1:",
-              what, host.accepted, host.status, gpu.accepted, gpu.status);
+  std::printf("[gpu] %s: host %d steps, %d rejected, status %d, lambda %.6g", what, host.accepted, host.rejected,
+              host.status, host.lambda_end);
+  std::printf("; device %d steps, %d rejected, status %d, lambda %.6g", gpu.accepted, gpu.rejected, gpu.status,
+              gpu.lambda_end);
+  std::printf("; inverse_root<8> device/host - 1:");
   for (int i = 0; i < 4; ++i) std::printf(" %.3g", gpu.inverse_roots[i] / host.inverse_roots[i] - 1.0);
   std::printf("\n");
   constexpr double round_off = 1e-9;  // the device's libm differs from the host's in the last bits
@@ -267,6 +272,16 @@ TEST(GpuNvccHostPass, ProbesRecordTheRaysStepsInOrder) {
   }
   EXPECT_EQ(general.status, static_cast<int>(RayStatus::escaped));
   EXPECT_EQ(mino.status, static_cast<int>(RayStatus::captured));
+  // The corner pixels GpuProbe sends through the application layer's kernels escape.
+  StandardSceneSpec checker, disk;
+  disk.name = "disk";
+  const auto general_tracer = make_general_tracer<Fehlberg78, IController>(
+      schwarzschild, settings, AngleCorrection::exact, background_scene(checker));
+  const auto mino_tracer =
+      make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk));
+  EXPECT_EQ(general_tracer.trace(camera_at(schwarzschild, 200.0, 90.0, 90.0, 2).pixel_state(0, 0)).status,
+            RayStatus::escaped);
+  EXPECT_EQ(mino_tracer.trace(camera_at(kerr, 50.0, 80.0, 60.0, 2).pixel_state(0, 0)).status, RayStatus::escaped);
   EXPECT_EQ(general.start.state[1], 200.0);             // r of the camera
   EXPECT_NEAR(mino.start.state[0], 1.0 / 50.0, 1e-15);  // u = 1/r of the camera
 }
@@ -283,6 +298,26 @@ TEST(GpuProbe, OneRayStepByStepAsOnTheHost) {
   const KerrMetric kerr{1.0, 0.9};
   expect_same_trail("Kerr, Mino-time system",
                     KerrMinoSystemProbe{camera_at(kerr, 50.0, 80.0, 60.0, 64), kerr, settings, 30, 35});
+  // A corner pixel of each frame (its ray escapes) through the application layer's kernels, the tracers built on the
+  // host and copied to the device byte for byte: a departure here and none above points at the copy or the scene,
+  // not the integration.
+  const app::FrameRequest q = request("kerr", "disk", "auto");
+  StandardSceneSpec checker;
+  const Camera main_corner = camera_at(schwarzschild, 200.0, 90.0, 90.0, 2);
+  const Camera kerr_corner = camera_at(kerr, 50.0, 80.0, 60.0, 2);
+  const auto general = make_general_tracer<Fehlberg78, IController>(schwarzschild, settings, AngleCorrection::exact,
+                                                                    background_scene(checker));
+  const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, q.correction, disk_scene(q.scene));
+  const auto compare = [](const char* what, const RayOutcome& g, const RayOutcome& c) {
+    std::printf("[gpu] %s, one pixel: device status %d, %d steps, r %.9g; CPU status %d, %d steps, r %.9g\n", what,
+                static_cast<int>(g.status), g.steps, g.radius, static_cast<int>(c.status), c.steps, c.radius);
+    EXPECT_EQ(g.status, c.status) << what;
+    EXPECT_EQ(g.steps, c.steps) << what;
+  };
+  compare("app layer, Schwarzschild general", app::trace_on_gpu(main_corner, general, 1, 1, nullptr)[0],
+          general.trace(main_corner.pixel_state(0, 0)));
+  compare("app layer, Kerr disk kerr-mino", app::trace_on_gpu(kerr_corner, mino, 1, 1, nullptr)[0],
+          mino.trace(kerr_corner.pixel_state(0, 0)));
 }
 
 /// The GPU's outcomes against the CPU's trace, pixel by pixel, in double precision (see the top of this file).

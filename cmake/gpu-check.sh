@@ -6,7 +6,8 @@
 #                                       gathers them with the shared libraries they load into build/gpu-pack/
 #                                       (xz-compressed: a device machine lacks OpenEXR, libpng, ...).
 #   bash cmake/gpu-check.sh run [DIR]   on the GPU machine (DIR: the pack, default build/gpu-pack): runs the probe
-#                                       (one ray step by step on the GPU and the host: where a wrong GPU departs),
+#                                       (one ray step by step on the GPU and the host: where a wrong GPU departs;
+#                                       again under compute-sanitizer's memcheck where the machine has it),
 #                                       every GPU test, then the timings, each as one JSON line ("check": what it
 #                                       measured), GPU against the machine's own cores in the same run. At most
 #                                       GRTRACE_GPU_CHECK_SECONDS (290): each step has a timeout, and a step that
@@ -74,6 +75,21 @@ tests() {  # tests LIMIT FILTER LOG: the GPU test program's tests matching FILTE
   echo "{\"check\":\"$3\",\"exit\":$rc}"
 }
 
+# The probe under compute-sanitizer's memcheck (out-of-bounds and misaligned device accesses, local memory
+# included), where the machine has the tool.
+sanitized_probe() {
+  local tool rc=0
+  tool="$(command -v compute-sanitizer || echo /usr/local/cuda/bin/compute-sanitizer)"
+  if [ ! -x "$tool" ]; then
+    echo '{"check":"sanitizer","skipped":"no compute-sanitizer on this machine"}'
+    return 0
+  fi
+  timeout "$1" "$tool" --tool memcheck --print-limit 20 "$bin/gpu_frame_test" --gtest_filter='GpuProbe.*' \
+    > "$keep/sanitizer.log" 2>&1 || rc=$?
+  grep -E 'ERROR SUMMARY|Invalid|Address|at 0x|by thread' "$keep/sanitizer.log" | head -20 || true
+  echo "{\"check\":\"sanitizer\",\"exit\":$rc}"
+}
+
 example() {
   local rc=0
   timeout "$1" "$bin/star_beside_hole_gpu" --size 512 --out "$work/star-gpu.exr" > "$keep/example.log" 2>&1 || rc=$?
@@ -97,6 +113,7 @@ run() {
   echo "{\"check\":\"device\",\"gpu\":\"$(nvidia-smi -L 2> /dev/null | head -1 | tr '"' ' ')\",\"cores\":$(nproc)}"
   # First the probe (one ray, step by step: where a wrong GPU departs), then the frames.
   run_step 60 probe tests 60 'GpuNvccHostPass.*:GpuProbe.*' gpu_probe.log
+  run_step 60 sanitizer sanitized_probe 60
   run_step 150 frames tests 150 'GpuDevice.*' gpu_frame_test.log
   run_step 40 example example 40
   local kerr=(--metric kerr --spin 0.9 --scene disk --camera-r 50 --camera-theta 80 --fov 60 --width 1024 --height 1024)

@@ -7,7 +7,8 @@
 #                                       (xz-compressed: a device machine lacks OpenEXR, libpng, ...).
 #   bash cmake/gpu-check.sh run [DIR]   on the GPU machine (DIR: the pack, default build/gpu-pack): runs the probe
 #                                       (one ray step by step on the GPU and the host: where a wrong GPU departs;
-#                                       again under compute-sanitizer's memcheck where the machine has it),
+#                                       again with the device code at -O0, and under compute-sanitizer's memcheck
+#                                       where the machine has it),
 #                                       every GPU test, then the timings, each as one JSON line ("check": what it
 #                                       measured), GPU against the machine's own cores in the same run. At most
 #                                       GRTRACE_GPU_CHECK_SECONDS (290): each step has a timeout, and a step that
@@ -24,12 +25,12 @@ mode="${1:-}"
 pack() {
   cd "$here"
   cmake --preset release -DGRTRACE_CUDA=ON > /dev/null
-  cmake --build --preset release --target grtrace-render gpu_frame_test star_beside_hole_gpu
+  cmake --build --preset release --target grtrace-render gpu_frame_test gpu_probe_unoptimised star_beside_hole_gpu
   local out="$here/build/gpu-pack"
   rm -rf "$out"
   mkdir -p "$out/lib"
   local bins=(build/release/examples/render/grtrace-render build/release/tests/gpu/gpu_frame_test
-              build/release/examples/scenes/star_beside_hole_gpu)
+              build/release/tests/gpu/gpu_probe_unoptimised build/release/examples/scenes/star_beside_hole_gpu)
   for b in "${bins[@]}"; do
     # Every shared library but the C library's own (the device machine has those).
     ldd "$b" | awk '/=> \// {print $3}' | grep -Ev '/(libc|libm|libpthread|libdl|librt|ld-linux[^/]*)\.so' |
@@ -90,6 +91,14 @@ sanitized_probe() {
   echo "{\"check\":\"sanitizer\",\"exit\":$rc}"
 }
 
+# The probe's rays with the device code unoptimised (tests/gpu/gpu_probe_unoptimised.cu).
+unoptimised_probe() {
+  local rc=0
+  timeout "$1" "$bin/gpu_probe_unoptimised" > "$keep/gpu_probe_unoptimised.log" 2>&1 || rc=$?
+  cat "$keep/gpu_probe_unoptimised.log"
+  echo "{\"check\":\"probe_unoptimised\",\"exit\":$rc}"
+}
+
 example() {
   local rc=0
   timeout "$1" "$bin/star_beside_hole_gpu" --size 512 --out "$work/star-gpu.exr" > "$keep/example.log" 2>&1 || rc=$?
@@ -113,6 +122,7 @@ run() {
   echo "{\"check\":\"device\",\"gpu\":\"$(nvidia-smi -L 2> /dev/null | head -1 | tr '"' ' ')\",\"cores\":$(nproc)}"
   # First the probe (one ray, step by step: where a wrong GPU departs), then the frames.
   run_step 60 probe tests 60 'GpuNvccHostPass.*:GpuProbe.*' gpu_probe.log
+  run_step 30 probe_unoptimised unoptimised_probe 30
   run_step 60 sanitizer sanitized_probe 60
   run_step 150 frames tests 150 'GpuDevice.*' gpu_frame_test.log
   run_step 40 example example 40

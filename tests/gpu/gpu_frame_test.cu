@@ -8,20 +8,20 @@
 //     when the last bits of its path differ), redshift and sky direction within 1e-9; the Kerr disk frame's hit
 //     radius within 1e-6 of the CPU's rkf78 + I at rtol 1e-12.
 //   - GpuProbe (first, with a device): one ray integrated by one GPU thread and by the host from the same bytes,
-//     step by step (lambda, step, state), for the general tracer's system and the Kerr Mino system; a departure is
-//     printed at the first step where it happens, so a GPU that draws wrong frames says where in one run.
+//     step by step (lambda, step, state), for the general tracer's system and the Kerr Mino system (gpu_probe.cuh);
+//     a departure is printed at the first step where it happens, so a GPU that draws wrong frames says where in one
+//     run. Then one corner pixel of each frame through the application layer's kernels.
 // The frame tests cap each ray at kGpuTestMaxSteps (on both sides alike): a GPU that loses its rays fails in
 // seconds instead of integrating every ray to the default 100000 steps.
 #include "../common/quiet_trace.hpp"
+#include "gpu_probe.cuh"
 #include "gpu_tracers.hpp"  // examples/app: the application layer's kernels (trace_on_gpu), instantiated there only
 
 #include "grtrace/app/frame_tracer.hpp"
-#include "grtrace/core/inverse_root.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 
-#include <cuda_runtime.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -84,180 +84,25 @@ TEST(GpuNvccHostPass, DrawsTheCpuBuildsFrameBitForBit) {
     if (!gpu.present) GTEST_SKIP() << "no GPU to compare with: " << gpu.why_not;                    \
   } while (false)
 
-}  // namespace
+using namespace gpu_probe;
 
-// ---- GpuProbe: one ray, step by step, on the device and on the host ----
-// (A named namespace: nvcc's device pass sees the host-only helpers unused, and would warn in an anonymous one.)
-namespace gpu_probe {
-
-using namespace grtrace;
-
-/// An accepted step: where it ended (lambda), its size and the system's state there (the first
-/// System::dimension components; the pixel's start is record 0 with h = 0).
-struct StepRecord {
-  double lambda = 0.0, h = 0.0;
-  double state[8] = {};
-};
-
-inline constexpr int kTrailSteps = 40;
-
-/// What one probe records: the first kTrailSteps accepted steps, how the ray ended, and inverse_root (the one
-/// function with a code path of its own on the device: its tables) at a few arguments.
-struct RayTrail {
-  StepRecord start;
-  StepRecord steps[kTrailSteps];
-  int recorded = 0;
-  int status = -1;
-  int accepted = 0;
-  int rejected = 0;
-  double lambda_end = 0.0;
-  double inverse_roots[4] = {};
-};
-
-template <class V>
-GRTRACE_HD StepRecord record_of(double lambda, double h, const V& z) {
-  StepRecord s;
-  s.lambda = lambda;
-  s.h = h;
-  for (int i = 0; i < static_cast<int>(z.size()) && i < 8; ++i) s.state[i] = z[i];
-  return s;
-}
-
-/// trace_geodesic_system's observer: records each accepted step (theta_end == 1) while there is room.
-struct TrailObserver {
-  RayTrail* trail;
-  template <class Integrator>
-  GRTRACE_HD void operator()(const Integrator& integ, double theta_end) const {
-    if (theta_end != 1.0 || trail->recorded >= kTrailSteps) return;
-    trail->steps[trail->recorded++] = record_of(integ.lambda(), integ.last_step(), integ.state());
-  }
-};
-
-GRTRACE_HD void note_end(RayTrail& t, const TraceResult& r) {
-  t.status = static_cast<int>(r.status);
-  t.accepted = r.accepted;
-  t.rejected = r.rejected;
-  t.lambda_end = r.lambda;
-  const double x[4] = {0.37, 2.5e-3, 1.0, 7.9e4};
-  for (int i = 0; i < 4; ++i) t.inverse_roots[i] = inverse_root<8>(x[i]);
-}
-
-/// The general tracer's system (the geodesic equation) for a Schwarzschild pixel, rkf78 + I.
-struct GeneralSystemProbe {
-  Camera camera;
-  SchwarzschildMetric metric;
-  TraceSettings settings;
-  int col, row;
-  GRTRACE_HD void operator()(RayTrail& t) const {
-    const GeodesicState y0 = camera.pixel_state(col, row);
-    t.start = record_of(0.0, 0.0, y0);
-    const GeodesicTracer<SchwarzschildMetric, Fehlberg78, IController> tracer(metric, settings, IController{});
-    note_end(t, tracer.trace_observed(y0, TrailObserver{&t}));
-  }
-};
-
-/// The reduced Kerr tracer's system (Mino time) for a Kerr pixel, rkf78 + I.
-struct KerrMinoSystemProbe {
-  Camera camera;
-  KerrMetric metric;
-  TraceSettings settings;
-  int col, row;
-  GRTRACE_HD void operator()(RayTrail& t) const {
-    const GeodesicState y0 = camera.pixel_state(col, row);
-    const KerrMinoSystem system(metric, y0);
-    const KerrMinoSystem::State z0 = system.initial_state(y0);
-    t.start = record_of(0.0, 0.0, z0);
-    note_end(t, trace_geodesic_system<Fehlberg78>(system, settings, IController{}, z0, metric.horizon_radius(), false,
-                                                  TrailObserver{&t}));
-  }
-};
-
-template <class Probe>
-__global__ void run_probe(Probe probe, RayTrail* out) {
-  probe(*out);
-}
-
-/// The probe run by one GPU thread.
-template <class Probe>
-RayTrail trail_on_gpu(const Probe& probe) {
-  RayTrail* d = nullptr;
-  EXPECT_EQ(cudaMalloc(&d, sizeof(RayTrail)), cudaSuccess);
-  RayTrail trail;
-  if (!d) return trail;
-  cudaMemcpy(d, &trail, sizeof(RayTrail), cudaMemcpyHostToDevice);
-  run_probe<<<1, 1>>>(probe, d);
-  EXPECT_EQ(cudaDeviceSynchronize(), cudaSuccess) << cudaGetErrorString(cudaGetLastError());
-  cudaMemcpy(&trail, d, sizeof(RayTrail), cudaMemcpyDeviceToHost);
-  cudaFree(d);
-  return trail;
-}
-
-/// |a - b| relative to the larger, 0 for two equal numbers (NaN too).
-double departure(double a, double b) {
-  if (a == b || (std::isnan(a) && std::isnan(b))) return 0.0;
-  return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300});
-}
-
-double departure(const StepRecord& a, const StepRecord& b) {
-  double worst = std::max(departure(a.lambda, b.lambda), departure(a.h, b.h));
-  for (int i = 0; i < 8; ++i) worst = std::max(worst, departure(a.state[i], b.state[i]));
-  return worst;
-}
-
-std::string describe(const StepRecord& s) {
-  std::string text = "lambda " + std::to_string(s.lambda) + " h " + std::to_string(s.h) + " state";
-  char number[32];
-  for (double v : s.state) {
-    std::snprintf(number, sizeof number, " %.17g", v);
-    text += number;
-  }
-  return text;
-}
-
-/// The device's trail against the host's: printed at the first record that departs by more than round-off.
+/// GpuProbe's check: the device's trail is the host's (gpu_probe.cuh).
 template <class Probe>
 void expect_same_trail(const char* what, const Probe& probe) {
   RayTrail host;
   probe(host);
-  const RayTrail gpu = trail_on_gpu(probe);
-  std::printf("[gpu] %s: host %d steps, %d rejected, status %d, lambda %.6g", what, host.accepted, host.rejected,
-              host.status, host.lambda_end);
-  std::printf("; device %d steps, %d rejected, status %d, lambda %.6g", gpu.accepted, gpu.rejected, gpu.status,
-              gpu.lambda_end);
-  std::printf("; inverse_root<8> device/host - 1:");
-  for (int i = 0; i < 4; ++i) std::printf(" %.3g", gpu.inverse_roots[i] / host.inverse_roots[i] - 1.0);
-  std::printf("\n");
-  constexpr double round_off = 1e-9;  // the device's libm differs from the host's in the last bits
-  EXPECT_LE(departure(gpu.start, host.start), round_off)
-      << what << " start\n  host   " << describe(host.start) << "\n  device " << describe(gpu.start);
-  for (int i = 0; i < std::min(host.recorded, gpu.recorded); ++i)
-    if (departure(gpu.steps[i], host.steps[i]) > round_off) {
-      ADD_FAILURE() << what << ": the device departs at accepted step " << i + 1 << "\n  host   "
-                    << describe(host.steps[i]) << "\n  device " << describe(gpu.steps[i]);
-      break;
-    }
-  EXPECT_EQ(gpu.status, host.status) << what;
-  EXPECT_EQ(gpu.accepted, host.accepted) << what;
-  for (int i = 0; i < 4; ++i) EXPECT_LE(departure(gpu.inverse_roots[i], host.inverse_roots[i]), 1e-15) << i;
+  std::string error;
+  const RayTrail gpu = trail_on_gpu(probe, &error);
+  EXPECT_TRUE(error.empty()) << error;
+  for (const std::string& problem : compare_trails(what, host, gpu)) ADD_FAILURE() << problem;
 }
-
-}  // namespace gpu_probe
-
-namespace {
-
-using namespace gpu_probe;
 
 /// The probes' own bookkeeping, on the host (nvcc's host pass): each records the ray's first steps in order; the
 /// main frame's pixel escapes, the Kerr pixel near the middle of the picture falls into the hole.
 TEST(GpuNvccHostPass, ProbesRecordTheRaysStepsInOrder) {
-  TraceSettings settings;
-  settings.escape_radius = 400.0;
-  settings.max_steps = 2000;
-  const SchwarzschildMetric schwarzschild{1.0};
-  const KerrMetric kerr{1.0, 0.9};
   RayTrail general, mino;
-  GeneralSystemProbe{camera_at(schwarzschild, 200.0, 90.0, 90.0, 64), schwarzschild, settings, 20, 9}(general);
-  KerrMinoSystemProbe{camera_at(kerr, 50.0, 80.0, 60.0, 64), kerr, settings, 30, 35}(mino);
+  main_frame_probe()(general);
+  kerr_frame_probe()(mino);
   for (const RayTrail* t : {&general, &mino}) {
     EXPECT_GT(t->accepted, 3);
     // Every accepted step but the last, which ends on the sky sphere or the horizon guard (theta_end < 1).
@@ -273,6 +118,9 @@ TEST(GpuNvccHostPass, ProbesRecordTheRaysStepsInOrder) {
   EXPECT_EQ(general.status, static_cast<int>(RayStatus::escaped));
   EXPECT_EQ(mino.status, static_cast<int>(RayStatus::captured));
   // The corner pixels GpuProbe sends through the application layer's kernels escape.
+  const TraceSettings settings = probe_settings();
+  const SchwarzschildMetric schwarzschild{1.0};
+  const KerrMetric kerr{1.0, 0.9};
   StandardSceneSpec checker, disk;
   disk.name = "disk";
   const auto general_tracer = make_general_tracer<Fehlberg78, IController>(
@@ -288,16 +136,11 @@ TEST(GpuNvccHostPass, ProbesRecordTheRaysStepsInOrder) {
 
 TEST(GpuProbe, OneRayStepByStepAsOnTheHost) {
   GRTRACE_NEED_GPU();
-  TraceSettings settings;
-  settings.escape_radius = 400.0;
-  settings.max_steps = 2000;
+  expect_same_trail("Schwarzschild, geodesic equation", main_frame_probe());
+  expect_same_trail("Kerr, Mino-time system", kerr_frame_probe());
+  const TraceSettings settings = probe_settings();
   const SchwarzschildMetric schwarzschild{1.0};
-  expect_same_trail(
-      "Schwarzschild, geodesic equation",
-      GeneralSystemProbe{camera_at(schwarzschild, 200.0, 90.0, 90.0, 64), schwarzschild, settings, 20, 9});
   const KerrMetric kerr{1.0, 0.9};
-  expect_same_trail("Kerr, Mino-time system",
-                    KerrMinoSystemProbe{camera_at(kerr, 50.0, 80.0, 60.0, 64), kerr, settings, 30, 35});
   // A corner pixel of each frame (its ray escapes) through the application layer's kernels, the tracers built on the
   // host and copied to the device byte for byte: a departure here and none above points at the copy or the scene,
   // not the integration.

@@ -36,6 +36,7 @@
 namespace {
 
 using namespace grtrace;
+using gpu_probe::probe_camera;
 
 /// Every ray of these tests ends within this many steps on the CPU (they take 15-25 on average).
 constexpr int kGpuTestMaxSteps = 20000;
@@ -51,19 +52,9 @@ app::FrameRequest request(const std::string& metric, const std::string& scene, c
   return q;
 }
 
-template <class M>
-Camera camera_at(const M& metric, double r, double theta_degrees, double fov, int size) {
-  CameraSpec cs;
-  cs.position = Vec4(0.0, r, theta_degrees * std::numbers::pi / 180.0, 0.0);
-  cs.spherical_position = true;
-  cs.width = cs.height = size;
-  cs.fov_degrees = fov;
-  return make_camera(metric, cs);
-}
-
 TEST(GpuNvccHostPass, DrawsTheCpuBuildsFrameBitForBit) {
   const KerrMetric kerr{1.0, 0.9};
-  const Camera camera = camera_at(kerr, 50.0, 80.0, 60.0, 24);
+  const Camera camera = probe_camera(kerr, 50.0, 80.0, 60.0, 24);
   const app::FrameRequest q = request("kerr", "disk", "auto");
   const auto tracer = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, q.settings, q.correction, disk_scene(q.scene));
   const Frame here = render_frame_traced_by(camera, tracer, [&](int width, int height) {
@@ -127,9 +118,9 @@ TEST(GpuNvccHostPass, ProbesRecordTheRaysStepsInOrder) {
       schwarzschild, settings, AngleCorrection::exact, background_scene(checker));
   const auto mino_tracer =
       make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk));
-  EXPECT_EQ(general_tracer.trace(camera_at(schwarzschild, 200.0, 90.0, 90.0, 2).pixel_state(0, 0)).status,
+  EXPECT_EQ(general_tracer.trace(probe_camera(schwarzschild, 200.0, 90.0, 90.0, 2).pixel_state(0, 0)).status,
             RayStatus::escaped);
-  EXPECT_EQ(mino_tracer.trace(camera_at(kerr, 50.0, 80.0, 60.0, 2).pixel_state(0, 0)).status, RayStatus::escaped);
+  EXPECT_EQ(mino_tracer.trace(probe_camera(kerr, 50.0, 80.0, 60.0, 2).pixel_state(0, 0)).status, RayStatus::escaped);
   EXPECT_EQ(general.start.state[1], 200.0);             // r of the camera
   EXPECT_NEAR(mino.start.state[0], 1.0 / 50.0, 1e-15);  // u = 1/r of the camera
 }
@@ -146,8 +137,8 @@ TEST(GpuProbe, OneRayStepByStepAsOnTheHost) {
   // not the integration.
   const app::FrameRequest q = request("kerr", "disk", "auto");
   StandardSceneSpec checker;
-  const Camera main_corner = camera_at(schwarzschild, 200.0, 90.0, 90.0, 2);
-  const Camera kerr_corner = camera_at(kerr, 50.0, 80.0, 60.0, 2);
+  const Camera main_corner = probe_camera(schwarzschild, 200.0, 90.0, 90.0, 2);
+  const Camera kerr_corner = probe_camera(kerr, 50.0, 80.0, 60.0, 2);
   const auto general = make_general_tracer<Fehlberg78, IController>(schwarzschild, settings, AngleCorrection::exact,
                                                                     background_scene(checker));
   const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, q.correction, disk_scene(q.scene));
@@ -203,12 +194,11 @@ TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
   StandardSceneSpec checker, disk;
   disk.name = "disk";
   const SchwarzschildMetric schwarzschild{1.0};
-  expect_gpu_outcomes_match_cpu("main frame, general", camera_at(schwarzschild, 200.0, 90.0, 90.0, 256),
-                                make_general_tracer<Fehlberg78, IController>(schwarzschild, settings,
-                                                                             AngleCorrection::exact,
-                                                                             background_scene(checker)));
+  expect_gpu_outcomes_match_cpu("main frame, general", probe_camera(schwarzschild, 200.0, 90.0, 90.0, 256),
+                                make_general_tracer<Fehlberg78, IController>(
+                                    schwarzschild, settings, AngleCorrection::exact, background_scene(checker)));
   const KerrMetric kerr{1.0, 0.9};
-  const Camera kerr_camera = camera_at(kerr, 50.0, 80.0, 60.0, 256);
+  const Camera kerr_camera = probe_camera(kerr, 50.0, 80.0, 60.0, 256);
   expect_gpu_outcomes_match_cpu(
       "Kerr disk, kerr-mino", kerr_camera,
       make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk)));
@@ -218,15 +208,15 @@ TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
   AutoReissnerNordstrom rn;
   rn.charge = 0.6;
   expect_gpu_outcomes_match_cpu(
-      "Reissner-Nordstrom disk, general", camera_at(rn, 30.0, 80.0, 60.0, 128),
+      "Reissner-Nordstrom disk, general", probe_camera(rn, 30.0, 80.0, 60.0, 128),
       make_general_tracer<Fehlberg78, IController>(rn, settings, AngleCorrection::exact, disk_scene(disk)));
 }
 
 TEST(GpuDevice, TheApplicationLayersGpuFrameIsTheCpusFrame) {
   GRTRACE_NEED_GPU();
   const std::vector<std::pair<app::FrameRequest, Camera>> cases = {
-      {request("kerr", "disk", "auto"), camera_at(KerrMetric{1.0, 0.9}, 50.0, 80.0, 60.0, 128)},
-      {request("schwarzschild", "disk", "general"), camera_at(SchwarzschildMetric{1.0}, 30.0, 80.0, 60.0, 128)}};
+      {request("kerr", "disk", "auto"), probe_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0, 60.0, 128)},
+      {request("schwarzschild", "disk", "general"), probe_camera(SchwarzschildMetric{1.0}, 30.0, 80.0, 60.0, 128)}};
   for (const auto& [base, camera] : cases) {
     app::FrameRequest q = base;
     q.device = "cpu";
@@ -246,7 +236,7 @@ TEST(GpuDevice, TheApplicationLayersGpuFrameIsTheCpusFrame) {
 TEST(GpuDevice, KerrDiskHitRadiusAgreesWithTheCpuAtTightTolerance) {
   GRTRACE_NEED_GPU();
   const KerrMetric kerr{1.0, 0.9};
-  const Camera camera = camera_at(kerr, 50.0, 80.0, 60.0, 256);
+  const Camera camera = probe_camera(kerr, 50.0, 80.0, 60.0, 256);
   const app::FrameRequest q = request("kerr", "disk", "auto");
   const auto gpu_tracer =
       make_kerr_mino_tracer<Fehlberg78, IController>(kerr, q.settings, q.correction, disk_scene(q.scene));

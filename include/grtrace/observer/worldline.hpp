@@ -84,7 +84,10 @@ Worldline sample_worldline(const M& metric, const TimelikeStart& start, double d
   w.samples.reserve(static_cast<std::size_t>(count));
   w.samples.push_back({0.0, start.x, start.u});
   if (count == 1) return w;
-  const GeodesicEquation<M> rhs{&metric};
+  // The tracers' geodesic system (trace/geodesic_system.hpp): its right-hand side is GeodesicEquation's, bit for bit,
+  // and a program that also traces rays with this method (the orbit paths below, the tools' flights) then compiles
+  // one integrator step per metric instead of two.
+  const MetricGeodesicSystem<M> rhs(metric, start.state());
   const double r_stop = detail::worldline_stop_radius(metric, start, settings);
   ControlledIntegrator<T, C, 8> integ(settings.integrator, C{});
   integ.start(rhs, start.state(), 0.0);

@@ -41,10 +41,10 @@ pack() {
   echo "gpu-check: packed $(du -sh "$out" | cut -f1) into $out; on the GPU machine: bash cmake/gpu-check.sh run"
 }
 
-# One timed run of grtrace-render (at most a minute): a JSON line with the tool's own line and the wall time.
+# One timed run of grtrace-render (at most run_step's limit): a JSON line with the tool's own line and the wall time.
 timed() {
   local check="$1"; shift
-  local limit=60
+  local limit="${step_limit:-60}"  # run_step's limit for this step
   local t0 t1 line rc=0
   t0=$(date +%s.%N)
   line=$(GRTRACE_TIMING=1 timeout "$limit" "$bin/grtrace-render" "$@" 2> "$work/err.txt") || rc=$?
@@ -65,7 +65,7 @@ run_step() {
     echo "{\"check\":\"$name\",\"skipped\":\"would pass the ${deadline} s deadline (at ${SECONDS} s)\"}"
     return 0
   fi
-  "$@"
+  step_limit="$limit" "$@"
 }
 
 tests() {  # tests LIMIT FILTER LOG: the GPU test program's tests matching FILTER

@@ -52,9 +52,11 @@ std::string choose_device(std::string_view asked, const FrameRequest& q) {
   if (asked == "cpu") return "cpu";
   if (std::find(kDeviceNames.begin(), kDeviceNames.end(), asked) == kDeviceNames.end())
     throw std::invalid_argument("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
+  // auto cannot pick the GPU yet: no need to ask the driver (a tenth of a second where there is one).
+  if (asked == "auto" && !kAutoPicksGpu) return "cpu";
   const auto refusal = gpu_refusal(q);
   if (asked == "cuda" && refusal) throw std::invalid_argument("--device cuda: " + *refusal);
-  return refusal || !kAutoPicksGpu ? "cpu" : "cuda";
+  return refusal ? "cpu" : "cuda";
 }
 
 std::string device_name(std::string_view device) { return device == "cuda" ? gpu_status().name : "cpu"; }

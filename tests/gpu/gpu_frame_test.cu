@@ -88,6 +88,21 @@ void expect_same_trail(const char* what, const Probe& probe) {
   for (const std::string& problem : compare_trails(what, host, gpu)) ADD_FAILURE() << problem;
 }
 
+/// The corner pixels GpuProbe sends through the application layer's kernels (pixel (0, 0) of a 2x2 camera placed as
+/// the probes' frames; its ray escapes), with the tracers the tools would use for them.
+Camera main_corner() { return probe_camera(SchwarzschildMetric{1.0}, 200.0, 90.0, 90.0, 2); }
+Camera kerr_corner() { return probe_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0, 60.0, 2); }
+auto main_corner_tracer() {
+  return make_general_tracer<Fehlberg78, IController>(SchwarzschildMetric{1.0}, probe_settings(),
+                                                      AngleCorrection::exact, background_scene(StandardSceneSpec{}));
+}
+auto kerr_corner_tracer() {
+  StandardSceneSpec disk;
+  disk.name = "disk";
+  return make_kerr_mino_tracer<Fehlberg78, IController>(KerrMetric{1.0, 0.9}, probe_settings(), AngleCorrection::exact,
+                                                        disk_scene(disk));
+}
+
 /// The probes' own bookkeeping, on the host (nvcc's host pass): each records the ray's first steps in order; the
 /// main frame's pixel escapes, the Kerr pixel near the middle of the picture falls into the hole.
 TEST(GpuNvccHostPass, ProbesRecordTheRaysStepsInOrder) {
@@ -109,18 +124,8 @@ TEST(GpuNvccHostPass, ProbesRecordTheRaysStepsInOrder) {
   EXPECT_EQ(general.status, static_cast<int>(RayStatus::escaped));
   EXPECT_EQ(mino.status, static_cast<int>(RayStatus::captured));
   // The corner pixels GpuProbe sends through the application layer's kernels escape.
-  const TraceSettings settings = probe_settings();
-  const SchwarzschildMetric schwarzschild{1.0};
-  const KerrMetric kerr{1.0, 0.9};
-  StandardSceneSpec checker, disk;
-  disk.name = "disk";
-  const auto general_tracer = make_general_tracer<Fehlberg78, IController>(
-      schwarzschild, settings, AngleCorrection::exact, background_scene(checker));
-  const auto mino_tracer =
-      make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk));
-  EXPECT_EQ(general_tracer.trace(probe_camera(schwarzschild, 200.0, 90.0, 90.0, 2).pixel_state(0, 0)).status,
-            RayStatus::escaped);
-  EXPECT_EQ(mino_tracer.trace(probe_camera(kerr, 50.0, 80.0, 60.0, 2).pixel_state(0, 0)).status, RayStatus::escaped);
+  EXPECT_EQ(main_corner_tracer().trace(main_corner().pixel_state(0, 0)).status, RayStatus::escaped);
+  EXPECT_EQ(kerr_corner_tracer().trace(kerr_corner().pixel_state(0, 0)).status, RayStatus::escaped);
   EXPECT_EQ(general.start.state[1], 200.0);             // r of the camera
   EXPECT_NEAR(mino.start.state[0], 1.0 / 50.0, 1e-15);  // u = 1/r of the camera
 }
@@ -129,29 +134,22 @@ TEST(GpuProbe, OneRayStepByStepAsOnTheHost) {
   GRTRACE_NEED_GPU();
   expect_same_trail("Schwarzschild, geodesic equation", main_frame_probe());
   expect_same_trail("Kerr, Mino-time system", kerr_frame_probe());
-  const TraceSettings settings = probe_settings();
-  const SchwarzschildMetric schwarzschild{1.0};
-  const KerrMetric kerr{1.0, 0.9};
   // A corner pixel of each frame (its ray escapes) through the application layer's kernels, the tracers built on the
   // host and copied to the device byte for byte: a departure here and none above points at the copy or the scene,
   // not the integration.
-  const app::FrameRequest q = request("kerr", "disk", "auto");
-  StandardSceneSpec checker;
-  const Camera main_corner = probe_camera(schwarzschild, 200.0, 90.0, 90.0, 2);
-  const Camera kerr_corner = probe_camera(kerr, 50.0, 80.0, 60.0, 2);
-  const auto general = make_general_tracer<Fehlberg78, IController>(schwarzschild, settings, AngleCorrection::exact,
-                                                                    background_scene(checker));
-  const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, q.correction, disk_scene(q.scene));
+  const Camera main_camera = main_corner(), kerr_camera = kerr_corner();
+  const auto general = main_corner_tracer();
+  const auto mino = kerr_corner_tracer();
   const auto compare = [](const char* what, const RayOutcome& g, const RayOutcome& c) {
     std::printf("[gpu] %s, one pixel: device status %d, %d steps, r %.9g; CPU status %d, %d steps, r %.9g\n", what,
                 static_cast<int>(g.status), g.steps, g.radius, static_cast<int>(c.status), c.steps, c.radius);
     EXPECT_EQ(g.status, c.status) << what;
     EXPECT_EQ(g.steps, c.steps) << what;
   };
-  compare("app layer, Schwarzschild general", app::trace_on_gpu(main_corner, general, 1, 1, nullptr)[0],
-          general.trace(main_corner.pixel_state(0, 0)));
-  compare("app layer, Kerr disk kerr-mino", app::trace_on_gpu(kerr_corner, mino, 1, 1, nullptr)[0],
-          mino.trace(kerr_corner.pixel_state(0, 0)));
+  compare("app layer, Schwarzschild general", app::trace_on_gpu(main_camera, general, 1, 1, nullptr)[0],
+          general.trace(main_camera.pixel_state(0, 0)));
+  compare("app layer, Kerr disk kerr-mino", app::trace_on_gpu(kerr_camera, mino, 1, 1, nullptr)[0],
+          mino.trace(kerr_camera.pixel_state(0, 0)));
 }
 
 /// The GPU's outcomes against the CPU's trace, pixel by pixel, in double precision (see the top of this file).

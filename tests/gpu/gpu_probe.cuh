@@ -69,7 +69,7 @@ struct TrailObserver {
   }
 };
 
-GRTRACE_HD void note_end(RayTrail& t, const TraceResult& r) {
+inline GRTRACE_HD void note_end(RayTrail& t, const TraceResult& r) {
   t.status = static_cast<int>(r.status);
   t.accepted = r.accepted;
   t.rejected = r.rejected;

@@ -15,6 +15,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev    # tools only: option parsing and TOML scene files (--config)
   nlohmann-json3-dev                  # tools only: JSON output
   ffmpeg                              # grtrace-render --mp4: camera flights assembled into a video
+  ccache                              # builds: a rebuild after a touch, branch switch or undone edit reuses objects
 )
 # Optional, not part of CI: GRTRACE_FUZZ=1 also installs AFL++ for the fuzz targets in tests/fuzz/.
 if [ "${GRTRACE_FUZZ:-0}" = 1 ]; then

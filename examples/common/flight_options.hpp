@@ -12,7 +12,6 @@
 #include "command_line.hpp"
 
 #include "grtrace/core/types.hpp"
-#include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/observer/flight_path.hpp"
 #include "grtrace/observer/worldline.hpp"
 
@@ -84,12 +83,13 @@ inline std::optional<FlightPathSpec> read_flight_spec(const CommandLine& cli, do
   return spec;
 }
 
-/// Takes a metric and read_flight_spec's spec; returns flight_path(metric, spec). Throws UsageError saying what
-/// to change: the library's refusal (observer/flight_path.hpp) prefixed with "--flight KIND: ".
-template <MetricPolicy M>
-Worldline checked_flight_path(const M& metric, const FlightPathSpec& spec) {
+/// Takes read_flight_spec's spec and what samples its path (the application layer's app::flight_worldline, which
+/// the tools call, or flight_path in one metric); returns the path. Throws UsageError saying what to change: the
+/// library's refusal (observer/flight_path.hpp) prefixed with "--flight KIND: ".
+template <class SamplePath>
+Worldline checked_flight_path(const FlightPathSpec& spec, SamplePath&& sample_path) {
   try {
-    return flight_path(metric, spec);
+    return sample_path();
   } catch (const std::invalid_argument& e) {
     throw UsageError("--flight " + spec.kind + ": " + e.what());
   }

@@ -13,6 +13,7 @@
 #include "metric_options.hpp"
 #include "render_request.hpp"
 
+#include "grtrace/app/flight_worldline.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/observer/flight_path.hpp"
@@ -169,11 +170,8 @@ void read_flight(const CommandLine& cli, const tools::CameraOptions& cam, Reques
   const CameraView view{cam.look, cam.up, q.camera->width(), q.camera->height(), q.camera->fov_degrees()};
   // Kerr-Schild flights are flown in the ingoing slicing, regular where the falling camera crosses the horizon.
   if (q.metric.chart == "ks") q.metric.slicing = KerrSchildSlicing::ingoing;
-  Worldline path;
-  with_named_metric(q.metric, [&](const auto& m) {
-    path = tools::checked_flight_path(m, *spec);
-    f.cameras = flight_cameras(m, path, view);
-  });
+  const Worldline path = tools::checked_flight_path(*spec, [&] { return app::flight_worldline(q.metric, *spec); });
+  with_named_metric(q.metric, [&](const auto& m) { f.cameras = flight_cameras(m, path, view); });
   f.dtau = frame_step(path);
   for (const WorldlineSample& s : path.samples) f.tau.push_back(s.tau);
   if (cli.given("frame-range")) {

@@ -39,6 +39,7 @@
 #include "metric_options.hpp"
 #include "view_request.hpp"
 
+#include "grtrace/app/flight_worldline.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -317,10 +318,22 @@ std::vector<std::array<int, 2>> parse_picks(const std::string& text, int width, 
   return pixels;
 }
 
+/// The request's metric as a MetricSpec (metric/named_metrics.hpp): the same metric with_metric calls f with, for
+/// the application layer (a flight's path: app::flight_worldline).
+MetricSpec metric_spec(const Request& q) {
+  MetricSpec s;
+  s.name = q.kerr ? "kerr" : "schwarzschild";
+  s.mass = q.mass;
+  s.spin = q.kerr ? q.spin : 0.0;
+  s.chart = q.kerr ? q.chart : "bl";
+  s.slicing = q.ks_slicing;
+  return s;
+}
+
 /// Takes the command line, the request read so far (mass, metric, sky radius, the single-frame camera checked)
-/// and the flight spec of read_flight_spec. Builds the path with the library (flight_path), checks --flight-frame
-/// against it and returns it with the camera of that frame (make_moving_camera with --look/--up and the
-/// single-frame camera's size and field of view). Throws UsageError naming the option for what cannot fly.
+/// and the flight spec of read_flight_spec. Builds the path (the application layer's app::flight_worldline), checks
+/// --flight-frame against it and returns it with the camera of that frame (make_moving_camera with --look/--up and
+/// the single-frame camera's size and field of view). Throws UsageError naming the option for what cannot fly.
 view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const FlightPathSpec& spec, Request& q) {
   for (const char* name : {"frame", "velocity", "observer"})
     if (cli.given(name))
@@ -343,8 +356,8 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
   // Kerr-Schild flights are flown in the ingoing slicing (the falling camera crosses the future horizon), as
   // grtrace-render's; the frame, the rays and the surfaces are then drawn in that chart too.
   if (q.kerr && q.chart == "ks") q.ks_slicing = KerrSchildSlicing::ingoing;
+  const Worldline path = tools::checked_flight_path(spec, [&] { return app::flight_worldline(metric_spec(q), spec); });
   auto fly = [&](const auto& metric) {
-    const Worldline path = tools::checked_flight_path(metric, spec);
     check_frame(static_cast<long>(path.samples.size()));
     const WorldlineSample& at = path.samples[static_cast<std::size_t>(f.frame)];
     q.camera = make_moving_camera(metric, at.x, at.u, look);

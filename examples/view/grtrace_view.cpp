@@ -318,23 +318,13 @@ std::vector<std::array<int, 2>> parse_picks(const std::string& text, int width, 
   return pixels;
 }
 
-/// The request's metric as a MetricSpec (metric/named_metrics.hpp): the same metric with_metric calls f with, for
-/// the application layer (a flight's path: app::flight_worldline).
-MetricSpec metric_spec(const Request& q) {
-  MetricSpec s;
-  s.name = q.kerr ? "kerr" : "schwarzschild";
-  s.mass = q.mass;
-  s.spin = q.kerr ? q.spin : 0.0;
-  s.chart = q.kerr ? q.chart : "bl";
-  s.slicing = q.ks_slicing;
-  return s;
-}
-
-/// Takes the command line, the request read so far (mass, metric, sky radius, the single-frame camera checked)
-/// and the flight spec of read_flight_spec. Builds the path (the application layer's app::flight_worldline), checks
+/// Takes the command line, the flight spec of read_flight_spec, the metric read from the command line and the
+/// request read so far (mass, metric, sky radius, the single-frame camera checked). Builds the path (the
+/// application layer's app::flight_worldline, in the metric's ingoing slicing for Kerr-Schild), checks
 /// --flight-frame against it and returns it with the camera of that frame (make_moving_camera with --look/--up and
 /// the single-frame camera's size and field of view). Throws UsageError naming the option for what cannot fly.
-view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const FlightPathSpec& spec, Request& q) {
+view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const FlightPathSpec& spec, MetricSpec flown,
+                                  Request& q) {
   for (const char* name : {"frame", "velocity", "observer"})
     if (cli.given(name))
       throw UsageError(std::string("--") + name + " sets a single frame's camera; a flight's camera moves with its "
@@ -356,7 +346,8 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
   // Kerr-Schild flights are flown in the ingoing slicing (the falling camera crosses the future horizon), as
   // grtrace-render's; the frame, the rays and the surfaces are then drawn in that chart too.
   if (q.kerr && q.chart == "ks") q.ks_slicing = KerrSchildSlicing::ingoing;
-  const Worldline path = tools::checked_flight_path(spec, [&] { return app::flight_worldline(metric_spec(q), spec); });
+  flown.slicing = q.ks_slicing;
+  const Worldline path = tools::checked_flight_path(spec, [&] { return app::flight_worldline(flown, spec); });
   auto fly = [&](const auto& metric) {
     check_frame(static_cast<long>(path.samples.size()));
     const WorldlineSample& at = path.samples[static_cast<std::size_t>(f.frame)];
@@ -471,7 +462,7 @@ Request read_request(const CommandLine& cli) {
   }
   if (const auto spec = tools::read_flight_spec(cli, q.mass, q.sky_radius, {"flight-frame"})) {
     if (!q.plot.empty()) throw UsageError("--flight draws a camera path in the 3D view; not with " + plot_option);
-    q.flight = read_flight_view(cli, p, *spec, q);
+    q.flight = read_flight_view(cli, p, *spec, ms, q);
   }
   q.width = q.camera->width();
   q.height = q.camera->height();

@@ -48,12 +48,18 @@ std::optional<std::string> gpu_refusal(const FrameRequest& q) {
   return std::nullopt;
 }
 
+bool cpu_table_tracer_draws(const FrameRequest& q) {
+  // Reissner-Nordstrom's |Q| < M (check_metric_spec) always gives it a horizon.
+  return q.tracer == "planar" || (q.tracer == "auto" && (q.metric.name == "schwarzschild" || q.metric.name == "rn"));
+}
+
 std::string choose_device(std::string_view asked, const FrameRequest& q) {
   if (asked == "cpu") return "cpu";
   if (std::find(kDeviceNames.begin(), kDeviceNames.end(), asked) == kDeviceNames.end())
     throw std::invalid_argument("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
-  // auto cannot pick the GPU yet: no need to ask the driver (a tenth of a second where there is one).
-  if (asked == "auto" && !kAutoPicksGpu) return "cpu";
+  // Where auto keeps the CPU anyway, the driver is not asked (its start costs a tenth of a second where there is a
+  // GPU, and nothing is gained).
+  if (asked == "auto" && (!kAutoPicksGpu || cpu_table_tracer_draws(q))) return "cpu";
   const auto refusal = gpu_refusal(q);
   if (asked == "cuda" && refusal) throw std::invalid_argument("--device cuda: " + *refusal);
   return refusal ? "cpu" : "cuda";

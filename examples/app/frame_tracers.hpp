@@ -13,6 +13,7 @@
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -29,13 +30,19 @@ class FrameTracerOf final : public FrameTracer {
                std::vector<SkyDirection>* directions) const override {
     if constexpr (kAppHasCuda && gpu_traces<Tracer>) {
       if (on_gpu_) {
-        double seconds = 0.0;
+        double seconds = 0.0, all_seconds = 0.0;
         Frame frame = render_frame_traced_by(
             camera, *tracer_,
-            [&](int width, int height) { return trace_on_gpu(camera, *tracer_, width, height, &seconds); },
+            [&](int width, int height) {
+              const auto start = std::chrono::steady_clock::now();
+              auto outcomes = trace_on_gpu(camera, *tracer_, width, height, &seconds);
+              all_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+              return outcomes;
+            },
             options, directions);
         frame.image.metadata["device"] = device_name("cuda");
         frame.image.metadata["gpu_trace_seconds"] = exact_number(seconds);
+        frame.image.metadata["gpu_seconds"] = exact_number(all_seconds);
         return frame;
       }
     }

@@ -621,8 +621,10 @@ int main(int argc, char** argv) {
     json.add("mean_steps", mean_steps).add("status_counts", counts);
     json.add("tracer", tracer).add("tableau", q.tableau).add("control", q.control);
     json.add("device", image.metadata["device"]);
-    if (image.metadata.count("gpu_trace_seconds"))  // the GPU kernel's share of "seconds"
+    if (image.metadata.count("gpu_trace_seconds")) {  // the GPU kernel's share of "seconds", and the GPU's whole share
       json.add("gpu_trace_seconds", std::stod(image.metadata["gpu_trace_seconds"]));
+      json.add("gpu_seconds", std::stod(image.metadata["gpu_seconds"]));
+    }
     json.add("sky_continuation", image.metadata["sky_continuation"]);
     if (image.metadata.count("sky_continuation_error"))  // a flat continuation's estimated error (render_frame)
       json.add("sky_continuation_error", std::stod(image.metadata["sky_continuation_error"]))

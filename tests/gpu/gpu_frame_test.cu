@@ -5,8 +5,9 @@
 //     same arithmetic (no contraction, fused where core/mul_add.hpp says).
 //   - With a CUDA device (else skipped, saying why): the GPU's frames against the CPU's: statuses identical, the
 //     object channel identical but for silhouette pixels (counted: a ray grazing an edge may end on either side
-//     when the last bits of its path differ), redshift and sky direction within 1e-9; the Kerr disk frame's hit
-//     radius within 1e-6 of the CPU's rkf78 + I at rtol 1e-12.
+//     when the last bits of its path differ), redshift, sky direction, hit point and hit radius within 1e-9 (not a
+//     captured ray's end on a Kerr horizon: see expect_gpu_outcomes_match_cpu); the Kerr disk frame's hit radius at
+//     rtol 1e-12 within 1e-6 of the CPU's rkf78 + I at rtol 1e-12.
 //   - GpuProbe (first, with a device): one ray integrated by one GPU thread and by the host from the same bytes,
 //     step by step (lambda, step, state), for the general tracer's system and the Kerr Mino system (gpu_probe.cuh);
 //     a departure is printed at the first step where it happens, so a GPU that draws wrong frames says where in one
@@ -152,12 +153,28 @@ TEST(GpuProbe, OneRayStepByStepAsOnTheHost) {
           mino.trace(kerr_camera.pixel_state(0, 0)));
 }
 
+/// A pixel where the GPU's outcome departs from the CPU's.
+struct Departure {
+  int col = -1, row = -1;
+  double sky = 0.0;
+};
+
+inline void print_outcome(const char* side, const RayOutcome& o) {
+  std::printf("  %s status %d object %d steps %d where (%.17g, %.17g) r %.17g redshift %.17g\n  %s end state", side,
+              static_cast<int>(o.status), o.object, o.steps, o.where.theta, o.where.phi, o.radius, o.redshift, side);
+  for (int i = 0; i < 8; ++i) std::printf(" %.17g", o.state[i]);
+  std::printf("\n");
+}
+
 /// The GPU's outcomes against the CPU's trace, pixel by pixel, in double precision (see the top of this file).
+/// Returns the pixel whose sky direction departs most (the first few beyond 1e-9 are printed, both sides).
 template <class Tracer>
-void expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const Tracer& tracer) {
+Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const Tracer& tracer) {
+  Departure worst;
+  int printed = 0;
   const std::vector<RayOutcome> gpu = app::trace_on_gpu(camera, tracer, camera.width(), camera.height(), nullptr);
   long silhouette = 0, status_differs = 0, compared = 0;
-  double worst_redshift = 0.0, worst_sky = 0.0;
+  double worst_redshift = 0.0, worst_sky = 0.0, worst_radius = 0.0, worst_captured = 0.0;
   for (int row = 0; row < camera.height(); ++row)
     for (int col = 0; col < camera.width(); ++col) {
       const RayOutcome& g = gpu[static_cast<std::size_t>(row * camera.width() + col)];
@@ -173,15 +190,35 @@ void expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const
       if (is_failure(c.status)) continue;
       ++compared;
       worst_redshift = std::max(worst_redshift, std::abs(g.redshift - c.redshift));
-      worst_sky = std::max(worst_sky, angular_distance(g.where, c.where));
+      const double where = angular_distance(g.where, c.where);
+      if (c.status == RayStatus::captured) {
+        // Not compared: the direction of the point where a ray meets the horizon guard is ill-conditioned towards a
+        // Kerr horizon in Boyer-Lindquist coordinates (phi winds without bound as r -> r+: k^phi ~ -900 there), so a
+        // last-bit difference anywhere on the way moves it by up to ~1e-3 rad. Printed, for the record.
+        worst_captured = std::max(worst_captured, where);
+        continue;
+      }
+      // The sky direction of an escaped ray, the direction of a hit point and its radius.
+      worst_sky = std::max(worst_sky, where);
+      if (c.status == RayStatus::hit) worst_radius = std::max(worst_radius, std::abs(g.radius / c.radius - 1.0));
+      if (where > worst.sky) worst = {col, row, where};
+      if (where > 1e-9 && printed++ < 4) {
+        std::printf("[gpu] %s: pixel (%d, %d) departs by %.3g rad\n", what, col, row, where);
+        print_outcome("device", g);
+        print_outcome("CPU   ", c);
+      }
     }
-  std::printf("[gpu] %s: %ld pixels compared, %ld on a silhouette, redshift within %.3g, sky within %.3g rad\n", what,
-              compared, silhouette, worst_redshift, worst_sky);
+  std::printf(
+      "[gpu] %s: %ld pixels compared, %ld on a silhouette, redshift within %.3g, sky or hit point within %.3g "
+      "rad, hit radius within %.3g (relative); captured rays' end on the horizon within %.3g rad\n",
+      what, compared, silhouette, worst_redshift, worst_sky, worst_radius, worst_captured);
   EXPECT_EQ(status_differs, 0);
   EXPECT_LE(silhouette, camera.width() * camera.height() / 200) << "more than 0.5 % of the pixels on a silhouette";
   EXPECT_GT(compared, camera.width() * camera.height() / 2);
   EXPECT_LE(worst_redshift, 1e-9);
   EXPECT_LE(worst_sky, 1e-9);
+  EXPECT_LE(worst_radius, 1e-9);
+  return worst;
 }
 
 TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
@@ -197,9 +234,23 @@ TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
                                     schwarzschild, settings, AngleCorrection::exact, background_scene(checker)));
   const KerrMetric kerr{1.0, 0.9};
   const Camera kerr_camera = probe_camera(kerr, 50.0, 80.0, 60.0, 256);
-  expect_gpu_outcomes_match_cpu(
+  const Departure mino = expect_gpu_outcomes_match_cpu(
       "Kerr disk, kerr-mino", kerr_camera,
       make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk)));
+  if (mino.sky > 1e-9) {
+    // Where it departs: the ray's integration (step by step, without the disk) or the continuation to the sky from
+    // the same state (the host's last recorded step).
+    const KerrMinoSystemProbe probe{kerr_camera, kerr, settings, mino.col, mino.row};
+    expect_same_trail("Kerr disk frame's most departing pixel, Mino-time system", probe);
+    RayTrail host;
+    probe(host);
+    if (host.recorded > 0) {
+      KerrContinuationProbe continuation{
+          kerr, kerr_camera.pixel_state(mino.col, mino.row), {}, settings.integrator.tolerance};
+      for (int i = 0; i < KerrMinoSystem::dimension; ++i) continuation.z[i] = host.steps[host.recorded - 1].state[i];
+      expect_same_trail("its continuation to the sky from the last recorded step", continuation);
+    }
+  }
   expect_gpu_outcomes_match_cpu(
       "Kerr disk, general", kerr_camera,
       make_general_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk)));
@@ -236,26 +287,41 @@ TEST(GpuDevice, KerrDiskHitRadiusAgreesWithTheCpuAtTightTolerance) {
   const KerrMetric kerr{1.0, 0.9};
   const Camera camera = probe_camera(kerr, 50.0, 80.0, 60.0, 256);
   const app::FrameRequest q = request("kerr", "disk", "auto");
-  const auto gpu_tracer =
-      make_kerr_mino_tracer<Fehlberg78, IController>(kerr, q.settings, q.correction, disk_scene(q.scene));
-  const std::vector<RayOutcome> gpu =
-      app::trace_on_gpu(camera, gpu_tracer, camera.width(), camera.height(), nullptr);
   TraceSettings tight = q.settings;
   tight.integrator.tolerance = {1e-12, 1e-14};
-  const auto cpu_tracer = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, tight, q.correction, disk_scene(q.scene));
-  double worst = 0.0;
+  // The hit radius at rtol 1e-12 on both sides (within 1e-6), and at the tools' rtol 1e-9 on both sides (the same
+  // arithmetic: within 1e-9 relative). The GPU at 1e-9 against the CPU at 1e-12 measures the method, not the
+  // device: on the CPU alone 26 of this frame's 7554 hits differ by more than 1e-6 between the two tolerances (at
+  // most 5.0e-4, pixel (157, 129), r = 13.26), so that is printed, not asserted.
+  const auto radii = [&](const TraceSettings& settings, bool on_gpu) {
+    const auto tracer =
+        make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, q.correction, disk_scene(q.scene));
+    if (on_gpu) return app::trace_on_gpu(camera, tracer, camera.width(), camera.height(), nullptr);
+    return testing_support::trace_quietly_here(camera, tracer, camera.width(), camera.height());
+  };
+  const std::vector<RayOutcome> gpu_tight = radii(tight, true), cpu_tight = radii(tight, false);
+  const std::vector<RayOutcome> gpu = radii(q.settings, true), cpu = radii(q.settings, false);
+  double worst_tight = 0.0, worst_same = 0.0, worst_method = 0.0;
   long hits = 0;
-  for (int row = 0; row < camera.height(); ++row)
-    for (int col = 0; col < camera.width(); ++col) {
-      const RayOutcome& g = gpu[static_cast<std::size_t>(row * camera.width() + col)];
-      const RayOutcome c = cpu_tracer.trace(camera.pixel_state(col, row));
-      if (g.status != RayStatus::hit || c.status != RayStatus::hit || g.object != c.object) continue;
+  const auto hit_both = [](const RayOutcome& a, const RayOutcome& b) {
+    return a.status == RayStatus::hit && b.status == RayStatus::hit && a.object == b.object;
+  };
+  for (std::size_t i = 0; i < gpu.size(); ++i) {
+    if (hit_both(gpu_tight[i], cpu_tight[i])) {
       ++hits;
-      worst = std::max(worst, std::abs(g.radius - c.radius));
+      worst_tight = std::max(worst_tight, std::abs(gpu_tight[i].radius - cpu_tight[i].radius));
     }
-  std::printf("[gpu] kerr disk: %ld hits, hit radius within %.3g of rtol 1e-12\n", hits, worst);
+    if (hit_both(gpu[i], cpu[i])) worst_same = std::max(worst_same, std::abs(gpu[i].radius / cpu[i].radius - 1.0));
+    if (hit_both(gpu[i], cpu_tight[i]))
+      worst_method = std::max(worst_method, std::abs(gpu[i].radius - cpu_tight[i].radius));
+  }
+  std::printf(
+      "[gpu] kerr disk: %ld hits; hit radius at rtol 1e-12 within %.3g of the CPU's; at rtol 1e-9 within %.3g "
+      "(relative) of the CPU's; at rtol 1e-9 within %.3g of the CPU's at 1e-12\n",
+      hits, worst_tight, worst_same, worst_method);
   EXPECT_GT(hits, 1000);
-  EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(worst_tight, 1e-6);
+  EXPECT_LE(worst_same, 1e-9);
 }
 
 }  // namespace

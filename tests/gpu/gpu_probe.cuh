@@ -14,6 +14,7 @@
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/kerr_mino_system.hpp"
+#include "grtrace/trace/sky_continuation.hpp"
 
 #include <cuda_runtime.h>
 
@@ -105,6 +106,26 @@ struct KerrMinoSystemProbe {
     t.start = record_of(0.0, 0.0, z0);
     note_end(t, trace_geodesic_system<Fehlberg78>(system, settings, IController{}, z0, metric.horizon_radius(), false,
                                                   TrailObserver{&t}));
+  }
+};
+
+/// The reduced Kerr tracer's continuation to the sky (kerr_direction_at_infinity) from a Mino state z of the ray
+/// that starts at y0: records in start the direction (theta, phi), whether it was found (1) or not (0), the Mino time
+/// to infinity from z and the first four components of the system's right-hand side at z.
+struct KerrContinuationProbe {
+  KerrMetric metric;
+  GeodesicState y0;
+  KerrMinoSystem::State z;
+  Tolerance tol;
+  GRTRACE_HD void operator()(RayTrail& t) const {
+    const KerrMinoSystem system(metric, y0);
+    const auto d = kerr_direction_at_infinity<Fehlberg78>(system, tol, z);
+    const KerrMinoSystem::State f = system(z);
+    Vector<8> record;
+    record << (d ? d->theta : -1.0), (d ? d->phi : -1.0), (d ? 1.0 : 0.0), system.mino_time_to_infinity(z), f[0], f[1],
+        f[2], f[3];
+    t.start = record_of(0.0, 0.0, record);
+    t.status = d ? 1 : 0;
   }
 };
 

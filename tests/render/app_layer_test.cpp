@@ -176,6 +176,16 @@ TEST(AppLayer, ChoosesTheDeviceAndSaysWhyTheGpuCannotDrawARequest) {
     EXPECT_EQ(app::choose_device("auto", q), "cpu");
     EXPECT_THROW(app::choose_device("cuda", q), std::invalid_argument);
   }
+  // auto leaves to the CPU what its table tracer draws (one table for the frame beats integrating every pixel),
+  // whatever the machine has; the same request with every pixel integrated is the GPU's where there is one.
+  const app::FrameRequest main_frame = request("schwarzschild", "checker", "rkf78", "i", "auto");
+  EXPECT_TRUE(app::cpu_table_tracer_draws(main_frame));
+  EXPECT_EQ(app::choose_device("auto", main_frame), "cpu");
+  EXPECT_TRUE(app::cpu_table_tracer_draws(request("rn", "disk", "rkf78", "i", "auto")));
+  EXPECT_FALSE(app::cpu_table_tracer_draws(q));
+  const app::FrameRequest general = request("schwarzschild", "checker", "rkf78", "i", "general");
+  EXPECT_FALSE(app::cpu_table_tracer_draws(general));
+  EXPECT_EQ(app::choose_device("auto", general), gpu.present && app::kAutoPicksGpu ? "cuda" : "cpu");
   // A frame drawn on the CPU says so in its header.
   const Camera camera = small_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0);
   EXPECT_EQ(app::render_frame(q, camera).image.metadata.at("device"), "cpu");

@@ -21,6 +21,15 @@ using Vec3 = Vector<3>;
 using Vec4 = Vector<4>;
 using Mat4 = Eigen::Matrix<double, 4, 4>;
 
+/// Minkowski's metric diag(1, -1, -1, -1), written out: Eigen's asDiagonal() assignment is not callable on a GPU
+/// (nvcc compiles it into a call through a null pointer; see core/optional.hpp).
+inline GRTRACE_HD Mat4 minkowski_eta() {
+  Mat4 eta = Mat4::Zero();
+  eta(0, 0) = 1.0;
+  eta(1, 1) = eta(2, 2) = eta(3, 3) = -1.0;
+  return eta;
+}
+
 /// y = (x^0..x^3, k^0..k^3): position and tangent of a geodesic.
 using GeodesicState = Vector<8>;
 

@@ -156,7 +156,8 @@ std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer,
 }
 
 /// render_frame (render/frame.hpp) with the traced region's rays traced on the GPU (render_frame_traced_by); the
-/// header records the device ("device") and the GPU's share of the time ("gpu_trace_seconds").
+/// header records the device ("device"), the kernel's time ("gpu_trace_seconds") and the GPU's whole share of the
+/// time, memory and copies included ("gpu_seconds").
 template <GpuSceneTracer Tracer>
 Frame render_frame_on_gpu(const Camera& camera, const Tracer& tracer, const RenderOptions& options = {},
                           std::vector<SkyDirection>* directions = nullptr) {
@@ -166,6 +167,7 @@ Frame render_frame_on_gpu(const Camera& camera, const Tracer& tracer, const Rend
       options, directions);
   frame.image.metadata["device"] = first_gpu().name;
   frame.image.metadata["gpu_trace_seconds"] = exact_number(timing.trace);
+  frame.image.metadata["gpu_seconds"] = exact_number(timing.upload + timing.trace + timing.download);
   return frame;
 }
 

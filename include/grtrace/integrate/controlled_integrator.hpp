@@ -12,6 +12,7 @@
 #pragma once
 
 #include "grtrace/core/host_device.hpp"
+#include "grtrace/core/optional.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/integrate/dense_output.hpp"
 #include "grtrace/integrate/error_norm.hpp"
@@ -21,7 +22,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 namespace grtrace {
 
@@ -86,7 +86,7 @@ class ControlledIntegrator {
   template <class Rhs>
   [[gnu::flatten]] GRTRACE_HD StepOutcome advance(const Rhs& f) {
     for (;;) {
-      const std::optional<double> trial = trial_step();
+      const Optional<double> trial = trial_step();
       if (!trial) return StepOutcome::step_underflow;
       const double h = *trial;
 
@@ -112,9 +112,9 @@ class ControlledIntegrator {
 
   /// The step the next trial takes, min(next_step(), h_max); nothing when it is below h_min (advance() then ends
   /// with step_underflow).
-  GRTRACE_HD std::optional<double> trial_step() const {
+  GRTRACE_HD Optional<double> trial_step() const {
     const double h = std::min(h_, settings_.h_max);
-    if (!(h >= settings_.h_min)) return std::nullopt;
+    if (!(h >= settings_.h_min)) return no_value;
     return h;
   }
 
@@ -248,8 +248,8 @@ class ControlledIntegrator {
   // state moves on; StepOutcome::ok), a failure (StepOutcome::non_finite, fixed steps only), or rejected (nothing:
   // h_ is the step to try next). last_stage() is the trial's last stage, f(y_new) for FSAL tableaux.
   template <class Rhs, class LastStage>
-  GRTRACE_HD std::optional<StepOutcome> conclude_trial(const Rhs& f, double h, const State& y_new, double err_norm,
-                                                       const LastStage& last_stage) {
+  GRTRACE_HD Optional<StepOutcome> conclude_trial(const Rhs& f, double h, const State& y_new, double err_norm,
+                                                  const LastStage& last_stage) {
     const StepDecision decision = controller_.decide(err_norm, h, error_exponent());
     if (decision.accept) {
       State f_new;
@@ -275,12 +275,12 @@ class ControlledIntegrator {
       } else {
         ++rejected_;  // the new point itself is singular: shrink and retry
         h_ = h * StepFactorLimits{}.min_factor;
-        return std::nullopt;
+        return no_value;
       }
     }
     ++rejected_;
     h_ = decision.h_next;
-    return std::nullopt;
+    return no_value;
   }
 
   // Two half steps against one full step; returns the scaled error norm and the value to propagate.

@@ -13,10 +13,10 @@
 #pragma once
 
 #include "grtrace/core/host_device.hpp"
+#include "grtrace/core/optional.hpp"
 
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <utility>
 
 namespace grtrace {
@@ -27,8 +27,8 @@ struct EventCrossing {
 };
 
 template <class G>
-GRTRACE_HD std::optional<EventCrossing> locate_first_crossing(const G& g, double g0, double g1,
-                                                              int interior_samples = 0, double theta_tol = 1e-13) {
+GRTRACE_HD Optional<EventCrossing> locate_first_crossing(const G& g, double g0, double g1, int interior_samples = 0,
+                                                         double theta_tol = 1e-13) {
   if (!(g0 > 0.0)) return EventCrossing{0.0, g0};  // already inside at the start of the step
   double a = 0.0, ga = g0, b = 1.0, gb = g1;
   bool bracketed = false;
@@ -45,7 +45,7 @@ GRTRACE_HD std::optional<EventCrossing> locate_first_crossing(const G& g, double
     a = t;
     ga = gt;
   }
-  if (!bracketed) return std::nullopt;
+  if (!bracketed) return no_value;
   if (!std::isfinite(gb)) {  // cannot interpolate through a non-finite value: bisect it away first
     for (int i = 0; i < 60 && !std::isfinite(gb); ++i) {
       const double m = 0.5 * (a + b);
@@ -116,10 +116,10 @@ struct RefinedCrossing {
 ///          tableau's own (order >= 4) interpolant, two with cubic Hermite.
 template <class Probe>
 GRTRACE_HD auto refine_crossing(const Probe& probe, double theta0, double slope0, double linear_limit = 1e-7,
-                                int max_probes = 8) -> std::optional<RefinedCrossing<decltype(probe(0.0).payload)>> {
+                                int max_probes = 8) -> Optional<RefinedCrossing<decltype(probe(0.0).payload)>> {
   using Payload = decltype(probe(0.0).payload);
   auto [g0, p0] = probe(theta0);
-  if (!std::isfinite(g0)) return std::nullopt;
+  if (!std::isfinite(g0)) return no_value;
   RefinedCrossing<Payload> best{theta0, g0, std::move(p0), 1, false};
   double t = theta0, g = g0, slope = slope0;
   double last_correction = std::numeric_limits<double>::quiet_NaN();  // none yet

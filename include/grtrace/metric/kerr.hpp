@@ -54,7 +54,11 @@ struct KerrBLTerms {
   double dth_tt, dth_tph, dth_phph, dth_rr, dth_thth;  ///< d/dtheta
 
   GRTRACE_HD KerrBLTerms(double mass, double a, double r_in, double theta) : r(r_in) {
-    const double m = mass, s = std::sin(theta), c = std::cos(theta);
+    // The inline sincos (core/sin_cos.hpp), not libm's: the same bits on a GPU as on the CPU (the device's sin and
+    // cos differ from glibc's in the last bit), so a ray's constants of motion, and the reduced Kerr tracer's path
+    // that they steer, are the CPU's.
+    const SinCos sin_cos_theta = polar_sin_cos(theta);
+    const double m = mass, s = sin_cos_theta.sin, c = sin_cos_theta.cos;
     sin_theta = s;
     cos_theta = c;
     const double r2 = r * r, a2 = a * a, s2 = s * s, c2 = c * c, ra2 = r2 + a2;

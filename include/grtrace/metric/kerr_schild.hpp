@@ -137,7 +137,7 @@ struct KerrSchildMetric {
   GRTRACE_HD KerrMetric spherical_chart() const { return boyer_lindquist(); }
   GRTRACE_HD Vec4 spherical_event(const Vec4& x) const;
 
-  static GRTRACE_HD Mat4 eta() { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
+  static GRTRACE_HD Mat4 eta() { return minkowski_eta(); }
 
   GRTRACE_HD Mat4 metric(const Vec4& x) const {
     const KerrSchildTerms q = terms(x);

@@ -15,7 +15,7 @@ struct MinkowskiMetric {
   static constexpr Chart chart = Chart::cartesian;
   static constexpr bool flat = true;  ///< optional trait: straight lines, never integrated (metric_traits.hpp)
 
-  GRTRACE_HD Mat4 metric(const Vec4& /*x*/) const { return Vec4(1.0, -1.0, -1.0, -1.0).asDiagonal(); }
+  GRTRACE_HD Mat4 metric(const Vec4& /*x*/) const { return minkowski_eta(); }
   GRTRACE_HD Christoffel christoffel(const Vec4& /*x*/) const {
     Christoffel G;
     for (auto& g : G) g.setZero();

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "grtrace/core/host_device.hpp"
+#include "grtrace/core/optional.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
@@ -40,15 +41,15 @@ inline std::optional<ObserverKind> observer_kind_from_string(std::string_view s)
 }
 
 /// The static observer's 4-velocity from g at the event, or nothing where g_tt <= 0.
-inline GRTRACE_HD std::optional<Vec4> static_velocity(const Mat4& g) {
-  if (!(g(0, 0) > 0.0)) return std::nullopt;
+inline GRTRACE_HD Optional<Vec4> static_velocity(const Mat4& g) {
+  if (!(g(0, 0) > 0.0)) return no_value;
   return Vec4(1.0 / std::sqrt(g(0, 0)), 0.0, 0.0, 0.0);
 }
 
 /// The ZAMO's 4-velocity from g at the event, or nothing where g^{tt} <= 0 (or g is singular).
-inline GRTRACE_HD std::optional<Vec4> zamo_velocity(const Mat4& g) {
+inline GRTRACE_HD Optional<Vec4> zamo_velocity(const Mat4& g) {
   const Mat4 inverse = g.inverse();
-  if (!all_finite(inverse) || !(inverse(0, 0) > 0.0)) return std::nullopt;
+  if (!all_finite(inverse) || !(inverse(0, 0) > 0.0)) return no_value;
   return Vec4(inverse.col(0) / std::sqrt(inverse(0, 0)));
 }
 

@@ -88,7 +88,7 @@ void trace_batched(const GeodesicTracer<Metric, Tableau, Controller>& tracer, st
       const auto s = static_cast<std::size_t>(l);
       Integrator integ(settings.integrator, tracer.controller());
       lanes.unload(l, integ);
-      std::optional<TraceResult> ended = loop[s]->step(integ, progress[s], NullObserver{});
+      Optional<TraceResult> ended = loop[s]->step(integ, progress[s], NullObserver{});
       if (!ended && integ.accepted() >= settings.max_steps) ended = loop[s]->out_of_steps(integ, progress[s]);
       if (!ended && progress[s].guard_armed) return lanes.load(l, integ);
       out[ray[s]] = ended ? *ended : loop[s]->run(integ, progress[s], NullObserver{});

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "grtrace/core/host_device.hpp"
+#include "grtrace/core/optional.hpp"
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/integrate/controlled_integrator.hpp"
@@ -31,7 +32,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <optional>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -212,8 +212,7 @@ class TraceLoop {
   /// guard and comes out (leaves_interior: a camera inside the hole, in a chart that penetrates the horizon) is
   /// not captured there: its guard is armed once it is outside (a ray that then falls back in is captured as any
   /// other). Returns the result when the ray ends at its start (non-finite, or on the wrong side of a surface).
-  GRTRACE_HD std::optional<TraceResult> begin(const State& z0, bool leaves_interior, Progress& p,
-                                              Integrator& integ) const {
+  GRTRACE_HD Optional<TraceResult> begin(const State& z0, bool leaves_interior, Progress& p, Integrator& integ) const {
     p = Progress{};
     p.guard_armed = !(has_horizon_ && !(system_.radial_coordinate(z0) > rho_guard_) && leaves_interior);
     detail::for_each_event(all_, [&](std::size_t i, const auto& e) { p.g_prev[i] = on_state(i, e, z0, p); });
@@ -221,7 +220,7 @@ class TraceLoop {
     for (std::size_t i = 0; i < K; ++i)
       if (!two_sided(i) && !(p.g_prev[i] > 0.0)) return finish(detail::status_of(i), z0, 0.0, integ, p, i);
     integ.start(system_, z0, settings_.initial_step);
-    return std::nullopt;
+    return no_value;
   }
 
   /// Integrates from the integrator's current (accepted) point until a surface, a failure or max_steps ends the
@@ -237,7 +236,7 @@ class TraceLoop {
   /// ray, nothing when the ray goes on (a caller that stops at integ.accepted() == max_steps ends it with
   /// out_of_steps).
   template <class Observer>
-  GRTRACE_HD std::optional<TraceResult> step(Integrator& integ, Progress& p, Observer&& observer) const {
+  GRTRACE_HD Optional<TraceResult> step(Integrator& integ, Progress& p, Observer&& observer) const {
     const int check_interval = std::max(1, settings_.constraint_check_interval);
     const StepOutcome outcome = integ.advance(system_);
     if (outcome != StepOutcome::ok) {
@@ -302,7 +301,7 @@ class TraceLoop {
       integ.reseat(system_, z);
       detail::for_each_event(all_, [&](std::size_t i, const auto& e) { p.g_prev[i] = on_state(i, e, z, p); });
     }
-    return std::nullopt;
+    return no_value;
   }
 
   /// The end of a ray that used its max_steps steps (a last constraint check, then max_steps).

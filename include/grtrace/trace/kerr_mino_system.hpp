@@ -65,7 +65,7 @@ struct KerrMinoSystem {
 
   /// z0 of the ray y0 the system was built for: u = 1/r, u' = -Sigma k^r / r^2, theta' = Sigma k^theta.
   GRTRACE_HD State initial_state(const GeodesicState& y0) const {
-    const double r = y0[1], c = std::cos(y0[2]), sigma = r * r + a2_ * c * c;
+    const double r = y0[1], c = polar_sin_cos(y0[2]).cos, sigma = r * r + a2_ * c * c;  // the GPU's bits too
     State z;
     z << 1.0 / r, y0[2], y0[3], -sigma * y0[5] / (r * r), sigma * y0[6];
     return z;

@@ -377,7 +377,7 @@ class PlanarPathTable {
       for (int l = 0; l < W; ++l) {
         Lane& lane = lanes[static_cast<std::size_t>(l)];
         while (lane.run) {
-          if (const std::optional<double> trial = lane.integ->trial_step()) {
+          if (const Optional<double> trial = lane.integ->trial_step()) {
             h[static_cast<std::size_t>(l)] = *trial;
             set_lane(y, l, lane.integ->state());
             set_lane(f, l, lane.integ->derivative());

@@ -25,6 +25,7 @@
 #pragma once
 
 #include "grtrace/core/host_device.hpp"
+#include "grtrace/core/optional.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/integrate/error_norm.hpp"
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
@@ -171,13 +172,13 @@ std::optional<FlatContinuationEstimate> flat_continuation_estimate(const M& metr
 /// does (trace/geodesic_tracer.hpp). Typically two steps and two right-hand sides beyond f(z): about as much as
 /// the sky sphere's refinement it replaces in the tracers.
 template <ExplicitTableau T>
-GRTRACE_HD std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& system, const Tolerance& tol,
-                                                                  const KerrMinoSystem::State& z) {
+GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& system, const Tolerance& tol,
+                                                             const KerrMinoSystem::State& z) {
   using State = KerrMinoSystem::State;
   if constexpr (!has_embedded_pair<T>) {
     return kerr_direction_at_infinity<Fehlberg78>(system, tol, z);
   } else {
-    if (!all_finite(z) || !(z[3] < 0.0)) return std::nullopt;  // u' = du/dlambda_M < 0: outwards
+    if (!all_finite(z) || !(z[3] < 0.0)) return no_value;  // u' = du/dlambda_M < 0: outwards
     RungeKuttaStepper<T, KerrMinoSystem::dimension> stepper;
     const State fz = system(z);
     const double angle_tolerance = tol.atol + tol.rtol * std::numbers::pi;
@@ -197,7 +198,7 @@ GRTRACE_HD std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMino
         pieces *= 2;
         continue;
       }
-      if (!all_finite(fy) || !(y[3] < 0.0)) return std::nullopt;
+      if (!all_finite(fy) || !(y[3] < 0.0)) return no_value;
       const double delta = -y[0] / y[3];
       // z'' over the step, (f(z(d)) - f(z)) / d, bounds the first-order finish's error: delta^2 |z''| / 2.
       const double curvature = d != 0.0 ? std::max(std::abs(fy[1] - fz[1]), std::abs(fy[2] - fz[2])) / std::abs(d)
@@ -206,15 +207,15 @@ GRTRACE_HD std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMino
         return sky_direction_of(unit_vector_of({y[1] + delta * fy[1], y[2] + delta * fy[2]}));
       d += delta;
     }
-    return std::nullopt;
+    return no_value;
   }
 }
 
 /// The Mino-time continuation from a Boyer-Lindquist state of an escaping ray, with the tableau T.
 template <ExplicitTableau T>
-GRTRACE_HD std::optional<SkyDirection> kerr_direction_at_infinity(const KerrMetric& metric, const Tolerance& tol,
-                                                                  const GeodesicState& y) {
-  if (!(y[1] > metric.horizon_radius())) return std::nullopt;
+GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(const KerrMetric& metric, const Tolerance& tol,
+                                                             const GeodesicState& y) {
+  if (!(y[1] > metric.horizon_radius())) return no_value;
   const KerrMinoSystem system(metric, y);
   return kerr_direction_at_infinity<T>(system, tol, system.initial_state(y));
 }
@@ -226,7 +227,7 @@ GRTRACE_HD SkyDirection escaped_direction(const M& metric, const Tolerance& tol,
                                           const GeodesicState& from, const GeodesicState& at_sphere) {
   if constexpr (continues_on_kerr_mino<M>) {
     if (correction == AngleCorrection::exact) {
-      std::optional<SkyDirection> d;
+      Optional<SkyDirection> d;
       if constexpr (std::is_same_v<M, KerrSchildMetric>) {
         if (metric.radius(from.template head<4>()) > metric.horizon_radius())
           d = kerr_direction_at_infinity<T>(metric.spherical_chart(), tol, ks_to_bl(metric, from));

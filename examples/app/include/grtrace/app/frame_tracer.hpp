@@ -72,14 +72,19 @@ const GpuStatus& gpu_status();
 /// in words that say what to use instead; nothing when it can.
 std::optional<std::string> gpu_refusal(const FrameRequest& q);
 
-/// Whether auto may pick the GPU. False until the CUDA backend passes its device checks (tests/gpu,
-/// cmake/gpu-check.sh) on a GPU: on the one GPU it has met (an H200, driver 580) its kernels ran but lost their rays,
-/// every ray integrated to max_steps (docs/benchmarks.md, "GPU"). --device cuda still runs it, for those checks.
-inline constexpr bool kAutoPicksGpu = false;
+/// Whether auto may pick the GPU: the CUDA backend passes its device checks (tests/gpu, cmake/gpu-check.sh on an
+/// H200: the same statuses, redshifts and sky directions as the CPU's trace; docs/benchmarks.md, "GPU").
+inline constexpr bool kAutoPicksGpu = true;
+
+/// True when the CPU draws the request with its table tracer (--tracer auto on a static spherical metric with a
+/// horizon, Schwarzschild or Reissner-Nordstrom, whose preset scenes lie in the equatorial plane): one table of rays
+/// for the whole frame, faster on the CPU than any GPU integrating every pixel (15 ms against 18 ms of kernel alone
+/// for the main frame, docs/benchmarks.md "GPU"), so auto keeps it there.
+bool cpu_table_tracer_draws(const FrameRequest& q);
 
 /// The device the request runs on when the user asks for `asked`: cpu; cuda (std::invalid_argument saying what to
-/// change when gpu_refusal refuses); auto: cuda where kAutoPicksGpu and gpu_refusal has nothing against it, else
-/// cpu. Refuses names outside kDeviceNames.
+/// change when gpu_refusal refuses); auto: cuda where kAutoPicksGpu, the CPU's table tracer does not draw it and
+/// gpu_refusal has nothing against it, else cpu. Refuses names outside kDeviceNames.
 std::string choose_device(std::string_view asked, const FrameRequest& q);
 
 /// The name a frame's header and the JSON line give the device (cpu or cuda): "cpu", or the GPU's model.

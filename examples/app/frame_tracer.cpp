@@ -10,13 +10,20 @@
 
 namespace grtrace::app {
 
+namespace {
+
+/// The named metrics the planar table tracer draws: static, spherically symmetric, with a horizon (Reissner-Nordstrom's
+/// |Q| < M, check_metric_spec, always gives it one).
+bool planar_tracer_metric(const MetricSpec& metric) { return metric.name == "schwarzschild" || metric.name == "rn"; }
+
+}  // namespace
+
 void check_frame_request(const FrameRequest& q) {
   check_tool_method(q.tableau, q.control);
   if (q.device != "cpu" && q.device != "cuda")
     throw std::invalid_argument("grtrace_app: device '" + q.device + "' (choose_device gives cpu or cuda)");
   if (q.device == "cuda")
     if (const auto refusal = gpu_refusal(q)) throw std::invalid_argument("--device cuda: " + *refusal);
-  const std::string& metric = q.metric.name;
   // The older sky-and-horizon table is the library's (trace/symmetric_scene_tracer.hpp), no longer the tools': the
   // planar tracer draws every frame it drew, more accurately (tests/render/planar_tracer_test.cpp,
   // DrawsEveryFrameTheSymmetricTracerDrew).
@@ -27,7 +34,7 @@ void check_frame_request(const FrameRequest& q) {
   for (std::string_view name : kTracerNames) known_tracer = known_tracer || name == q.tracer;
   if (!known_tracer)
     throw std::invalid_argument("unknown --tracer '" + q.tracer + "'; choose auto, general or planar");
-  if (q.tracer == "planar" && metric != "schwarzschild" && metric != "rn")
+  if (q.tracer == "planar" && !planar_tracer_metric(q.metric))
     throw std::invalid_argument("--tracer planar needs a static spherically symmetric metric with a horizon "
                                 "(--metric schwarzschild or rn); use general");
   if (q.tracer == "planar" && q.control == "fixed")
@@ -49,8 +56,7 @@ std::optional<std::string> gpu_refusal(const FrameRequest& q) {
 }
 
 bool cpu_table_tracer_draws(const FrameRequest& q) {
-  // Reissner-Nordstrom's |Q| < M (check_metric_spec) always gives it a horizon.
-  return q.tracer == "planar" || (q.tracer == "auto" && (q.metric.name == "schwarzschild" || q.metric.name == "rn"));
+  return q.tracer == "planar" || (q.tracer == "auto" && planar_tracer_metric(q.metric));
 }
 
 std::string choose_device(std::string_view asked, const FrameRequest& q) {

@@ -13,7 +13,6 @@
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 
-#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -30,19 +29,14 @@ class FrameTracerOf final : public FrameTracer {
                std::vector<SkyDirection>* directions) const override {
     if constexpr (kAppHasCuda && gpu_traces<Tracer>) {
       if (on_gpu_) {
-        double seconds = 0.0, all_seconds = 0.0;
+        GpuSeconds seconds;
         Frame frame = render_frame_traced_by(
             camera, *tracer_,
-            [&](int width, int height) {
-              const auto start = std::chrono::steady_clock::now();
-              auto outcomes = trace_on_gpu(camera, *tracer_, width, height, &seconds);
-              all_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-              return outcomes;
-            },
+            [&](int width, int height) { return trace_on_gpu(camera, *tracer_, width, height, &seconds); },
             options, directions);
         frame.image.metadata["device"] = device_name("cuda");
-        frame.image.metadata["gpu_trace_seconds"] = exact_number(seconds);
-        frame.image.metadata["gpu_seconds"] = exact_number(all_seconds);
+        frame.image.metadata["gpu_trace_seconds"] = exact_number(seconds.kernel);
+        frame.image.metadata["gpu_seconds"] = exact_number(seconds.total);
         return frame;
       }
     }

@@ -48,11 +48,17 @@ inline constexpr bool gpu_traces<GeneralSceneTracer<M, GpuTableau, GpuController
 template <class S>
 inline constexpr bool gpu_traces<KerrMinoSceneTracer<GpuTableau, GpuController, S>> = gpu_scene<S>;
 
+/// What a frame's rays cost the GPU, in seconds (gpu::GpuTiming's trace and total, for the C++ units, which do not
+/// read CUDA headers): the kernel's own time, and the whole call's (memory, copies and the kernel).
+struct GpuSeconds {
+  double kernel = 0.0, total = 0.0;
+};
+
 /// The outcomes of the camera's top-left width x height pixels, row by row, traced on the GPU
-/// (gpu/gpu_frame.cuh, trace_pixels); *trace_seconds receives the kernel's time. Defined for the tracers
+/// (gpu/gpu_frame.cuh, trace_pixels); *seconds (when given) receives what it cost. Defined for the tracers
 /// gpu_traces lists, in the CUDA units only.
 template <class Tracer>
 std::vector<RayOutcome> trace_on_gpu(const Camera& camera, const Tracer& tracer, int width, int height,
-                                     double* trace_seconds);
+                                     GpuSeconds* seconds);
 
 }  // namespace grtrace::app

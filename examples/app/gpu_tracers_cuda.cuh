@@ -11,11 +11,11 @@ namespace grtrace::app {
 
 template <class Tracer>
 std::vector<RayOutcome> trace_on_gpu(const Camera& camera, const Tracer& tracer, int width, int height,
-                                     double* trace_seconds) {
+                                     GpuSeconds* seconds) {
   static_assert(gpu_traces<Tracer>, "trace_on_gpu: add the tracer to gpu_traces (gpu_tracers.hpp) first");
   gpu::GpuTiming timing;
   std::vector<RayOutcome> outcomes = gpu::trace_pixels(camera, tracer, width, height, &timing);
-  if (trace_seconds) *trace_seconds = timing.trace;
+  if (seconds) *seconds = {timing.trace, timing.total};
   return outcomes;
 }
 
@@ -25,13 +25,15 @@ std::vector<RayOutcome> trace_on_gpu(const Camera& camera, const Tracer& tracer,
 #define GRTRACE_APP_GPU_GENERAL(Metric)                                                                           \
   template std::vector<RayOutcome> trace_on_gpu(                                                                 \
       const Camera&, const GeneralSceneTracer<Metric, GpuTableau, GpuController, BackgroundScene>&, int, int,   \
-      double*);                                                                                                   \
+      GpuSeconds*);                                                                                               \
   template std::vector<RayOutcome> trace_on_gpu(                                                                 \
-      const Camera&, const GeneralSceneTracer<Metric, GpuTableau, GpuController, DiskScene>&, int, int, double*);
+      const Camera&, const GeneralSceneTracer<Metric, GpuTableau, GpuController, DiskScene>&, int, int,         \
+      GpuSeconds*);
 
 /// The reduced Kerr tracer for both preset scene types.
 #define GRTRACE_APP_GPU_KERR_MINO()                                                                               \
   template std::vector<RayOutcome> trace_on_gpu(                                                                 \
-      const Camera&, const KerrMinoSceneTracer<GpuTableau, GpuController, BackgroundScene>&, int, int, double*); \
+      const Camera&, const KerrMinoSceneTracer<GpuTableau, GpuController, BackgroundScene>&, int, int,          \
+      GpuSeconds*);                                                                                               \
   template std::vector<RayOutcome> trace_on_gpu(                                                                 \
-      const Camera&, const KerrMinoSceneTracer<GpuTableau, GpuController, DiskScene>&, int, int, double*);
+      const Camera&, const KerrMinoSceneTracer<GpuTableau, GpuController, DiskScene>&, int, int, GpuSeconds*);

@@ -14,7 +14,8 @@
 #                                       GRTRACE_GPU_CHECK_SECONDS (290): each step has a timeout, and a step that
 #                                       could end later is skipped. Logs and PNGs go to $OUT when it is set.
 #
-# The timings (issue targets in brackets): the Kerr disk frame 1024x1024, kerr-mino (<= 15 ms of tracing, whole
+# The kernels alone (tests/gpu/gpu_kernel_benchmark.cu, against the same with everything inlined), then the timings
+# (issue targets in brackets): the Kerr disk frame 1024x1024, kerr-mino (<= 15 ms of tracing, whole
 # process <= 0.5 s); the main frame with --tracer general (<= 10 ms of tracing); a 300-frame Kerr flight at
 # 1024x1024 with EXR and PNG (<= 30 s wall). "gpu_trace_seconds" is the kernel's time (the EXR header's), "seconds"
 # the frame's (tracing, shading, statistics), "wall" the whole process.
@@ -25,12 +26,14 @@ mode="${1:-}"
 pack() {
   cd "$here"
   cmake --preset release -DGRTRACE_CUDA=ON > /dev/null
-  cmake --build --preset release --target grtrace-render gpu_frame_test gpu_probe_unoptimised star_beside_hole_gpu
+  cmake --build --preset release --target grtrace-render gpu_frame_test gpu_probe_unoptimised star_beside_hole_gpu \
+    gpu_kernel_benchmark gpu_kernel_benchmark_inline_all
   local out="$here/build/gpu-pack"
   rm -rf "$out"
   mkdir -p "$out/lib"
   local bins=(build/release/examples/render/grtrace-render build/release/tests/gpu/gpu_frame_test
-              build/release/tests/gpu/gpu_probe_unoptimised build/release/examples/scenes/star_beside_hole_gpu)
+              build/release/tests/gpu/gpu_probe_unoptimised build/release/examples/scenes/star_beside_hole_gpu
+              build/release/tests/gpu/gpu_kernel_benchmark build/release/tests/gpu/gpu_kernel_benchmark_inline_all)
   for b in "${bins[@]}"; do
     # Every shared library but the C library's own (the device machine has those).
     ldd "$b" | awk '/=> \// {print $3}' | grep -Ev '/(libc|libm|libpthread|libdl|librt|ld-linux[^/]*)\.so' |
@@ -100,6 +103,13 @@ unoptimised_probe() {
   echo "{\"check\":\"probe_unoptimised\",\"exit\":$rc}"
 }
 
+kernels() {  # gpu_kernel_benchmark (the outcomes against the host pass too) and its inline-all build, alternated
+  local rc=0
+  { timeout "$1" "$bin/gpu_kernel_benchmark" --host && timeout "$1" "$bin/gpu_kernel_benchmark_inline_all" &&
+    timeout "$1" "$bin/gpu_kernel_benchmark" && timeout "$1" "$bin/gpu_kernel_benchmark_inline_all"; } || rc=$?
+  echo "{\"check\":\"kernel_benchmark\",\"exit\":$rc}"
+}
+
 example() {
   local rc=0
   timeout "$1" "$bin/star_beside_hole_gpu" --size 512 --out "$work/star-gpu.exr" > "$keep/example.log" 2>&1 || rc=$?
@@ -134,6 +144,8 @@ run() {
   fi
   run_step 150 frames tests 150 'GpuDevice.*' gpu_frame_test.log
   run_step 40 example example 40
+  # The kernels alone, as built and with everything inlined (GRTRACE_GPU_INLINE_ALL), alternated.
+  run_step 40 kernel_benchmark kernels 40
   local kerr=(--metric kerr --spin 0.9 --scene disk --camera-r 50 --camera-theta 80 --fov 60 --width 1024 --height 1024)
   for device in cuda cpu; do
     run_step 20 "kerr_disk_$device" timed "kerr_disk_$device" "${kerr[@]}" --device "$device" --out "$work/kerr-$device.exr"

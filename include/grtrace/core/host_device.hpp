@@ -20,3 +20,21 @@
 #else
 #define GRTRACE_DEVICE_PASS 0
 #endif
+
+/// Code size on the GPU. A GPU thread runs a ray's whole trace as one function, and what is inlined into it is
+/// instruction cache: with everything inlined (the right-hand side once per stage, the stages again in every
+/// event's refinement, the sky continuation), the Kerr frame's kernel was 1.26 MB of machine code, and its warps
+/// spent most of their stalls waiting for instruction fetches (Nsight Compute; docs/benchmarks.md, "GPU"). So:
+///  - GRTRACE_GPU_CALLED marks a function the GPU calls rather than inlines: one copy of its code, however many
+///    places call it (the refinement of a crossing, the end of a ray, its sky continuation; the right-hand side
+///    through integrate/rhs_call.hpp). Nothing on the CPU, whose inlining was measured and is kept;
+///  - GRTRACE_FLATTEN_CPU is [[gnu::flatten]] on the CPU and nothing on the GPU.
+/// GRTRACE_GPU_INLINE_ALL (defined before the first grtrace header) inlines on the GPU as on the CPU: the previous
+/// code, for measuring the difference (cmake/gpu-check.sh's kernel benchmark).
+#if GRTRACE_DEVICE_PASS && !defined(GRTRACE_GPU_INLINE_ALL)
+#define GRTRACE_GPU_CALLED __noinline__
+#define GRTRACE_FLATTEN_CPU
+#else
+#define GRTRACE_GPU_CALLED
+#define GRTRACE_FLATTEN_CPU [[gnu::flatten]]
+#endif

@@ -7,7 +7,7 @@
 // RefinedCrossing), into a call through a null function pointer in device code, without a diagnostic. Unoptimised,
 // the GPU stops with "invalid program counter"; optimised, the call is dropped as unreachable and the trace loop
 // never returns (every ray ran to the step cap or hung). Found in the PTX of tests/gpu/gpu_probe_unoptimised.cu;
-// tests/gpu/CMakeLists.txt scans that PTX for such calls on every build with nvcc.
+// tests/gpu/device_code_test.cpp scans the application layer's kernels' PTX for such calls on every build with nvcc.
 //
 // Takes:   T default-constructible and copyable (the hot path's results are plain structs of numbers and
 //          fixed-size Eigen vectors).

@@ -31,8 +31,10 @@
 
 #include <chrono>
 #include <cstddef>
+#include <exception>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace grtrace::gpu {
@@ -150,6 +152,19 @@ std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer,
   const long count = static_cast<long>(width) * height;
   if (count <= 0) return {};
   const auto t0 = Clock::now();
+  // The host's array of outcomes is built on a thread of its own while CUDA creates its context (a new process's
+  // first CUDA call: ~0.1 s), copies and traces: a million default-constructed outcomes, their first touch of fresh
+  // memory included, cost the host 50-90 ms on an H200's machine, longer than the Kerr frame's kernel
+  // (docs/benchmarks.md, "GPU"). Joined on every path out (std::jthread); what it throws is rethrown here.
+  std::vector<RayOutcome> outcomes;
+  std::exception_ptr host_failure;
+  std::jthread host_side([&outcomes, &host_failure, count] {
+    try {
+      outcomes.resize(static_cast<std::size_t>(count));
+    } catch (...) {
+      host_failure = std::current_exception();
+    }
+  });
   detail::DeviceArray<Tracer> d_tracer(1);
   detail::DeviceArray<Camera> d_camera(1);
   detail::DeviceArray<RayOutcome> d_out(static_cast<std::size_t>(count));
@@ -163,13 +178,11 @@ std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer,
   detail::trace_pixel_block<<<blocks, threads>>>(d_tracer.get(), d_camera.get(), width, count, d_out.get());
   detail::check(cudaGetLastError(), "kernel launch");
   detail::check(cudaEventRecord(finished.get()), "cudaEventRecord");
-  // The host's array of outcomes is built while the GPU traces (the launch returns at once): a million
-  // default-constructed outcomes, their first touch of fresh memory included, cost the host 50-90 ms on an H200's
-  // machine, about as long as the Kerr frame's kernel (docs/benchmarks.md, "GPU").
-  std::vector<RayOutcome> outcomes(static_cast<std::size_t>(count));
   detail::check(cudaDeviceSynchronize(), "tracing kernel");
   float kernel_ms = 0.0f;
   detail::check(cudaEventElapsedTime(&kernel_ms, started.get(), finished.get()), "cudaEventElapsedTime");
+  host_side.join();
+  if (host_failure) std::rethrow_exception(host_failure);
   const auto t2 = Clock::now();
   d_out.download(outcomes.data());
   const auto t3 = Clock::now();

@@ -70,7 +70,7 @@ class ControlledIntegrator {
   template <class Rhs>
   GRTRACE_HD void start(const Rhs& f, const State& y0, double h0) {
     y_ = y0;
-    f_ = f(y0);
+    f_ = evaluate_rhs(f, y0);
     rhs_evals_ = 1;
     accepted_ = rejected_ = 0;
     lambda_ = 0.0;
@@ -80,11 +80,12 @@ class ControlledIntegrator {
     h_ = std::min(h_, settings_.h_max);
   }
 
-  /// One accepted step. Flattened (GCC/Clang: everything it calls is inlined into it, the stepper's stages and the
-  /// right-hand side each of them evaluates): measured 0.74-0.88 of the time per general-tracer frame against the
-  /// compiler's own choices (tsit5, dopri5, rkf78; docs/benchmarks.md), for ~20 % more compile time.
+  /// One accepted step. Flattened on the CPU (GCC/Clang: everything it calls is inlined into it, the stepper's
+  /// stages and the right-hand side each of them evaluates): measured 0.74-0.88 of the time per general-tracer frame
+  /// against the compiler's own choices (tsit5, dopri5, rkf78; docs/benchmarks.md), for ~20 % more compile time.
+  /// Not on the GPU, where the code's size is the cost (core/host_device.hpp).
   template <class Rhs>
-  [[gnu::flatten]] GRTRACE_HD StepOutcome advance(const Rhs& f) {
+  GRTRACE_FLATTEN_CPU GRTRACE_HD StepOutcome advance(const Rhs& f) {
     for (;;) {
       const Optional<double> trial = trial_step();
       if (!trial) return StepOutcome::step_underflow;
@@ -128,9 +129,9 @@ class ControlledIntegrator {
   /// stepper, so after it dense() reads a tableau's own interpolant from stale stages: use step_from_previous()
   /// (or a tableau without one: cubic Hermite from the kept states) where the step's interior is needed.
   template <class Rhs>
-  [[gnu::flatten]] GRTRACE_HD bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err,
-                                               const State& last_stage) requires(Controller::estimate ==
-                                                                                 ErrorEstimate::embedded) {
+  GRTRACE_FLATTEN_CPU GRTRACE_HD bool judge_trial(const Rhs& f, double h, const State& y_new, const State& err,
+                                                  const State& last_stage) requires(Controller::estimate ==
+                                                                                    ErrorEstimate::embedded) {
     rhs_evals_ += Stepper::evals_per_step;
     const auto outcome =
         conclude_trial(f, h, y_new, embedded_error_norm(y_new, err), [&]() -> const State& { return last_stage; });
@@ -142,7 +143,7 @@ class ControlledIntegrator {
   template <class Rhs>
   GRTRACE_HD void reseat(const Rhs& f, const State& y) {
     y_ = y;
-    f_ = f(y);
+    f_ = evaluate_rhs(f, y);
     ++rhs_evals_;
     y_prev_ = y_;
     f_prev_ = f_;
@@ -196,7 +197,7 @@ class ControlledIntegrator {
     if constexpr (Controller::estimate == ErrorEstimate::step_doubling) {
       State y_mid, y_two;
       probe.step(f, y_prev_, f_prev_, 0.5 * h, y_mid);
-      const State f_mid = f(y_mid);
+      const State f_mid = evaluate_rhs(f, y_mid);
       probe.step(f, y_mid, f_mid, 0.5 * h, y_two);
       rhs_evals_ += 2 * Stepper::evals_per_step + 1;
       if (controller_.richardson) {
@@ -220,7 +221,7 @@ class ControlledIntegrator {
   template <class Rhs>
   GRTRACE_HD State evaluate(const Rhs& f, const State& y) {
     ++rhs_evals_;
-    return f(y);
+    return evaluate_rhs(f, y);
   }
 
   GRTRACE_HD const State& state() const { return y_; }
@@ -256,7 +257,7 @@ class ControlledIntegrator {
       if constexpr (T::fsal && Controller::estimate != ErrorEstimate::step_doubling) {
         f_new = last_stage();
       } else {
-        f_new = f(y_new);
+        f_new = evaluate_rhs(f, y_new);
         ++rhs_evals_;
       }
       if (all_finite(f_new) && all_finite(y_new)) {
@@ -289,7 +290,7 @@ class ControlledIntegrator {
     State y_full, y_mid, y_two;
     stepper_.step(f, y_, f_, h, y_full);
     stepper_.step(f, y_, f_, 0.5 * h, y_mid);
-    const State f_mid = f(y_mid);
+    const State f_mid = evaluate_rhs(f, y_mid);
     stepper_.step(f, y_mid, f_mid, 0.5 * h, y_two);
     rhs_evals_ += 3 * Stepper::evals_per_step + 1;
     const State err = (y_two - y_full) / (std::pow(2.0, T::order) - 1.0);
@@ -299,7 +300,7 @@ class ControlledIntegrator {
   }
 
   template <class Rhs>
-  GRTRACE_HD double initial_step(const Rhs& f) {
+  GRTRACE_GPU_CALLED GRTRACE_HD double initial_step(const Rhs& f) {
     const Tolerance& tol = settings_.tolerance;
     auto scaled = [&](const State& v) {
       double s = 0.0;
@@ -311,7 +312,7 @@ class ControlledIntegrator {
     };
     const double d0 = scaled(y_), d1 = scaled(f_);
     double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
-    const State f1 = f(State(y_ + h0 * f_));
+    const State f1 = evaluate_rhs(f, State(y_ + h0 * f_));
     ++rhs_evals_;
     const double d2 = scaled(State(f1 - f_)) / h0;
     const double dmax = std::max(d1, d2);

@@ -27,8 +27,9 @@ struct EventCrossing {
 };
 
 template <class G>
-GRTRACE_HD Optional<EventCrossing> locate_first_crossing(const G& g, double g0, double g1, int interior_samples = 0,
-                                                         double theta_tol = 1e-13) {
+GRTRACE_GPU_CALLED GRTRACE_HD Optional<EventCrossing> locate_first_crossing(const G& g, double g0, double g1,
+                                                                            int interior_samples = 0,
+                                                                            double theta_tol = 1e-13) {
   if (!(g0 > 0.0)) return EventCrossing{0.0, g0};  // already inside at the start of the step
   double a = 0.0, ga = g0, b = 1.0, gb = g1;
   bool bracketed = false;

@@ -12,6 +12,7 @@
 #include "grtrace/core/host_device.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/types.hpp"
+#include "grtrace/integrate/rhs_call.hpp"
 #include "grtrace/tableau/butcher_tableau.hpp"
 
 #include <array>
@@ -179,7 +180,7 @@ class RungeKuttaStepper {
   GRTRACE_HD void compute_stage(const Rhs& f, const State& y, double h) {
     State y_stage;
     for (int i = 0; i < N; ++i) y_stage[i] = Sums::template input<I>(component(i), h, y[i]);
-    k_[I] = f(y_stage);
+    k_[I] = evaluate_rhs(f, y_stage);
   }
 
   /// Stage J's value of component i, for StageSums.

@@ -144,9 +144,9 @@ struct LocatedCrossing {
 //          theta = 0 or non-finite, or the step map is non-finite there).
 // Assumes: c came from locate_first_crossing on this step.
 template <class Integrator, class System, class GDense, class GState>
-GRTRACE_HD LocatedCrossing<typename System::State> refine_located(Integrator& integ, const System& system,
-                                                                  const GDense& g_dense, const GState& g_state,
-                                                                  const EventCrossing& c, bool refine) {
+GRTRACE_GPU_CALLED GRTRACE_HD LocatedCrossing<typename System::State> refine_located(
+    Integrator& integ, const System& system, const GDense& g_dense, const GState& g_state, const EventCrossing& c,
+    bool refine) {
   using State = typename System::State;
   if (!refine || !(c.theta > 0.0) || !std::isfinite(c.value)) return {c.theta, integ.dense(c.theta)};
   // The interpolant's slope at the crossing (central difference; it is a polynomial in theta), for the first
@@ -365,8 +365,9 @@ class TraceLoop {
     return guard > 0.0 && system_.constraint_violation(z) > guard;
   }
   // The result of a ray that ends at z (event: the surface that ended it, for status hit).
-  GRTRACE_HD TraceResult finish(RayStatus status, const State& z, double lambda, const Integrator& integ,
-                                const Progress& p, std::size_t event = 0) const {
+  GRTRACE_GPU_CALLED GRTRACE_HD TraceResult finish(RayStatus status, const State& z, double lambda,
+                                                   const Integrator& integ, const Progress& p,
+                                                   std::size_t event = 0) const {
     TraceResult result;
     result.status = status;
     if (status == RayStatus::hit) result.hit_event = static_cast<int>(event) - 2;

@@ -80,8 +80,8 @@ inline constexpr bool scene_fits_metric = every_object_of<SceneT>([]<class O>() 
 /// and the horizon). An escaped ray is seen where escaped(from, at_sphere) says (trace/sky_continuation.hpp: from
 /// is the last accepted step, at_sphere the sky sphere's crossing).
 template <MetricPolicy Metric, class SceneT, class EscapedDirection>
-GRTRACE_HD RayOutcome scene_outcome(const Metric& m, const SceneT& scene, const TraceResult& r,
-                                    const EscapedDirection& escaped) {
+GRTRACE_GPU_CALLED GRTRACE_HD RayOutcome scene_outcome(const Metric& m, const SceneT& scene, const TraceResult& r,
+                                                       const EscapedDirection& escaped) {
   RayOutcome out;
   out.status = r.status;
   out.steps = r.accepted;

@@ -172,8 +172,9 @@ std::optional<FlatContinuationEstimate> flat_continuation_estimate(const M& metr
 /// does (trace/geodesic_tracer.hpp). Typically two steps and two right-hand sides beyond f(z): about as much as
 /// the sky sphere's refinement it replaces in the tracers.
 template <ExplicitTableau T>
-GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& system, const Tolerance& tol,
-                                                             const KerrMinoSystem::State& z) {
+GRTRACE_GPU_CALLED GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& system,
+                                                                                const Tolerance& tol,
+                                                                                const KerrMinoSystem::State& z) {
   using State = KerrMinoSystem::State;
   if constexpr (!has_embedded_pair<T>) {
     return kerr_direction_at_infinity<Fehlberg78>(system, tol, z);
@@ -223,8 +224,9 @@ GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(const KerrMetric& m
 /// The sky direction of an escaped ray traced with the tableau T at the tolerance tol (see the top of this file):
 /// `from` a point of the outgoing leg (the last accepted step's end), `at_sphere` the sky sphere's crossing.
 template <ExplicitTableau T, MetricPolicy M>
-GRTRACE_HD SkyDirection escaped_direction(const M& metric, const Tolerance& tol, AngleCorrection correction,
-                                          const GeodesicState& from, const GeodesicState& at_sphere) {
+GRTRACE_GPU_CALLED GRTRACE_HD SkyDirection escaped_direction(const M& metric, const Tolerance& tol,
+                                                             AngleCorrection correction, const GeodesicState& from,
+                                                             const GeodesicState& at_sphere) {
   if constexpr (continues_on_kerr_mino<M>) {
     if (correction == AngleCorrection::exact) {
       Optional<SkyDirection> d;

@@ -1,0 +1,111 @@
+// The tracing kernels alone, timed by CUDA events: the Kerr disk frame (kerr-mino) and the main frame (general
+// tracer, Schwarzschild), each at 1024x1024 whole (no mirror), rkf78 + I at the tools' defaults (rtol 1e-9, atol
+// 1e-11, sky sphere at 400). Prints one JSON line a frame: the kernel's milliseconds in each of four runs (the first
+// pays the module load), the mean steps and the status counts; with --host, also how the outcomes compare with the
+// host pass of the same source on this machine's cores (statuses, objects, and the largest differences of redshift,
+// sky direction or hit point, and radius, captured rays left out: their horizon azimuth is ill-conditioned, see
+// gpu_frame_test).
+// Built twice by cmake/gpu-check.sh pack: as is, and with GRTRACE_GPU_INLINE_ALL (everything inlined into the
+// kernel, as the CPU inlines: core/host_device.hpp), so one run measures the one against the other.
+#include "gpu_probe.cuh"  // probe_camera
+
+#include "grtrace/gpu/gpu_frame.cuh"
+#include "grtrace/metric/kerr.hpp"
+#include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
+#include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/trace/kerr_mino_tracer.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+namespace {
+
+using namespace grtrace;
+
+constexpr int kSize = 1024;
+
+/// |a - b| relative to max(1, |b|); 0 when both are NaN.
+double difference(double a, double b) {
+  if (std::isnan(a) && std::isnan(b)) return 0.0;
+  return std::abs(a - b) / std::max(1.0, std::abs(b));
+}
+
+template <class Tracer>
+void bench(const char* name, const Camera& c, const Tracer& tracer, bool host) {
+  std::vector<double> ms;
+  std::vector<RayOutcome> gpu;
+  for (int run = 0; run < 4; ++run) {
+    gpu::GpuTiming timing;
+    gpu = gpu::trace_pixels(c, tracer, kSize, kSize, &timing);
+    ms.push_back(1e3 * timing.trace);
+  }
+  long steps = 0;
+  long status[6] = {};
+  for (const RayOutcome& o : gpu) {
+    steps += o.steps;
+    ++status[static_cast<int>(o.status) % 6];
+  }
+  std::printf(
+      "{\"kernel\":\"%s\",\"inline_all\":%s,\"kernel_ms\":[%.2f,%.2f,%.2f,%.2f],\"mean_steps\":%.3f,"
+      "\"status_counts\":[%ld,%ld,%ld,%ld,%ld,%ld]",
+      name, GRTRACE_BENCH_INLINE_ALL ? "true" : "false", ms[0], ms[1], ms[2], ms[3],
+      static_cast<double>(steps) / static_cast<double>(gpu.size()), status[0], status[1], status[2], status[3],
+      status[4], status[5]);
+  if (host) {
+    std::vector<RayOutcome> here(gpu.size());
+    const auto t0 = std::chrono::steady_clock::now();
+#pragma omp parallel for schedule(dynamic, 64)
+    for (long i = 0; i < static_cast<long>(gpu.size()); ++i)
+      here[static_cast<std::size_t>(i)] =
+          tracer.trace_quietly(c.pixel_state(static_cast<int>(i % kSize), static_cast<int>(i / kSize)));
+    const double host_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    long statuses = 0, objects = 0;
+    double redshift = 0.0, where = 0.0, radius = 0.0;
+    for (std::size_t i = 0; i < gpu.size(); ++i) {
+      const RayOutcome &g = gpu[i], &h = here[i];
+      if (g.status != h.status) {
+        ++statuses;
+        continue;
+      }
+      if (g.object != h.object) ++objects;
+      if (g.status == RayStatus::captured) continue;
+      redshift = std::max(redshift, difference(g.redshift, h.redshift));
+      where = std::max({where, difference(g.where.theta, h.where.theta), difference(g.where.phi, h.where.phi)});
+      radius = std::max(radius, difference(g.radius, h.radius));
+    }
+    std::printf(
+        ",\"host_seconds\":%.3f,\"status_differ\":%ld,\"object_differ\":%ld,\"redshift_diff\":%.2e,"
+        "\"where_diff\":%.2e,\"radius_diff\":%.2e",
+        host_s, statuses, objects, redshift, where, radius);
+  }
+  std::printf("}\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool host = argc > 1 && std::strcmp(argv[1], "--host") == 0;
+  if (const gpu::GpuDevice d = gpu::first_gpu(); !d.present) {
+    std::fprintf(stderr, "gpu_kernel_benchmark: no GPU (%s)\n", d.why_not.c_str());
+    return 1;
+  }
+  TraceSettings settings;
+  settings.escape_radius = 400.0;                 // grtrace-render's --sky-radius
+  settings.integrator.tolerance = {1e-9, 1e-11};  // and its --rtol, --atol
+  StandardSceneSpec disk;
+  disk.name = "disk";
+  const KerrMetric kerr{1.0, 0.9};
+  bench("kerr_disk_mino", gpu_probe::probe_camera(kerr, 50.0, 80.0, 60.0, kSize),
+        make_kerr_mino_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk)), host);
+  const SchwarzschildMetric schwarzschild{1.0};
+  bench("main_general", gpu_probe::probe_camera(schwarzschild, 200.0, 90.0, 90.0, kSize),
+        make_general_tracer<Fehlberg78, IController>(schwarzschild, settings, AngleCorrection::exact,
+                                                     background_scene(StandardSceneSpec{})),
+        host);
+}

@@ -28,15 +28,24 @@ namespace rhs_call_detail {
 template <int N>
 using Values = std::array<double, static_cast<std::size_t>(N)>;
 
+/// The state's values, and back: copies, the same bits.
+template <int N>
+GRTRACE_HD Values<N> values_of(const Vector<N>& x) {
+  Values<N> v;
+  for (int i = 0; i < N; ++i) v[static_cast<std::size_t>(i)] = x[i];
+  return v;
+}
+template <int N>
+GRTRACE_HD Vector<N> vector_of(const Values<N>& v) {
+  Vector<N> x;
+  for (int i = 0; i < N; ++i) x[i] = v[static_cast<std::size_t>(i)];
+  return x;
+}
+
 /// f at the values y: the GPU's one copy of f for this Rhs and N.
 template <class Rhs, int N>
 GRTRACE_GPU_CALLED GRTRACE_HD Values<N> evaluate_values(const Rhs& f, Values<N> y) {
-  Vector<N> x;
-  for (int i = 0; i < N; ++i) x[i] = y[static_cast<std::size_t>(i)];
-  const Vector<N> dx = f(x);
-  Values<N> out;
-  for (int i = 0; i < N; ++i) out[static_cast<std::size_t>(i)] = dx[i];
-  return out;
+  return values_of<N>(f(vector_of<N>(y)));
 }
 
 }  // namespace rhs_call_detail
@@ -45,12 +54,8 @@ GRTRACE_GPU_CALLED GRTRACE_HD Values<N> evaluate_values(const Rhs& f, Values<N> 
 template <class Rhs, int N>
 [[gnu::always_inline]] inline GRTRACE_HD Vector<N> evaluate_rhs(const Rhs& f, const Vector<N>& y) {
 #if GRTRACE_DEVICE_PASS && !defined(GRTRACE_GPU_INLINE_ALL)
-  rhs_call_detail::Values<N> values;
-  for (int i = 0; i < N; ++i) values[static_cast<std::size_t>(i)] = y[i];
-  const rhs_call_detail::Values<N> d = rhs_call_detail::evaluate_values<Rhs, N>(f, values);
-  Vector<N> out;
-  for (int i = 0; i < N; ++i) out[i] = d[static_cast<std::size_t>(i)];
-  return out;
+  using namespace rhs_call_detail;
+  return vector_of<N>(evaluate_values<Rhs, N>(f, values_of<N>(y)));
 #else
   return f(y);
 #endif

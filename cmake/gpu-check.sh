@@ -13,6 +13,8 @@
 #                                       measured), GPU against the machine's own cores in the same run. At most
 #                                       GRTRACE_GPU_CHECK_SECONDS (290): each step has a timeout, and a step that
 #                                       could end later is skipped. Logs and PNGs go to $OUT when it is set.
+#                                       GRTRACE_GPU_CHECK_PROFILE=1 adds Nsight Compute's view of the two kernels
+#                                       (ncu.log; about a minute more).
 #
 # The kernels alone (tests/gpu/gpu_kernel_benchmark.cu, against the same with everything inlined), then the timings
 # (issue targets in brackets): the Kerr disk frame 1024x1024, kerr-mino (<= 15 ms of tracing, whole
@@ -110,6 +112,22 @@ kernels() {  # gpu_kernel_benchmark (the outcomes against the host pass too) and
   echo "{\"check\":\"kernel_benchmark\",\"exit\":$rc}"
 }
 
+# Nsight Compute on the kernel benchmark's fourth Kerr launch and first main-frame launch (where the warps' cycles go:
+# stall reasons, issue rate, occupancy), where the machine has ncu: the text report goes to ncu.log.
+profile() {
+  local tool rc=0
+  tool="$(command -v ncu || ls /usr/local/cuda/bin/ncu /opt/nvidia/nsight-compute/*/ncu 2> /dev/null | head -1 || true)"
+  if [ -z "$tool" ] || [ ! -x "$tool" ]; then
+    echo '{"check":"profile","skipped":"no ncu on this machine"}'
+    return 0
+  fi
+  timeout "$1" "$tool" -k regex:trace_pixel_block --launch-skip 3 --launch-count 2 --section LaunchStats \
+    --section Occupancy --section SchedulerStats --section WarpStateStats --section ComputeWorkloadAnalysis \
+    "$bin/gpu_kernel_benchmark" > "$keep/ncu.log" 2>&1 || rc=$?
+  grep -E 'trace_pixel_block|Duration|Registers Per|Achieved Occupancy|Warp Cycles Per Issued|Issued Warp Per|No Eligible|Executed Ipc A|Stall' "$keep/ncu.log" | cut -c1-150 | head -40 || true
+  echo "{\"check\":\"profile\",\"exit\":$rc}"
+}
+
 example() {
   local rc=0
   timeout "$1" "$bin/star_beside_hole_gpu" --size 512 --out "$work/star-gpu.exr" > "$keep/example.log" 2>&1 || rc=$?
@@ -146,6 +164,7 @@ run() {
   run_step 40 example example 40
   # The kernels alone, as built and with everything inlined (GRTRACE_GPU_INLINE_ALL), alternated.
   run_step 40 kernel_benchmark kernels 40
+  if [ "${GRTRACE_GPU_CHECK_PROFILE:-0}" = 1 ]; then run_step 90 profile profile 90; fi
   local kerr=(--metric kerr --spin 0.9 --scene disk --camera-r 50 --camera-theta 80 --fov 60 --width 1024 --height 1024)
   for device in cuda cpu; do
     run_step 20 "kerr_disk_$device" timed "kerr_disk_$device" "${kerr[@]}" --device "$device" --out "$work/kerr-$device.exr"

@@ -84,30 +84,30 @@ class ControlledIntegrator {
   /// stages and the right-hand side each of them evaluates): measured 0.74-0.88 of the time per general-tracer frame
   /// against the compiler's own choices (tsit5, dopri5, rkf78; docs/benchmarks.md), for ~20 % more compile time.
   /// Not on the GPU, where the code's size is the cost (core/host_device.hpp).
+  /// Where a trial's stages live differs: on the CPU in the integrator's stepper; on the GPU in a stepper of this
+  /// call, from copies of the state and its derivative, so that nothing the stages write or read is reachable from
+  /// outside the call and they stay in registers. There the integrator itself is in local memory (event refinement
+  /// takes it by reference, through a call), and stages kept in it were each stored and read back by every later
+  /// stage: the Kerr disk kernel 20.9 -> 19.1 ms, the main frame's general kernel 21.8 -> 17.0 ms (H200,
+  /// docs/benchmarks.md, "GPU"). On the CPU the same change made rays 3-6 % slower, so it is the GPU's only.
   template <class Rhs>
   GRTRACE_FLATTEN_CPU GRTRACE_HD StepOutcome advance(const Rhs& f) {
     for (;;) {
       const Optional<double> trial = trial_step();
       if (!trial) return StepOutcome::step_underflow;
       const double h = *trial;
-
-      State y_new;
-      double err_norm = 0.0;
-      if constexpr (Controller::estimate == ErrorEstimate::none) {
-        stepper_.step(f, y_, f_, h, y_new);
-        rhs_evals_ += Stepper::evals_per_step;
-        if (!all_finite(y_new)) return StepOutcome::non_finite;
-      } else if constexpr (Controller::estimate == ErrorEstimate::embedded) {
-        State err;
-        stepper_.step(f, y_, f_, h, y_new, err);
-        rhs_evals_ += Stepper::evals_per_step;
-        err_norm = embedded_error_norm(y_new, err);
+      if constexpr (GRTRACE_DEVICE_PASS) {
+        Stepper stepper;
+        const State y = y_, f0 = f_;
+        if (const auto outcome = try_step(f, stepper, y, f0, h)) {
+          if constexpr (TableauWithDenseOutput<T>) {
+            if (*outcome == StepOutcome::ok) stepper_ = stepper;  // dense() interpolates on the accepted stages
+          }
+          return *outcome;
+        }
       } else {
-        err_norm = doubling_step(f, h, y_new);
+        if (const auto outcome = try_step(f, stepper_, y_, f_, h)) return *outcome;
       }
-
-      const auto last_stage = [&]() -> const State& { return stepper_.stage(T::stages - 1); };
-      if (const auto outcome = conclude_trial(f, h, y_new, err_norm, last_stage)) return *outcome;
     }
   }
 
@@ -240,6 +240,28 @@ class ControlledIntegrator {
  private:
   using Stepper = RungeKuttaStepper<T, N>;
 
+  // One trial step of size h from y (the current state) with f0 = f(y), its stages on `stepper`: the verdict of
+  // conclude_trial, or non_finite for a fixed step whose result is not finite.
+  template <class Rhs>
+  GRTRACE_HD Optional<StepOutcome> try_step(const Rhs& f, Stepper& stepper, const State& y, const State& f0,
+                                            double h) {
+    State y_new;
+    double err_norm = 0.0;
+    if constexpr (Controller::estimate == ErrorEstimate::none) {
+      stepper.step(f, y, f0, h, y_new);
+      rhs_evals_ += Stepper::evals_per_step;
+      if (!all_finite(y_new)) return StepOutcome::non_finite;
+    } else if constexpr (Controller::estimate == ErrorEstimate::embedded) {
+      State err;
+      stepper.step(f, y, f0, h, y_new, err);
+      rhs_evals_ += Stepper::evals_per_step;
+      err_norm = embedded_error_norm(y_new, err);
+    } else {
+      err_norm = doubling_step(f, stepper, y, f0, h, y_new);
+    }
+    return conclude_trial(f, h, y_new, err_norm, [&]() -> const State& { return stepper.stage(T::stages - 1); });
+  }
+
   // The scaled norm of an embedded error estimate; infinite when the trial's result is not finite.
   GRTRACE_HD double embedded_error_norm(const State& y_new, const State& err) const {
     return all_finite(y_new) ? norm_(err, y_, y_new, settings_.tolerance) : std::numeric_limits<double>::infinity();
@@ -284,19 +306,21 @@ class ControlledIntegrator {
     return no_value;
   }
 
-  // Two half steps against one full step; returns the scaled error norm and the value to propagate.
+  // Two half steps against one full step from y (the current state) with f0 = f(y), on `stepper`; returns the
+  // scaled error norm and the value to propagate.
   template <class Rhs>
-  GRTRACE_HD double doubling_step(const Rhs& f, double h, State& y_new) {
+  GRTRACE_HD double doubling_step(const Rhs& f, Stepper& stepper, const State& y, const State& f0, double h,
+                                  State& y_new) {
     State y_full, y_mid, y_two;
-    stepper_.step(f, y_, f_, h, y_full);
-    stepper_.step(f, y_, f_, 0.5 * h, y_mid);
+    stepper.step(f, y, f0, h, y_full);
+    stepper.step(f, y, f0, 0.5 * h, y_mid);
     const State f_mid = evaluate_rhs(f, y_mid);
-    stepper_.step(f, y_mid, f_mid, 0.5 * h, y_two);
+    stepper.step(f, y_mid, f_mid, 0.5 * h, y_two);
     rhs_evals_ += 3 * Stepper::evals_per_step + 1;
     const State err = (y_two - y_full) / (std::pow(2.0, T::order) - 1.0);
     y_new = controller_.richardson ? State(y_two + err) : y_two;
     if (!all_finite(y_new) || !all_finite(y_full)) return std::numeric_limits<double>::infinity();
-    return norm_(err, y_, y_new, settings_.tolerance);
+    return norm_(err, y, y_new, settings_.tolerance);
   }
 
   template <class Rhs>

@@ -441,6 +441,10 @@ int main(int argc, char** argv) {
       print_table(records);
       std::printf("%zu configurations (%d skipped) over %zu rays in %.2f s\n", records.size(), skipped,
                   plan.rays.size(), total);
+#if GRTRACE_METHOD_MATRIX_UNOPTIMISED
+      std::printf("timings of an unoptimised test build (the methods at -O0, GRTRACE_METHOD_MATRIX_UNOPTIMISED): not "
+                  "for comparison; build with the release or bench preset\n");
+#endif
       if (by_time)
         std::printf("cheapest with max error <= %g: %s/%s at %s %g (%.3g s, max error %.3e)\n", plan.target_error,
                     by_time->tableau.c_str(), by_time->controller.c_str(), by_time->point.fixed_step ? "step" : "rtol",

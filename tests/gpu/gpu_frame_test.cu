@@ -7,7 +7,8 @@
 //     object channel identical but for silhouette pixels (counted: a ray grazing an edge may end on either side
 //     when the last bits of its path differ), redshift, sky direction, hit point and hit radius within 1e-9 (not a
 //     captured ray's end on a Kerr horizon: see expect_gpu_outcomes_match_cpu); the Kerr disk frame's hit radius at
-//     rtol 1e-12 within 1e-6 of the CPU's rkf78 + I at rtol 1e-12.
+//     rtol 1e-12 within 1e-6 of the CPU's rkf78 + I at rtol 1e-12; one frame with tsit5 + PI, whose own interpolant
+//     brackets the disk's crossing.
 //   - GpuProbe (first, with a device): one ray integrated by one GPU thread and by the host from the same bytes,
 //     step by step (lambda, step, state), for the general tracer's system and the Kerr Mino system (gpu_probe.cuh);
 //     a departure is printed at the first step where it happens, so a GPU that draws wrong frames says where in one
@@ -19,8 +20,10 @@
 #include "gpu_tracers.hpp"  // examples/app: the application layer's kernels (trace_on_gpu), instantiated there only
 
 #include "grtrace/app/frame_tracer.hpp"
+#include "grtrace/gpu/gpu_frame.cuh"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/tableau/tsitouras54.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 
 #include <gtest/gtest.h>
@@ -166,13 +169,14 @@ inline void print_outcome(const char* side, const RayOutcome& o) {
   std::printf("\n");
 }
 
-/// The GPU's outcomes against the CPU's trace, pixel by pixel, in double precision (see the top of this file).
-/// Returns the pixel whose sky direction departs most (the first few beyond 1e-9 are printed, both sides).
+/// The GPU's outcomes (gpu, the camera's pixels row by row) against the CPU's trace, pixel by pixel, in double
+/// precision (see the top of this file). Returns the pixel whose sky direction departs most (the first few beyond
+/// 1e-9 are printed, both sides).
 template <class Tracer>
-Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const Tracer& tracer) {
+Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const Tracer& tracer,
+                                        const std::vector<RayOutcome>& gpu) {
   Departure worst;
   int printed = 0;
-  const std::vector<RayOutcome> gpu = app::trace_on_gpu(camera, tracer, camera.width(), camera.height(), nullptr);
   long silhouette = 0, status_differs = 0, compared = 0;
   double worst_redshift = 0.0, worst_sky = 0.0, worst_radius = 0.0, worst_captured = 0.0;
   for (int row = 0; row < camera.height(); ++row)
@@ -221,6 +225,13 @@ Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, 
   return worst;
 }
 
+/// The same, the GPU's outcomes from the application layer's kernels (the tools' GPU tracers).
+template <class Tracer>
+Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const Tracer& tracer) {
+  return expect_gpu_outcomes_match_cpu(what, camera, tracer,
+                                       app::trace_on_gpu(camera, tracer, camera.width(), camera.height(), nullptr));
+}
+
 TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
   GRTRACE_NEED_GPU();
   TraceSettings settings;
@@ -254,6 +265,14 @@ TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
   expect_gpu_outcomes_match_cpu(
       "Kerr disk, general", kerr_camera,
       make_general_tracer<Fehlberg78, IController>(kerr, settings, AngleCorrection::exact, disk_scene(disk)));
+  // A tableau with its own interpolant: the disk's crossing is bracketed on it, and on the GPU a trial step's stages
+  // live in advance() and are copied back for it (integrate/controlled_integrator.hpp). Not a pair the tools trace
+  // on the GPU, so traced as a user's own program does (gpu_frame.cuh).
+  const Camera disk_camera = probe_camera(schwarzschild, 30.0, 80.0, 60.0, 128);
+  const auto tsit5 = make_general_tracer<Tsitouras54, PIController>(schwarzschild, settings, AngleCorrection::exact,
+                                                                    disk_scene(disk));
+  expect_gpu_outcomes_match_cpu("Schwarzschild disk, general, tsit5 + pi (its own dense output)", disk_camera, tsit5,
+                                gpu::trace_pixels(disk_camera, tsit5, disk_camera.width(), disk_camera.height()));
   AutoReissnerNordstrom rn;
   rn.charge = 0.6;
   expect_gpu_outcomes_match_cpu(

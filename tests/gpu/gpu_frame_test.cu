@@ -6,7 +6,7 @@
 //   - With a CUDA device (else skipped, saying why): the GPU's frames against the CPU's: statuses identical, the
 //     object channel identical but for silhouette pixels (counted: a ray grazing an edge may end on either side
 //     when the last bits of its path differ), redshift, sky direction, hit point and hit radius within 1e-9 (not a
-//     captured ray's end on a Kerr horizon: see expect_gpu_outcomes_match_cpu); the Kerr disk frame's hit radius at
+//     captured ray's end on a Kerr horizon: see outcome_comparison.hpp); the Kerr disk frame's hit radius at
 //     rtol 1e-12 within 1e-6 of the CPU's rkf78 + I at rtol 1e-12; one frame with tsit5 + PI, whose own interpolant
 //     brackets the disk's crossing.
 //   - GpuProbe (first, with a device): one ray integrated by one GPU thread and by the host from the same bytes,
@@ -17,6 +17,7 @@
 // seconds instead of integrating every ray to the default 100000 steps.
 #include "../common/quiet_trace.hpp"
 #include "gpu_probe.cuh"
+#include "outcome_comparison.hpp"
 #include "gpu_tracers.hpp"  // examples/app: the application layer's kernels (trace_on_gpu), instantiated there only
 
 #include "grtrace/app/frame_tracer.hpp"
@@ -169,59 +170,37 @@ inline void print_outcome(const char* side, const RayOutcome& o) {
   std::printf("\n");
 }
 
-/// The GPU's outcomes (gpu, the camera's pixels row by row) against the CPU's trace, pixel by pixel, in double
-/// precision (see the top of this file). Returns the pixel whose sky direction departs most (the first few beyond
-/// 1e-9 are printed, both sides).
+/// The GPU's outcomes (gpu, the camera's pixels row by row) against the CPU's trace of the same pixels, in double
+/// precision (see the top of this file and outcome_comparison.hpp). Returns the pixel whose sky direction departs
+/// most (the first few beyond 1e-9 are printed, both sides).
 template <class Tracer>
 Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, const Tracer& tracer,
                                         const std::vector<RayOutcome>& gpu) {
+  const int width = camera.width(), height = camera.height();
+  const std::vector<RayOutcome> cpu = testing_support::trace_quietly_here(camera, tracer, width, height);
   Departure worst;
   int printed = 0;
-  long silhouette = 0, status_differs = 0, compared = 0;
-  double worst_redshift = 0.0, worst_sky = 0.0, worst_radius = 0.0, worst_captured = 0.0;
-  for (int row = 0; row < camera.height(); ++row)
-    for (int col = 0; col < camera.width(); ++col) {
-      const RayOutcome& g = gpu[static_cast<std::size_t>(row * camera.width() + col)];
-      const RayOutcome c = tracer.trace(camera.pixel_state(col, row));
-      if (g.object != c.object) {
-        ++silhouette;
-        continue;
-      }
-      if (g.status != c.status) {
-        ++status_differs;
-        continue;
-      }
-      if (is_failure(c.status)) continue;
-      ++compared;
-      worst_redshift = std::max(worst_redshift, std::abs(g.redshift - c.redshift));
-      const double where = angular_distance(g.where, c.where);
-      if (c.status == RayStatus::captured) {
-        // Not compared: the direction of the point where a ray meets the horizon guard is ill-conditioned towards a
-        // Kerr horizon in Boyer-Lindquist coordinates (phi winds without bound as r -> r+: k^phi ~ -900 there), so a
-        // last-bit difference anywhere on the way moves it by up to ~1e-3 rad. Printed, for the record.
-        worst_captured = std::max(worst_captured, where);
-        continue;
-      }
-      // The sky direction of an escaped ray, the direction of a hit point and its radius.
-      worst_sky = std::max(worst_sky, where);
-      if (c.status == RayStatus::hit) worst_radius = std::max(worst_radius, std::abs(g.radius / c.radius - 1.0));
-      if (where > worst.sky) worst = {col, row, where};
-      if (where > 1e-9 && printed++ < 4) {
-        std::printf("[gpu] %s: pixel (%d, %d) departs by %.3g rad\n", what, col, row, where);
-        print_outcome("device", g);
-        print_outcome("CPU   ", c);
-      }
-    }
+  const testing_support::OutcomeComparison r =
+      testing_support::compare_outcomes(gpu, cpu, [&](std::size_t i, double where) {
+        const int col = static_cast<int>(i % static_cast<std::size_t>(width));
+        const int row = static_cast<int>(i / static_cast<std::size_t>(width));
+        if (where > worst.sky) worst = {col, row, where};
+        if (where > 1e-9 && printed++ < 4) {
+          std::printf("[gpu] %s: pixel (%d, %d) departs by %.3g rad\n", what, col, row, where);
+          print_outcome("device", gpu[i]);
+          print_outcome("CPU   ", cpu[i]);
+        }
+      });
   std::printf(
       "[gpu] %s: %ld pixels compared, %ld on a silhouette, redshift within %.3g, sky or hit point within %.3g "
       "rad, hit radius within %.3g (relative); captured rays' end on the horizon within %.3g rad\n",
-      what, compared, silhouette, worst_redshift, worst_sky, worst_radius, worst_captured);
-  EXPECT_EQ(status_differs, 0);
-  EXPECT_LE(silhouette, camera.width() * camera.height() / 200) << "more than 0.5 % of the pixels on a silhouette";
-  EXPECT_GT(compared, camera.width() * camera.height() / 2);
-  EXPECT_LE(worst_redshift, 1e-9);
-  EXPECT_LE(worst_sky, 1e-9);
-  EXPECT_LE(worst_radius, 1e-9);
+      what, r.compared, r.silhouette, r.redshift, r.direction, r.radius, r.captured);
+  EXPECT_EQ(r.status_differs, 0);
+  EXPECT_LE(r.silhouette, width * height / 200) << "more than 0.5 % of the pixels on a silhouette";
+  EXPECT_GT(r.compared, width * height / 2);
+  EXPECT_LE(r.redshift, 1e-9);
+  EXPECT_LE(r.direction, 1e-9);
+  EXPECT_LE(r.radius, 1e-9);
   return worst;
 }
 

@@ -2,13 +2,13 @@
 // tracer, Schwarzschild), each at 1024x1024 whole (no mirror), rkf78 + I at the tools' defaults (rtol 1e-9, atol
 // 1e-11, sky sphere at 400). Prints one JSON line a frame: the kernel's milliseconds in each of four runs (the first
 // pays the module load), the mean steps and the status counts; with --host, also how the outcomes compare with the
-// host pass of the same source on this machine's cores (statuses, objects, and the largest differences of redshift,
-// sky direction or hit point, and radius, captured rays left out: their horizon azimuth is ill-conditioned, see
-// gpu_frame_test).
+// host pass of the same source on this machine's cores, judged as gpu_frame_test judges them (outcome_comparison.hpp:
+// statuses, objects, and the largest differences of redshift, sky direction or hit point, and hit radius).
 // Built twice by cmake/gpu-check.sh pack: as is, and with GRTRACE_GPU_INLINE_ALL (everything inlined into the
 // kernel, as the CPU inlines: core/host_device.hpp), so one run measures the one against the other.
 #include "../common/quiet_trace.hpp"
 #include "gpu_probe.cuh"  // probe_camera
+#include "outcome_comparison.hpp"
 
 #include "grtrace/gpu/gpu_frame.cuh"
 #include "grtrace/metric/kerr.hpp"
@@ -56,30 +56,14 @@ void bench(const char* name, const Camera& c, const Tracer& tracer, bool host) {
     std::printf("%s\"%s\":%ld", s > 0 ? "," : "", std::string(kRayStatusNames[s]).c_str(), status[s]);
   std::printf("}");
   if (host) {
-    // Judged as gpu_frame_test judges them (expect_gpu_outcomes_match_cpu), here printed, not asserted.
+    // Judged as gpu_frame_test judges them (outcome_comparison.hpp), here printed, not asserted.
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<RayOutcome> here = testing_support::trace_quietly_here(c, tracer, kSize, kSize);
     const double host_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    long statuses = 0, objects = 0;
-    double redshift = 0.0, where = 0.0, radius = 0.0;
-    for (std::size_t i = 0; i < gpu.size(); ++i) {
-      const RayOutcome &g = gpu[i], &h = here[i];
-      if (g.object != h.object) {
-        ++objects;
-        continue;
-      }
-      if (g.status != h.status) {
-        ++statuses;
-        continue;
-      }
-      if (is_failure(h.status) || h.status == RayStatus::captured) continue;
-      redshift = std::max(redshift, std::abs(g.redshift - h.redshift));
-      where = std::max(where, angular_distance(g.where, h.where));
-      if (h.status == RayStatus::hit) radius = std::max(radius, std::abs(g.radius / h.radius - 1.0));
-    }
+    const testing_support::OutcomeComparison r = testing_support::compare_outcomes(gpu, here);
     std::printf(",\"host_seconds\":%.3f,\"status_differ\":%ld,\"object_differ\":%ld,\"redshift_diff\":%.2e,"
                 "\"where_rad\":%.2e,\"radius_rel\":%.2e",
-                host_s, statuses, objects, redshift, where, radius);
+                host_s, r.status_differs, r.silhouette, r.redshift, r.direction, r.radius);
   }
   std::printf("}\n");
 }

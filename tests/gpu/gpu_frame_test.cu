@@ -73,6 +73,48 @@ TEST(GpuNvccHostPass, DrawsTheCpuBuildsFrameBitForBit) {
   }
 }
 
+/// The kernel's thread-to-pixel map (gpu/warp_tiles.hpp), on the host: every pixel of the block is traced by exactly
+/// one thread, a warp's 32 threads lie in one 4 x 8 tile (lane = column + 4 x row within it), and no warp is launched
+/// that holds no pixel; for sides that are and are not multiples of the tile's.
+TEST(GpuNvccHostPass, WarpTilesCoverEveryPixelOnceAndKeepEachWarpInOneTile) {
+  using gpu::PixelIndex;
+  using gpu::WarpTiles;
+  const std::pair<int, int> sizes[] = {{1, 1}, {3, 5}, {4, 8}, {7, 9}, {33, 17}, {512, 512}, {1024, 513}};
+  for (const auto& [width, height] : sizes) {
+    const WarpTiles tiles(width, height);
+    std::vector<int> traced(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+    const long threads = tiles.thread_count();
+    ASSERT_EQ(threads % WarpTiles::warp_size, 0);
+    long padding = 0;
+    for (long warp = 0; warp < threads / WarpTiles::warp_size; ++warp) {
+      PixelIndex first;
+      tiles.pixel_of(warp * WarpTiles::warp_size, first);
+      int in_block = 0;
+      for (int lane = 0; lane < WarpTiles::warp_size; ++lane) {
+        PixelIndex p;
+        const bool inside = tiles.pixel_of(warp * WarpTiles::warp_size + lane, p);
+        EXPECT_EQ(p.col, first.col + lane % WarpTiles::tile_width) << width << "x" << height << " warp " << warp;
+        EXPECT_EQ(p.row, first.row + lane / WarpTiles::tile_width) << width << "x" << height << " warp " << warp;
+        EXPECT_EQ(inside, p.col < width && p.row < height);
+        if (!inside) {
+          ++padding;
+          continue;
+        }
+        ++in_block;
+        ++traced[static_cast<std::size_t>(p.row) * static_cast<std::size_t>(width) + static_cast<std::size_t>(p.col)];
+      }
+      EXPECT_GT(in_block, 0) << width << "x" << height << ": warp " << warp << " traces no pixel";
+    }
+    EXPECT_EQ(std::count(traced.begin(), traced.end(), 1), static_cast<long>(traced.size()))
+        << width << "x" << height << ": a pixel traced twice or never";
+    EXPECT_EQ(padding, threads - static_cast<long>(traced.size()));
+  }
+  PixelIndex p;
+  ASSERT_TRUE(WarpTiles(1024, 1024).pixel_of(32 + 5, p));  // the second warp's sixth thread
+  EXPECT_EQ(p.col, 5);
+  EXPECT_EQ(p.row, 1);
+}
+
 /// Skips the test when there is no CUDA device, saying why.
 #define GRTRACE_NEED_GPU()                                                                          \
   do {                                                                                              \

@@ -13,7 +13,8 @@
 //          scene objects are GPU-callable (their surface, accepts, emitter_velocity, metric and acceleration marked
 //          GRTRACE_HD; a user's own metric or object marks its functions the same way).
 // Returns: the Frame render_frame returns, its rays traced on the GPU (fp64, the same tableau, controller, events and
-//          continuation), and the device's name in the header ("device").
+//          continuation; one thread a pixel, a warp a 4 x 8 tile of pixels: warp_tiles.hpp), and the device's name
+//          in the header ("device").
 // Assumes: the tracer is copied to the GPU byte for byte: the device reads only what tracing reads (the metric,
 //          settings, controller and scene objects, which are plain values); the sky and horizon painters and the
 //          CPU-side statistics travel along unread. Throws GpuError when CUDA reports an error.
@@ -23,6 +24,7 @@
 #error "grtrace/gpu/gpu_frame.cuh is CUDA source: include it from a .cu file compiled by nvcc"
 #endif
 
+#include "grtrace/gpu/warp_tiles.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/render/frame.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
@@ -115,13 +117,15 @@ class DeviceEvent {
   cudaEvent_t event_ = nullptr;
 };
 
-/// Pixel i of the traced block (width to a row): its outcome, as the CPU's trace would give it.
+/// The outcome of this thread's pixel of the traced block (its warp's tile: warp_tiles.hpp), as the CPU's trace would
+/// give it, stored row by row (width to a row).
 template <class Tracer>
-__global__ void trace_pixel_block(const Tracer* tracer, const Camera* camera, int width, long count, RayOutcome* out) {
-  const long i = static_cast<long>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (i >= count) return;
-  const int col = static_cast<int>(i % width), row = static_cast<int>(i / width);
-  out[i] = tracer->trace_quietly(camera->pixel_state(col, row));
+__global__ void trace_pixel_block(const Tracer* tracer, const Camera* camera, WarpTiles tiles, int width,
+                                  long thread_count, RayOutcome* out) {
+  const long t = static_cast<long>(blockIdx.x) * blockDim.x + threadIdx.x;
+  PixelIndex p;
+  if (t >= thread_count || !tiles.pixel_of(t, p)) return;
+  out[static_cast<long>(p.row) * width + p.col] = tracer->trace_quietly(camera->pixel_state(p.col, p.row));
 }
 
 }  // namespace detail
@@ -141,7 +145,8 @@ struct GpuTiming {
   double upload = 0.0, trace = 0.0, download = 0.0, total = 0.0;
 };
 
-/// The outcomes of the camera's top-left width x height pixels, row by row, each traced by one GPU thread.
+/// The outcomes of the camera's top-left width x height pixels, row by row, each traced by one GPU thread (a warp
+/// traces a 4 x 8 tile: warp_tiles.hpp).
 template <GpuSceneTracer Tracer>
 std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer, int width, int height,
                                      GpuTiming* timing = nullptr) {
@@ -177,9 +182,13 @@ std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer,
   detail::DeviceEvent started, finished;
   const auto t1 = Clock::now();
   constexpr int threads = 128;  // fp64 and many registers a thread: small blocks keep more of them resident
-  const auto blocks = static_cast<unsigned>((count + threads - 1) / threads);
+  static_assert(threads % WarpTiles::warp_size == 0, "whole warps to a block: a warp traces one tile");
+  const WarpTiles tiles(width, height);
+  const long thread_count = tiles.thread_count();
+  const auto blocks = static_cast<unsigned>((thread_count + threads - 1) / threads);
   detail::check(cudaEventRecord(started.get()), "cudaEventRecord");
-  detail::trace_pixel_block<<<blocks, threads>>>(d_tracer.get(), d_camera.get(), width, count, d_out.get());
+  detail::trace_pixel_block<<<blocks, threads>>>(d_tracer.get(), d_camera.get(), tiles, width, thread_count,
+                                                 d_out.get());
   detail::check(cudaGetLastError(), "kernel launch");
   detail::check(cudaEventRecord(finished.get()), "cudaEventRecord");
   detail::check(cudaDeviceSynchronize(), "tracing kernel");

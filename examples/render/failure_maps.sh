@@ -23,7 +23,7 @@ configs=(
   "rk4-fixed-h4|--tableau rk4 --control fixed --step 4"
   "rk4-doubling-seed|--tableau rk4 --control doubling --rtol 1e-6 --atol 1e-8"
   "dopri5-pi-1e-8|--tableau dopri5 --control pi --rtol 1e-8 --atol 1e-10"
-  "rkf78-pi-1e-10|--tableau rkf78 --control pi --rtol 1e-10 --atol 1e-12"
+  "rkf78-i-1e-10|--tableau rkf78 --control i --rtol 1e-10 --atol 1e-12"
 )
 # The same checker frame in outgoing Eddington-Finkelstein coordinates (--metric schwarzschild-ef, horizon-
 # penetrating): the fixed steps that fail on every captured ray in Schwarzschild coordinates carry them through

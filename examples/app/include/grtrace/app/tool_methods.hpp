@@ -56,11 +56,9 @@ template <class... Pairs>
 struct MethodList {};
 
 /// The offered pairs as types, in the order of kToolMethods (the first is every tool's default).
-using ToolMethodTypes =
-    MethodList<MethodPair<Fehlberg78, IController>, MethodPair<Tsitouras54, IController>,
-               MethodPair<DormandPrince54, PIController>,
-               MethodPair<Verner65, IController>, MethodPair<ClassicRK4, FixedStep>,
-               MethodPair<ClassicRK4, StepDoubling>>;
+using ToolMethodTypes = MethodList<MethodPair<Fehlberg78, IController>, MethodPair<Tsitouras54, IController>,
+                                   MethodPair<DormandPrince54, PIController>, MethodPair<Verner65, IController>,
+                                   MethodPair<ClassicRK4, FixedStep>, MethodPair<ClassicRK4, StepDoubling>>;
 
 inline constexpr std::array<ToolMethod, 6> kToolMethods = {{
     {"rkf78", "i", "default: below 1e-6 on the main and Kerr disk frames at the least cost"},

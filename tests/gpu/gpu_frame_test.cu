@@ -108,6 +108,11 @@ TEST(GpuNvccHostPass, WarpTilesCoverEveryPixelOnceAndKeepEachWarpInOneTile) {
     EXPECT_EQ(std::count(traced.begin(), traced.end(), 1), static_cast<long>(traced.size()))
         << width << "x" << height << ": a pixel traced twice or never";
     EXPECT_EQ(padding, threads - static_cast<long>(traced.size()));
+    for (long t = threads; t < threads + 2 * WarpTiles::warp_size; ++t) {  // a launch's last block runs past the end
+      PixelIndex p;
+      EXPECT_FALSE(tiles.pixel_of(t, p)) << width << "x" << height << ": thread " << t << " of " << threads;
+    }
+    EXPECT_EQ(tiles.width(), width);
   }
   PixelIndex p;
   ASSERT_TRUE(WarpTiles(1024, 1024).pixel_of(32 + 5, p));  // the second warp's sixth thread
@@ -220,6 +225,7 @@ Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, 
                                         const std::vector<RayOutcome>& gpu) {
   const int width = camera.width(), height = camera.height();
   const std::vector<RayOutcome> cpu = testing_support::trace_quietly_here(camera, tracer, width, height);
+  EXPECT_EQ(gpu.size(), cpu.size()) << "the GPU gave outcomes for another number of pixels";
   Departure worst;
   int printed = 0;
   const testing_support::OutcomeComparison r =

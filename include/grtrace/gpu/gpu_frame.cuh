@@ -120,12 +120,11 @@ class DeviceEvent {
 /// The outcome of this thread's pixel of the traced block (its warp's tile: warp_tiles.hpp), as the CPU's trace would
 /// give it, stored row by row (width to a row).
 template <class Tracer>
-__global__ void trace_pixel_block(const Tracer* tracer, const Camera* camera, WarpTiles tiles, int width,
-                                  long thread_count, RayOutcome* out) {
+__global__ void trace_pixel_block(const Tracer* tracer, const Camera* camera, WarpTiles tiles, RayOutcome* out) {
   const long t = static_cast<long>(blockIdx.x) * blockDim.x + threadIdx.x;
   PixelIndex p;
-  if (t >= thread_count || !tiles.pixel_of(t, p)) return;
-  out[static_cast<long>(p.row) * width + p.col] = tracer->trace_quietly(camera->pixel_state(p.col, p.row));
+  if (!tiles.pixel_of(t, p)) return;  // the last block's threads past thread_count() too
+  out[static_cast<long>(p.row) * tiles.width() + p.col] = tracer->trace_quietly(camera->pixel_state(p.col, p.row));
 }
 
 }  // namespace detail
@@ -184,11 +183,9 @@ std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer,
   constexpr int threads = 128;  // fp64 and many registers a thread: small blocks keep more of them resident
   static_assert(threads % WarpTiles::warp_size == 0, "whole warps to a block: a warp traces one tile");
   const WarpTiles tiles(width, height);
-  const long thread_count = tiles.thread_count();
-  const auto blocks = static_cast<unsigned>((thread_count + threads - 1) / threads);
+  const auto blocks = static_cast<unsigned>((tiles.thread_count() + threads - 1) / threads);
   detail::check(cudaEventRecord(started.get()), "cudaEventRecord");
-  detail::trace_pixel_block<<<blocks, threads>>>(d_tracer.get(), d_camera.get(), tiles, width, thread_count,
-                                                 d_out.get());
+  detail::trace_pixel_block<<<blocks, threads>>>(d_tracer.get(), d_camera.get(), tiles, d_out.get());
   detail::check(cudaGetLastError(), "kernel launch");
   detail::check(cudaEventRecord(finished.get()), "cudaEventRecord");
   detail::check(cudaDeviceSynchronize(), "tracing kernel");

@@ -39,7 +39,10 @@ class WarpTiles {
     return static_cast<long>(tiles_per_row_) * tile_rows * warp_size;
   }
 
-  /// The pixel of thread t (0 <= t < thread_count()); false for a thread beyond the block's edge.
+  /// The traced block's width: a pixel's outcome is stored at row * width() + col.
+  GRTRACE_HD int width() const { return width_; }
+
+  /// The pixel of thread t (t >= 0); false for a thread beyond the block's edge, which every t >= thread_count() is.
   GRTRACE_HD bool pixel_of(long t, PixelIndex& p) const {
     const long tile = t / warp_size;
     const int lane = static_cast<int>(t % warp_size);

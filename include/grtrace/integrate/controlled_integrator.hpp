@@ -134,7 +134,7 @@ class ControlledIntegrator {
                                                                                     ErrorEstimate::embedded) {
     rhs_evals_ += Stepper::evals_per_step;
     const auto outcome =
-        conclude_trial(f, h, y_new, embedded_error_norm(y_new, err), [&]() -> const State& { return last_stage; });
+        conclude_trial(f, h, y_new, embedded_error_norm(y_, y_new, err), [&]() -> const State& { return last_stage; });
     return outcome.has_value();  // an adaptive controller never ends a trial with non_finite
   }
 
@@ -255,16 +255,16 @@ class ControlledIntegrator {
       State err;
       stepper.step(f, y, f0, h, y_new, err);
       rhs_evals_ += Stepper::evals_per_step;
-      err_norm = embedded_error_norm(y_new, err);
+      err_norm = embedded_error_norm(y, y_new, err);
     } else {
       err_norm = doubling_step(f, stepper, y, f0, h, y_new);
     }
     return conclude_trial(f, h, y_new, err_norm, [&]() -> const State& { return stepper.stage(T::stages - 1); });
   }
 
-  // The scaled norm of an embedded error estimate; infinite when the trial's result is not finite.
-  GRTRACE_HD double embedded_error_norm(const State& y_new, const State& err) const {
-    return all_finite(y_new) ? norm_(err, y_, y_new, settings_.tolerance) : std::numeric_limits<double>::infinity();
+  // The scaled norm of an embedded error estimate of a step from y to y_new; infinite when y_new is not finite.
+  GRTRACE_HD double embedded_error_norm(const State& y, const State& y_new, const State& err) const {
+    return all_finite(y_new) ? norm_(err, y, y_new, settings_.tolerance) : std::numeric_limits<double>::infinity();
   }
 
   // The controller's verdict on a trial step of size h with result y_new and error norm err_norm: accepted (the

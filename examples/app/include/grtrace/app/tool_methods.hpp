@@ -13,9 +13,10 @@
 //   rk4 + fixed       teaching: the seed's classic RK4 with a fixed step (watch it fail near the horizon)
 //   rk4 + doubling    teaching: the seed's step doubling (grtrace-view's orbit default)
 // Not offered: rkf78 + pi. On the main frame's rays it needs 1.2x the evaluations of rkf78 + i for a similar largest
-// error (26.3 against 21.7 us a ray at 1e-6 rad), and every pair costs the tools' build its tracers: each adaptive
-// pair is about a sixth of the application layer's code, a fifth of its compile time (docs/benchmarks.md,
-// "Compile time"). grtrace-work-precision and grtrace-geodesic have it, with every other pair.
+// error (26.3 against 21.7 us a ray at 1e-6 rad), and every pair costs the tools' build its tracers: this
+// eighth-order one was a fifth of the application layer's compile time (frame_tracers_rn_sds.cpp at -O3, alone:
+// 72.2 s with it, 57.6 s without; docs/benchmarks.md, "Compile time"). grtrace-work-precision and grtrace-geodesic
+// have it, with every other pair.
 // A user's own program is not limited by this list: it names any tableau and controller as template arguments.
 #pragma once
 

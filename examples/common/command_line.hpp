@@ -175,6 +175,8 @@ class CommandLine {
   bool write_config_done() const { return write_config_done_; }
 
   bool given(const std::string& name) const { return values_.count(name) > 0; }
+  /// Whether the tool declared an option of this name.
+  bool declares(const std::string& name) const { return find(name) != nullptr; }
   /// The file --config read ("" if none): an input every output of the command is checked against.
   const std::string& config_file() const { return config_file_; }
   bool flag_set(const std::string& name) const { return given(name); }
@@ -336,36 +338,30 @@ class CommandLine {
   }
 
  public:
-  /// The number in `t` (grtrace/core/number_text.hpp: the same rules as scene files and camera-path CSVs), or
-  /// UsageError naming --name. `from` is added to the message (e.g. " (from the frame's header)").
+  /// f(), its std::invalid_argument (a refusal of the input) rethrown as UsageError.
+  template <class F>
+  static auto as_usage_error(F&& f) {
+    try {
+      return f();
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
+
+  /// The number in `t` (grtrace/core/number_text.hpp: the same rules as scene files and camera-path CSVs, and the
+  /// same refusal as the application library's and the Python module's), or UsageError naming --name. `from` is
+  /// added to the message (e.g. " (from the frame's header)").
   static double parse_number(const std::string& name, const std::string& t, const std::string& from = "") {
-    const grtrace::ParsedNumber n = grtrace::parse_finite_number(t);
-    if (n.result == grtrace::NumberText::not_finite)
-      throw UsageError("--" + name + " must be finite, got '" + t + "'" + from);
-    if (n.result != grtrace::NumberText::ok)
-      throw UsageError("--" + name + " expects a number, got '" + t + "'" + from);
-    return n.value;
+    return as_usage_error([&] { return grtrace::option_number(name, t, from); });
   }
   /// The whole number in `t` (the same rules), or UsageError naming --name.
   static long parse_integer(const std::string& name, const std::string& t, const std::string& from = "") {
-    const grtrace::ParsedWholeNumber n = grtrace::parse_whole_number(t);
-    if (n.result == grtrace::NumberText::out_of_range)
-      throw UsageError("--" + name + " " + t + " " + grtrace::number_text_problem(n.result) + from);
-    if (n.result != grtrace::NumberText::ok)
-      throw UsageError("--" + name + " expects a whole number, got '" + t + "'" + from);
-    return n.value;
+    return as_usage_error([&] { return grtrace::option_integer(name, t, from); });
   }
   /// The comma-separated numbers in `t`, exactly `count` of them (0: any number), each read as parse_number reads
   /// one, or UsageError naming --name.
   static std::vector<double> parse_numbers(const std::string& name, const std::string& t, std::size_t count) {
-    std::vector<double> out;
-    std::stringstream ss(t);
-    std::string item;
-    while (std::getline(ss, item, ',')) out.push_back(parse_number(name, item));
-    if (count != 0 && out.size() != count)
-      throw UsageError("--" + name + " expects " + std::to_string(count) + " comma-separated numbers, got '" + t +
-                       "'");
-    return out;
+    return as_usage_error([&] { return grtrace::option_numbers(name, t, count); });
   }
 
   /// The options every tool answers itself: --config FILE and --write-config FILE.

@@ -8,7 +8,7 @@
 //   * --plot orbit|norm|step: the seed's Figs. 1-3 for a timelike geodesic (VTK charts). --chart orbit|norm|step
 //     is its older spelling, kept: --chart's other values, bl|ks, are grtrace-render's Kerr coordinate charts, and
 //     the two sets of values are disjoint, so one option carries both meanings without ambiguity.
-//   * --metric kerr --spin A with grtrace-render's Kerr options, shared through examples/common/kerr_options.hpp:
+//   * --metric kerr --spin A with grtrace-render's Kerr options (the application library's table and reading):
 //     --chart bl|ks, --observer zamo|static, --disk-retrograde (the ISCO default and refusal of --disk-inner).
 //     Boyer-Lindquist rays and surfaces are drawn with (r, theta, phi) as spherical polar coordinates (the BL
 //     embedding, KerrMetric::to_cartesian). Kerr-Schild rays are drawn in their own Cartesian x, y, z, which is the
@@ -30,16 +30,13 @@
 // method are read from the EXR's header (as grtrace-render writes it), so the bundle is traced through the frame's
 // own camera; options given on the command line override the method and scene settings, never the camera.
 // Bad input: a message on stderr and exit status 2. Other failures: exit status 1.
-#include "camera_options.hpp"
+#include "app_options.hpp"
 #include "command_line.hpp"
 #include "flight_options.hpp"
 #include "json_writer.hpp"
-#include "kerr_options.hpp"
-#include "method_options.hpp"
-#include "metric_options.hpp"
 #include "view_request.hpp"
 
-#include "grtrace/app/flight_worldline.hpp"
+#include "grtrace/app/front_door.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -51,8 +48,6 @@
 #include "grtrace/render/png_preview.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/scene/thin_disk.hpp"
-#include "grtrace/trace/geodesic_tracer.hpp"
-#include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/bundles.hpp"
 #include "grtrace/viz/camera_glyph.hpp"
 #include "grtrace/viz/charts.hpp"
@@ -84,12 +79,20 @@ namespace {
 using namespace grtrace;
 using tools::CommandLine;
 using tools::UsageError;
-using view::MethodChoice;
 using view::Request;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 /// The metrics the viewer draws (its surfaces, ISCO rings and orbit charts are Schwarzschild's and Kerr's).
 const std::vector<std::string> kViewMetrics = {"schwarzschild", "kerr"};
+
+/// The options the viewer shares with grtrace-render (the application library's table), with the viewer's defaults.
+void declare_shared_options(CommandLine& cli, const std::set<std::string>& names,
+                            const std::map<std::string, std::string>& defaults) {
+  std::set<std::string> skip;
+  for (const app::OptionInfo& o : app::render_options())
+    if (!names.count(std::string(o.name))) skip.insert(std::string(o.name));
+  tools::declare_render_options(cli, skip, defaults);
+}
 
 CommandLine make_command_line() {
   CommandLine cli("grtrace-view",
@@ -103,26 +106,23 @@ CommandLine make_command_line() {
                             "directory (created if missing; open DIR/scene.vtm) and exit; needs no display")
       .option("size", "", "window / screenshot size WxH (default 1600x800; charts 900x800)")
       .option("plot", "", "draw a chart of the orbit instead of the 3D view: orbit | norm | step")
-      .option("chart", "", tools::kKerrChartHelp + " (default bl; with --frame: the frame's). Also orbit | norm | "
+      .option("chart", "", tools::render_option_help("chart") + " (default bl; with --frame: the frame's). Also orbit | norm | "
                            "step: the older spelling of --plot")
       // scene (as grtrace-render)
       .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)");
-  tools::declare_metric_options(cli, kViewMetrics,
-                                "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, the "
-                                "ergosphere and the ISCO of the disk's sense)");
-  tools::declare_camera_options(
-      cli, {"35", "84", "55", "camera radius r (Schwarzschild or Boyer-Lindquist r, units of M; both charts)"});
-  cli.option("width", "320", "frame width in pixels (with --frame: the EXR's)")
-      .option("height", "240", "frame height in pixels (with --frame: the EXR's)")
-      .option("sky-radius", "400", "radius of the sky sphere where rays escape")
-      .option("disk-inner", "6", tools::disk_inner_help())
-      .option("disk-outer", "20", "outer radius of the disk (scene disk)");
-  tools::declare_disk_retrograde_flag(cli, "; also picks the ISCO ring drawn. With --frame: the frame's sense "
-                                           "unless given");
-  cli.option("angle-correction", "exact", "sky direction of escaped rays: none | flat | exact");
-  tools::declare_method_options(cli, "", {"dopri5", "pi", "1e-8", "1e-10", ""});
-  cli.option("max-steps", "100000", "accepted steps before a ray ends as max_steps")
-      .option("threads", "0", "threads for the in-process frame (0: OpenMP default)")
+  cli.option("metric", "schwarzschild",
+             "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, the ergosphere and the "
+             "ISCO of the disk's sense)");
+  // The rest of the options grtrace-render has too: the library's names and help (app::render_options), the
+  // viewer's defaults; --chart is declared above with its older meaning.
+  declare_shared_options(cli,
+                         {"mass", "spin", "camera-r", "camera-theta", "camera-phi", "observer", "velocity", "look",
+                          "up", "fov", "width", "height", "sky-radius", "disk-inner", "disk-outer", "disk-retrograde",
+                          "angle-correction", "tableau", "control", "step", "rtol", "atol", "max-steps", "threads"},
+                         {{"camera-r", "35"}, {"camera-theta", "84"}, {"fov", "55"}, {"width", "320"},
+                          {"height", "240"}, {"tableau", "dopri5"}, {"control", "pi"}, {"rtol", "1e-8"},
+                          {"atol", "1e-10"}});
+  cli
       // frame / bundle
       .option("frame", "", "EXR written by grtrace-render to show on the right (default: render it here); its "
                            "camera, scene, mass, sky radius and method are read from its header")
@@ -139,8 +139,16 @@ CommandLine make_command_line() {
       .flag("orbit", "show the timelike orbit (a tube) in the 3D view")
       .option("orbit-r", "100", "orbit: start radius (equatorial plane, phi = 0; velocity --orbit-dr, --orbit-dphi)")
       .option("orbit-revolutions", "12", "orbit: turns in phi to trace");
-  // The orbit's method: the seed's classic RK4 with step doubling by default.
-  tools::declare_method_options(cli, "orbit-", {"rk4", "doubling", "1e-7", "1e-10", "orbit: "});
+  // The orbit's method: the seed's classic RK4 with step doubling by default (the method options again, prefixed).
+  for (const char* name : {"tableau", "control", "step", "rtol", "atol"}) {
+    const auto& table = app::render_options();
+    const auto o = std::find_if(table.begin(), table.end(), [&](const app::OptionInfo& i) { return i.name == name; });
+    const std::map<std::string, std::string> defaults = {
+        {"tableau", "rk4"}, {"control", "doubling"}, {"step", "0"}, {"rtol", "1e-7"}, {"atol", "1e-10"}};
+    std::string help(o->help);
+    for (std::size_t at = 0; (at = help.find("--", at)) != std::string::npos; at += 8) help.insert(at + 2, "orbit-");
+    cli.option(std::string("orbit-") + name, defaults.at(name), "orbit: " + help);
+  }
   cli  // 3D view
       .option("hide", "", "comma-separated layers to hide: horizon,photon-sphere,isco,disk,sky,camera,rays,orbit,"
                           "colorbar,picks")
@@ -200,43 +208,34 @@ std::array<int, 2> parse_size(const std::string& name, const std::string& text) 
   return {w, h};
 }
 
+/// The options as the application library reads them (app::read_metric, read_camera, read_method, check_request):
+/// given on the command line, else the frame header's, else the viewer's defaults; --chart is the Kerr chart only
+/// (its plot values are read_plot's).
+class ViewOptions : public app::OptionSource {
+ public:
+  ViewOptions(const CommandLine& cli, const Params& p, std::string chart) : cli_(cli), p_(p), chart_(std::move(chart)) {}
+  bool given(const std::string& name) const override { return cli_.given(name); }
+  std::optional<std::string> text(const std::string& name) const override {
+    if (name == "chart") return chart_;
+    if (!cli_.declares(name)) return std::nullopt;
+    return p_.text(name);
+  }
+  std::string origin(const std::string& name) const override {
+    return p_.from_frame(name) ? " (from the frame's header)" : "";
+  }
+
+ private:
+  const CommandLine& cli_;
+  const Params& p_;
+  std::string chart_;
+};
+
 double positive(const Params& p, const std::string& name) {
   const double v = p.number(name);
   if (!(v > 0.0)) throw UsageError("--" + name + " must be > 0, got " + p.text(name));
   return v;
 }
 
-/// The method group (examples/common/method_options.hpp, shared with grtrace-render) with its escape radius.
-MethodChoice read_method(const Params& p, const std::string& prefix, double escape_radius) {
-  MethodChoice m = tools::read_method_options(p, prefix);
-  m.settings.escape_radius = escape_radius;
-  return m;
-}
-
-/// The camera of grtrace-render's options: event (r, theta, phi in degrees), velocity in the observer's frame,
-/// look, up, the observer (--observer: kerr_options.hpp). Takes the request read so far (metric, chart, sky radius)
-/// and the frame size (width/height < 0: from --width/--height). As grtrace-render, the event and the observer are
-/// given in Boyer-Lindquist (t, r, theta, phi) for both Kerr charts (spherical_position) and mapped into Kerr-Schild
-/// coordinates by the library; a static observer inside the ergosphere is the library's refusal (UsageError here).
-Camera camera_from_options(const CommandLine& cli, const Params& p, const Request& q, int width, int height) {
-  const tools::CameraOptions cam = tools::read_camera_options(p, cli, q.kerr ? "kerr" : "schwarzschild");
-  const double r_h = q.kerr ? KerrMetric{q.mass, q.spin}.outer_horizon() : 2.0 * q.mass;
-  tools::check_camera_radius(p.text("camera-r"), cam.r, r_h * (1.0 + TraceSettings{}.horizon_epsilon), q.sky_radius);
-  if (width < 0) {
-    const long w = p.integer("width"), h = p.integer("height");
-    if (w < 2 || h < 2 || w > 8192 || h > 8192) throw UsageError("--width and --height must be 2 .. 8192 pixels");
-    width = static_cast<int>(w);
-    height = static_cast<int>(h);
-  }
-  const CameraSpec spec = cam.spec(width, height);
-  std::optional<Camera> camera;
-  try {
-    view::with_metric(q, [&](const auto& metric) { camera.emplace(make_camera(metric, spec)); });
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  return *camera;
-}
 
 Vec4 header_vec4(const std::map<std::string, std::string>& meta, const std::string& key) {
   const auto it = meta.find(key);
@@ -280,8 +279,10 @@ Camera camera_from_header(const std::map<std::string, std::string>& meta, int wi
   }
   // Outside the (outer) horizon: r_+ for Kerr, whose cameras may sit inside r = 2M (in the ergosphere).
   const double r_h = q.kerr ? KerrMetric{mass, q.spin}.outer_horizon() : 2.0 * mass;
-  if (q.kerr && q.chart == "ks") {  // Cartesian: no polar axis, the BL-like radius of the quadric
-    const double r = kerr_schild_for_camera_rays(mass, q.spin).radius(x);
+  if (q.kerr && q.metric.chart == "ks") {  // Cartesian: no polar axis, the BL-like radius of the quadric
+    MetricSpec at_mass = q.metric;
+    at_mass.mass = mass;
+    const double r = tools::as_usage_error([&] { return app::MetricGeometry::create(at_mass)->radius(x); });
     if (!(r > r_h))
       throw UsageError("--frame: header 'camera_position' puts the camera at Kerr-Schild r = " + std::to_string(r) +
                        ": it must be outside the horizon r_+ = " + std::to_string(r_h));
@@ -318,13 +319,12 @@ std::vector<std::array<int, 2>> parse_picks(const std::string& text, int width, 
   return pixels;
 }
 
-/// Takes the command line, the flight spec of read_flight_spec, the metric read from the command line and the
-/// request read so far (mass, metric, sky radius, the single-frame camera checked). Builds the path (the
-/// application layer's app::flight_worldline, in the metric's ingoing slicing for Kerr-Schild), checks
-/// --flight-frame against it and returns it with the camera of that frame (make_moving_camera with --look/--up and
-/// the single-frame camera's size and field of view). Throws UsageError naming the option for what cannot fly.
-view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const FlightPathSpec& spec, MetricSpec flown,
-                                  Request& q) {
+/// Takes the command line, the flight spec of read_flight_spec and the request read so far (the metric, in the
+/// ingoing slicing for a Kerr-Schild flight, and the checked single-frame request). Builds the path (the
+/// application library's app::flight_worldline), checks --flight-frame against it and returns it with the camera of
+/// that frame (make_moving_camera with --look/--up and the single-frame camera's size and field of view) put into
+/// the checked request. Throws UsageError naming the option for what cannot fly.
+view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const FlightPathSpec& spec, Request& q) {
   for (const char* name : {"frame", "velocity", "observer"})
     if (cli.given(name))
       throw UsageError(std::string("--") + name + " sets a single frame's camera; a flight's camera moves with its "
@@ -341,22 +341,22 @@ view::FlightView read_flight_view(const CommandLine& cli, const Params& p, const
   view::FlightView f;
   f.kind = spec.kind;
   f.frame = static_cast<int>(frame);
-  const CameraView look{tools::read_option_triple(p, "look"), tools::read_option_triple(p, "up"), q.camera->width(),
-                        q.camera->height(), q.camera->fov_degrees()};
-  // Kerr-Schild flights are flown in the ingoing slicing (the falling camera crosses the future horizon), as
-  // grtrace-render's; the frame, the rays and the surfaces are then drawn in that chart too.
-  if (q.kerr && q.chart == "ks") q.ks_slicing = KerrSchildSlicing::ingoing;
-  flown.slicing = q.ks_slicing;
-  const Worldline path = tools::checked_flight_path(spec, [&] { return app::flight_worldline(flown, spec); });
-  auto fly = [&](const auto& metric) {
-    check_frame(static_cast<long>(path.samples.size()));
-    const WorldlineSample& at = path.samples[static_cast<std::size_t>(f.frame)];
-    q.camera = make_moving_camera(metric, at.x, at.u, look);
-    f.frames = static_cast<int>(path.samples.size());
-    f.tau = at.tau;
-    f.path = viz::worldline_path(metric, path);
+  const Camera& single = q.camera();
+  const auto triple = [&](const char* name) {
+    const std::vector<double> v = CommandLine::parse_numbers(name, p.text(name), 3);
+    return Vec3(v[0], v[1], v[2]);
   };
-  view::with_metric(q, fly);
+  const CameraView look{triple("look"), triple("up"), single.width(),
+                        single.height(), single.fov_degrees()};
+  const Worldline path = tools::checked_flight_path(spec, [&] { return app::flight_worldline(q.metric, spec); });
+  check_frame(static_cast<long>(path.samples.size()));
+  const WorldlineSample& at = path.samples[static_cast<std::size_t>(f.frame)];
+  const auto geometry = app::MetricGeometry::create(q.metric);
+  const Camera camera = tools::as_usage_error([&] { return geometry->make_moving_camera(at.x, at.u, look); });
+  q.checked = app::with_camera(*q.checked, camera);
+  f.frames = static_cast<int>(path.samples.size());
+  f.tau = at.tau;
+  f.path = geometry->worldline_path(path);
   return f;
 }
 
@@ -429,73 +429,74 @@ Request read_request(const CommandLine& cli) {
 
   // The coordinate chart: --chart bl|ks, else the frame's, else bl (--chart orbit|norm|step is read_plot's).
   const bool chart_is_plot = cli.given("chart") && !q.plot.empty() && !cli.given("plot");
-  q.chart = chart_is_plot ? "bl" : p.text("chart");
-  if (q.chart.empty()) q.chart = "bl";
-  if (q.chart != "bl" && q.chart != "ks")
-    throw UsageError("--chart: the frame's header names the chart '" + q.chart + "' (not bl or ks)");
+  std::string chart = chart_is_plot ? "bl" : p.text("chart");
+  if (chart.empty()) chart = "bl";
+  if (chart != "bl" && chart != "ks")
+    throw UsageError("--chart: the frame's header names the chart '" + chart + "' (not bl or ks)");
   if (q.frame && cli.given("chart") && !chart_is_plot && q.frame->metadata.count("chart") &&
-      q.frame->metadata.at("chart") != q.chart)
-    throw UsageError("--chart " + q.chart + " conflicts with --frame: the frame was rendered with --chart " +
+      q.frame->metadata.at("chart") != chart)
+    throw UsageError("--chart " + chart + " conflicts with --frame: the frame was rendered with --chart " +
                      q.frame->metadata.at("chart") + " (its camera is recorded in that chart's coordinates)");
 
   q.scene = p.text("scene");
   if (!is_standard_scene(q.scene))
     throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");
-  // The metric group shared with grtrace-render (metric_options.hpp): the library's refusals, worded as there.
-  const MetricSpec ms = tools::read_metric_options(p, cli, kViewMetrics, q.chart);
-  q.mass = ms.mass;
-  q.kerr = ms.name == "kerr";
-  q.spin = ms.spin;
+  // The options shared with grtrace-render are read and checked by the application library, as there.
+  const ViewOptions options(cli, p, chart);
+  q.metric = tools::as_usage_error([&] { return app::read_metric(options, kViewMetrics); });
+  q.mass = q.metric.mass;
+  q.kerr = q.metric.name == "kerr";
+  q.spin = q.metric.spin;
   if (q.kerr && !q.plot.empty()) throw UsageError(plot_option + " draws Schwarzschild orbits; not with --metric kerr");
   q.sky_radius = positive(p, "sky-radius");
-  if (q.frame && q.frame->metadata.count("camera_position")) {
+  const bool header_camera = q.frame && q.frame->metadata.count("camera_position");
+  if (header_camera)
     for (const char* o : {"camera-r", "camera-theta", "camera-phi", "velocity", "look", "up", "fov", "width", "height",
                           "observer"})
       if (cli.given(o))
         throw UsageError(std::string("--") + o + " conflicts with --frame: the bundle is traced through the frame's "
                          "own camera (read from its header)");
-    q.camera = camera_from_header(q.frame->metadata, q.frame->width(), q.frame->height(), q);
-    q.fov = p.number("fov");
+  const std::optional<FlightPathSpec> flight = tools::read_flight_spec(cli, q.mass, q.sky_radius, {"flight-frame"});
+  if (flight && !q.plot.empty())
+    throw UsageError("--flight draws a camera path in the 3D view; not with " + plot_option);
+  // Kerr-Schild flights are flown in the ingoing slicing (the falling camera crosses the future horizon), as
+  // grtrace-render's; the frame, the rays and the surfaces are then drawn in that chart too.
+  if (flight && q.kerr && q.metric.chart == "ks") q.metric.slicing = KerrSchildSlicing::ingoing;
+
+  // The frame's own camera, read (and its header checked) before the camera options that fall back on that header.
+  std::optional<Camera> frame_camera;
+  if (header_camera) frame_camera = camera_from_header(q.frame->metadata, q.frame->width(), q.frame->height(), q);
+  app::RenderRequest r;
+  r.metric = q.metric;
+  r.scene = q.scene;
+  r.sky_radius = q.sky_radius;
+  r.camera = tools::as_usage_error([&] { return app::read_camera(options); });
+  if (q.frame) {
+    r.camera.width = q.frame->width();
+    r.camera.height = q.frame->height();
   } else {
-    q.camera = camera_from_options(cli, p, q, q.frame ? q.frame->width() : -1, q.frame ? q.frame->height() : -1);
-    q.fov = p.number("fov");
+    r.camera.width = static_cast<int>(std::clamp(p.integer("width"), -1L, 1L << 20));
+    r.camera.height = static_cast<int>(std::clamp(p.integer("height"), -1L, 1L << 20));
   }
-  if (const auto spec = tools::read_flight_spec(cli, q.mass, q.sky_radius, {"flight-frame"})) {
-    if (!q.plot.empty()) throw UsageError("--flight draws a camera path in the 3D view; not with " + plot_option);
-    q.flight = read_flight_view(cli, p, *spec, ms, q);
-  }
-  q.width = q.camera->width();
-  q.height = q.camera->height();
-  q.disk = {p.number("disk-inner"), p.number("disk-outer")};
-  {
-    // The disk's sense: --disk-retrograde, else the frame's (grtrace-render records it); prograde follows the
-    // spin's sign. Its inner edge, for a disk scene: --disk-inner, else the frame's, else (Kerr) the ISCO of that
-    // sense; inside the ISCO refused as grtrace-render refuses it. The sense also picks the ISCO ring drawn.
-    const bool retrograde = cli.flag_set("disk-retrograde") ||
-                            (q.frame && q.frame->metadata.count("disk_sense") &&
-                             q.frame->metadata.at("disk_sense") == "retrograde");
-    std::optional<std::string> inner;
-    if (q.scene == "disk" && (cli.given("disk-inner") || p.from_frame("disk-inner"))) inner = p.text("disk-inner");
-    ThinDisk disk;
-    disk.r_in = q.disk[0];
-    tools::set_disk_sense_and_isco(ms, retrograde, inner, disk);
-    q.disk_sense = disk.sense;
-    if (q.scene == "disk") q.disk[0] = disk.r_in;
-  }
-  if (q.scene == "disk") {
-    try {
-      if (q.kerr) check_disk_orbits(KerrMetric{q.mass, q.spin}, make_scene_spec(q).disk);
-      else check_disk_orbits(SchwarzschildMetric{q.mass}, make_scene_spec(q).disk);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string(e.what()) + " (--disk-inner, --disk-outer: need 3M < inner < outer)");
-    }
-  }
-  q.correction = tools::read_angle_correction(p);
-  q.rays = read_method(p, "", q.sky_radius);
-  q.rays.settings.max_steps = tools::read_max_steps(p);
-  const long threads = cli.integer("threads");
-  if (threads < 0 || threads > 4096) throw UsageError("--threads must be 0 .. 4096");
-  q.threads = static_cast<int>(threads);
+  // The disk's sense: --disk-retrograde, else the frame's (grtrace-render records it); prograde follows the spin's
+  // sign. Its inner edge, for a disk scene: --disk-inner, else the frame's, else (Kerr) the ISCO of that sense;
+  // inside the ISCO refused as grtrace-render refuses it. The sense also picks the ISCO ring drawn.
+  r.disk_retrograde = cli.flag_set("disk-retrograde") || (q.frame && q.frame->metadata.count("disk_sense") &&
+                                                           q.frame->metadata.at("disk_sense") == "retrograde");
+  if (q.scene == "disk" && (cli.given("disk-inner") || p.from_frame("disk-inner"))) r.disk_inner = p.number("disk-inner");
+  r.disk_outer = p.number("disk-outer");
+  r.angle_correction = p.text("angle-correction");
+  r.method = tools::as_usage_error([&] { return app::read_method(options, ""); });
+  r.method.max_steps = static_cast<int>(std::clamp(p.integer("max-steps"), 0L, 1L << 30));
+  r.threads = static_cast<int>(std::clamp(cli.integer("threads"), -1L, 1L << 20));
+  q.checked = tools::as_usage_error([&] { return app::check_request(r); });
+  if (frame_camera) q.checked = app::with_camera(*q.checked, *frame_camera);
+  q.fov = p.number("fov");
+  if (flight) q.flight = read_flight_view(cli, p, *flight, q);
+  q.width = q.camera().width();
+  q.height = q.camera().height();
+  q.disk = {q.checked->scene.disk.r_in, q.checked->scene.disk.r_out};
+  q.disk_sense = q.checked->scene.disk.sense;
 
   const double exposure = cli.number("exposure");
   if (!(exposure >= 0.0)) throw UsageError("--exposure must be >= 0");
@@ -543,8 +544,19 @@ Request read_request(const CommandLine& cli) {
   q.orbit.revolutions = positive(p, "orbit-revolutions");
   if (q.orbit.revolutions > 1000) throw UsageError("--orbit-revolutions: at most 1000");
   if (!(q.orbit.r0 > 2.0 * q.mass * 1.01)) throw UsageError("--orbit-r must lie outside the horizon r = 2M");
-  q.orbit_method = read_method(p, "orbit-", 1e6 * q.orbit.r0);
-  q.orbit_method.settings.max_steps = 2'000'000;
+  if (q.show_orbit || !q.plot.empty()) {
+    // The orbit's own request: the seed orbit in Schwarzschild with the orbit's method, its sky sphere far beyond
+    // the orbit (1e6 r0) and a step budget for its revolutions; a camera at the orbit's start (unused).
+    app::RenderRequest o;
+    o.metric.mass = q.mass;
+    o.scene = "sky";
+    o.method = tools::as_usage_error([&] { return app::read_method(options, "orbit-"); });
+    o.method.max_steps = 2'000'000;
+    o.sky_radius = 1e6 * q.orbit.r0;
+    o.camera.r = q.orbit.r0;
+    o.camera.width = o.camera.height = 1;
+    q.orbit_checked = tools::as_usage_error([&] { return app::check_request(o); });
+  }
 
   std::stringstream hide(cli.text("hide"));
   for (std::string item; std::getline(hide, item, ',');) {
@@ -574,9 +586,9 @@ Request read_request(const CommandLine& cli) {
 std::string orbit_note(const Request& q, const viz::TracedPath& path) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "r0 = %g M, dphi/dtau = %g, %g turns; %s + %s control, rtol %g, atol %g: %zu steps",
-                q.orbit.r0, q.orbit.dphi_dtau, q.orbit.revolutions, q.orbit_method.tableau.c_str(),
-                q.orbit_method.control.c_str(), q.orbit_method.settings.integrator.tolerance.rtol,
-                q.orbit_method.settings.integrator.tolerance.atol, path.steps.empty() ? 0 : path.steps.size() - 1);
+                q.orbit.r0, q.orbit.dphi_dtau, q.orbit.revolutions, q.orbit_checked->request.method.tableau.c_str(),
+                q.orbit_checked->request.method.control.c_str(), q.orbit_checked->request.method.rtol,
+                q.orbit_checked->request.method.atol, path.steps.empty() ? 0 : path.steps.size() - 1);
   return buf;
 }
 
@@ -608,7 +620,7 @@ std::vector<std::array<int, 2>> bundle_pixels(const Request& q) {
 viz::Rgb8 encode(const Rgb& c) { return {srgb_encode8(c[0]), srgb_encode8(c[1]), srgb_encode8(c[2])}; }
 
 int run_view(const Request& q) {
-  const Camera& camera = *q.camera;
+  const Camera& camera = q.camera();
   const auto t0 = std::chrono::steady_clock::now();
   const Image frame_image = q.frame ? *q.frame : view::render_frame(q);
   const double frame_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -618,7 +630,7 @@ int run_view(const Request& q) {
   layout.mass = q.mass;
   if (q.scene == "disk") layout.disk = q.disk;
   layout.sky_radius = q.sky_radius;
-  const StandardSceneSpec scene_spec = view::make_scene_spec(q);
+  const StandardSceneSpec& scene_spec = q.checked->scene;
   const HorizonPaint paint{scene_spec.checker_squares};  // the checker scene's horizon, drawn on the 3D sphere
   layout.horizon_checkerboard = q.checkerboard;
   layout.checker_theta = paint.squares;
@@ -630,15 +642,12 @@ int run_view(const Request& q) {
     const bool pro = q.disk_sense == (q.spin < 0.0 ? -1 : 1);
     layout.isco_radius = exact::isco_radius(q.spin, pro ? exact::Orbit::prograde : exact::Orbit::retrograde, q.mass);
     // Kerr-Schild rays are drawn in their chart's Cartesian x, y, z: the surfaces follow them there (see the top).
-    if (q.chart == "ks") layout.kerr_schild = q.ks_slicing;
+    if (q.metric.chart == "ks") layout.kerr_schild = q.metric.slicing;
   }
   // The camera's Boyer-Lindquist r and theta for the caption (a Kerr-Schild camera event is Cartesian).
-  Vec4 camera_bl = camera.position();
-  view::with_metric(q, [&](const auto& metric) {
-    layout.camera = viz::make_camera_glyph(metric, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
-    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(metric)>, KerrSchildMetric>)
-      camera_bl = ks_to_bl_position(metric, camera.position());
-  });
+  const auto geometry = app::MetricGeometry::create(q.metric);
+  layout.camera = viz::make_camera_glyph(*geometry, camera.position(), camera.tetrad().e, q.fov, q.width, q.height);
+  const Vec4 camera_bl = geometry->to_spherical(camera.position());
 
   const auto pixels = bundle_pixels(q);
   const std::vector<viz::TracedPath> rays = view::trace_bundle(q, pixels, frame_rgb);
@@ -719,7 +728,8 @@ int run_view(const Request& q) {
   char scene_caption[400];
   char hole[80] = "";
   if (q.kerr)
-    std::snprintf(hole, sizeof hole, ", a = %g (%s)", q.spin, q.chart == "ks" ? "Kerr-Schild" : "Boyer-Lindquist");
+    std::snprintf(hole, sizeof hole, ", a = %g (%s)", q.spin,
+                  q.metric.chart == "ks" ? "Kerr-Schild" : "Boyer-Lindquist");
   std::snprintf(scene_caption, sizeof scene_caption,
                 "%sM = %g%s; camera at r = %g, theta = %g deg, fov %g deg; %zu rays coloured by %s", flight_caption,
                 q.mass, hole, camera_bl[1], camera_bl[2] / kDeg, q.fov, rays.size(),

@@ -1,5 +1,5 @@
-// The CUDA backend (include/grtrace/gpu/gpu_frame.cuh, examples/app/gpu_tracers.hpp), compiled by nvcc; the kernels
-// are the application layer's (app::trace_on_gpu), not instantiated again here.
+// The CUDA backend (include/grtrace/gpu/gpu_frame.cuh, app/src/gpu_tracers.hpp), compiled by nvcc; the kernels
+// are the application library's (app::trace_on_gpu), not instantiated again here.
 //   - On any machine: the host pass of this nvcc build runs the same source a GPU thread runs (trace_quietly) and
 //     draws the CPU build's frame (the application layer, compiled by the C++ compiler) bit for bit: one source, the
 //     same arithmetic (no contraction, fused where core/mul_add.hpp says).
@@ -18,9 +18,9 @@
 #include "../common/quiet_trace.hpp"
 #include "gpu_probe.cuh"
 #include "outcome_comparison.hpp"
-#include "gpu_tracers.hpp"  // examples/app: the application layer's kernels (trace_on_gpu), instantiated there only
+#include "gpu_tracers.hpp"  // app/src: the application library's kernels (trace_on_gpu), instantiated there only
 
-#include "grtrace/app/frame_tracer.hpp"
+#include "grtrace/app/front_door.hpp"
 #include "grtrace/gpu/gpu_frame.cuh"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
@@ -46,26 +46,37 @@ using gpu_probe::probe_camera;
 /// Every ray of these tests ends within this many steps on the CPU (they take 15-25 on average).
 constexpr int kGpuTestMaxSteps = 20000;
 
-app::FrameRequest request(const std::string& metric, const std::string& scene, const std::string& tracer) {
-  app::FrameRequest q;
+/// The application library's checked request for a frame of `camera` (the tools' default method, on the CPU).
+app::CheckedRequest request(const std::string& metric, const std::string& scene, const std::string& tracer,
+                            const Camera& camera) {
+  app::RenderRequest q;
   q.metric.name = metric;
   q.metric.spin = metric == "kerr" ? 0.9 : 0.0;
-  q.scene.name = scene;
+  q.scene = scene;
   q.tracer = tracer;
-  q.settings.escape_radius = 400.0;
-  q.settings.max_steps = kGpuTestMaxSteps;
-  return q;
+  q.sky_radius = 400.0;
+  q.method.max_steps = kGpuTestMaxSteps;
+  q.camera.r = 30.0;
+  q.camera.width = q.camera.height = 1;
+  q.device = "cpu";
+  return app::with_camera(app::check_request(q), camera);
+}
+
+/// The frame the application library draws for a checked request.
+Frame app_frame(const app::CheckedRequest& c) {
+  app::RenderResult r = app::FrameRenderer::create(c)->render();
+  return Frame{std::move(r.image), r.report.stats};
 }
 
 TEST(GpuNvccHostPass, DrawsTheCpuBuildsFrameBitForBit) {
   const KerrMetric kerr{1.0, 0.9};
   const Camera camera = probe_camera(kerr, 50.0, 80.0, 60.0, 24);
-  const app::FrameRequest q = request("kerr", "disk", "auto");
+  const app::CheckedRequest q = request("kerr", "disk", "auto", camera);
   const auto tracer = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, q.settings, q.correction, disk_scene(q.scene));
   const Frame here = render_frame_traced_by(camera, tracer, [&](int width, int height) {
     return testing_support::trace_quietly_here(camera, tracer, width, height);
   });
-  const Frame cpu = app::render_frame(q, camera);
+  const Frame cpu = app_frame(q);
   for (const char* c : Image::kStandardChannels) {
     const auto& x = here.image.channel(c);
     const auto& y = cpu.image.channel(c);
@@ -309,22 +320,20 @@ TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
 
 TEST(GpuDevice, TheApplicationLayersGpuFrameIsTheCpusFrame) {
   GRTRACE_NEED_GPU();
-  const std::vector<std::pair<app::FrameRequest, Camera>> cases = {
-      {request("kerr", "disk", "auto"), probe_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0, 60.0, 128)},
-      {request("schwarzschild", "disk", "general"), probe_camera(SchwarzschildMetric{1.0}, 30.0, 80.0, 60.0, 128)}};
-  for (const auto& [base, camera] : cases) {
-    app::FrameRequest q = base;
-    q.device = "cpu";
-    const Frame cpu = app::render_frame(q, camera);
-    q.device = "cuda";
-    const Frame gpu = app::render_frame(q, camera);
+  const std::vector<app::CheckedRequest> cases = {
+      request("kerr", "disk", "auto", probe_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0, 60.0, 128)),
+      request("schwarzschild", "disk", "general", probe_camera(SchwarzschildMetric{1.0}, 30.0, 80.0, 60.0, 128))};
+  for (app::CheckedRequest q : cases) {
+    const Frame cpu = app_frame(q);
+    q.request.device = "cuda";
+    const Frame gpu = app_frame(q);
     EXPECT_EQ(gpu.image.metadata.at("tracer"), cpu.image.metadata.at("tracer"));
     EXPECT_EQ(gpu.image.metadata.at("device"), app::gpu_status().name);
     EXPECT_EQ(cpu.image.metadata.at("device"), "cpu");
     long differs = 0;
     for (std::size_t i = 0; i < cpu.image.pixel_count(); ++i)
       differs += gpu.image.channel("object")[i] != cpu.image.channel("object")[i] ? 1 : 0;
-    EXPECT_LE(differs, static_cast<long>(cpu.image.pixel_count()) / 200) << q.metric.name;
+    EXPECT_LE(differs, static_cast<long>(cpu.image.pixel_count()) / 200) << q.request.metric.name;
   }
 }
 
@@ -332,7 +341,7 @@ TEST(GpuDevice, KerrDiskHitRadiusAgreesWithTheCpuAtTightTolerance) {
   GRTRACE_NEED_GPU();
   const KerrMetric kerr{1.0, 0.9};
   const Camera camera = probe_camera(kerr, 50.0, 80.0, 60.0, 256);
-  const app::FrameRequest q = request("kerr", "disk", "auto");
+  const app::CheckedRequest q = request("kerr", "disk", "auto", camera);
   TraceSettings tight = q.settings;
   tight.integrator.tolerance = {1e-12, 1e-14};
   // The hit radius at rtol 1e-12 on both sides (within 1e-6), and at the tools' rtol 1e-9 on both sides (the same

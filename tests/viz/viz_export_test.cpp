@@ -8,6 +8,7 @@
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/viz/traced_path.hpp"
 #include "grtrace/viz/vtk_export.hpp"
 
@@ -151,13 +152,16 @@ TEST_F(ViewExport, RaysCarryTheArraysAndAreTheTracersPaths) {
   const Camera camera(x, t, kW, kH, fd->GetArray("camera_fov_degrees")->GetComponent(0, 0));
 
   // The tracer of grtrace-view's defaults: dopri5 + PI, rtol 1e-8, atol 1e-10, escape at the sky radius 400,
-  // the disk (6 .. 20 M) as the event; 8 samples per step; redshift against the camera's e_0.
+  // the disk (6 .. 20 M) as the event; 8 samples per step; redshift against the camera's e_0. As the frame's general
+  // scene tracer integrates (the path and the pixel's outcome are one integration): an escaped ray, continued
+  // exactly, ends at its last accepted step, not refined onto the sky sphere (with_escape_refinement).
   TraceSettings settings;
   settings.integrator.tolerance.rtol = 1e-8;
   settings.integrator.tolerance.atol = 1e-10;
   settings.escape_radius = 400.0;
   settings.max_steps = 100000;
-  const GeodesicTracer<SchwarzschildMetric, DormandPrince54, PIController> tracer(SchwarzschildMetric{1.0}, settings);
+  const GeodesicTracer<SchwarzschildMetric, DormandPrince54, PIController> tracer(
+      SchwarzschildMetric{1.0}, with_escape_refinement<SchwarzschildMetric>(settings, AngleCorrection::exact));
   StandardSceneSpec spec;
   spec.name = "disk";
   spec.disk.r_in = 6.0;

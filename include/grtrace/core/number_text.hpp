@@ -18,7 +18,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace grtrace {
 
@@ -84,6 +88,38 @@ inline std::string number_text_problem(NumberText result) {
       return "is out of range (whole numbers up to " + std::to_string(std::numeric_limits<long>::max()) + ")";
   }
   return "is not a number";
+}
+
+/// An option's number, whole number or comma-separated numbers, read by the rules above with the refusal every grtrace
+/// tool and the Python module give (std::invalid_argument naming --name; `from` is added to the message, e.g. " (from
+/// the frame's header)").
+inline double option_number(std::string_view name, const std::string& text, const std::string& from = "") {
+  const ParsedNumber n = parse_finite_number(text);
+  if (n.result == NumberText::not_finite)
+    throw std::invalid_argument("--" + std::string(name) + " must be finite, got '" + text + "'" + from);
+  if (n.result != NumberText::ok)
+    throw std::invalid_argument("--" + std::string(name) + " expects a number, got '" + text + "'" + from);
+  return n.value;
+}
+
+inline long option_integer(std::string_view name, const std::string& text, const std::string& from = "") {
+  const ParsedWholeNumber n = parse_whole_number(text);
+  if (n.result == NumberText::out_of_range)
+    throw std::invalid_argument("--" + std::string(name) + " " + text + " " + number_text_problem(n.result) + from);
+  if (n.result != NumberText::ok)
+    throw std::invalid_argument("--" + std::string(name) + " expects a whole number, got '" + text + "'" + from);
+  return n.value;
+}
+
+/// Exactly `count` numbers (0: any number of them), each read as option_number reads one.
+inline std::vector<double> option_numbers(std::string_view name, const std::string& text, std::size_t count) {
+  std::vector<double> out;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) out.push_back(option_number(name, item));
+  if (count != 0 && out.size() != count)
+    throw std::invalid_argument("--" + std::string(name) + " expects " + std::to_string(count) +
+                                " comma-separated numbers, got '" + text + "'");
+  return out;
 }
 
 }  // namespace grtrace

@@ -72,9 +72,13 @@ auto auto_tracer_per_camera(const M& metric, const TraceSettings& settings, Angl
   };
 }
 
-template <class WithTracer, class Skip, class Sink>
-FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_tracer, Skip&& skip, Sink&& sink,
-                          RenderOptions options = {}) {
+/// The flight loop for any kind of frame: render_one(camera, options) draws one camera's frame (any type R, moved
+/// to the sink), stats_of(r) gives its RenderStats (summed into the FlightStats), sink(i, r) receives it on the
+/// writer thread while the next frame is traced. What render_flight runs, for callers whose frames carry more than a
+/// Frame (the application library's reports).
+template <class RenderOne, class StatsOf, class Skip, class Sink>
+FlightStats render_frames(const std::vector<Camera>& cameras, RenderOne&& render_one, StatsOf&& stats_of, Skip&& skip,
+                          Sink&& sink, RenderOptions options = {}) {
   const auto t0 = std::chrono::steady_clock::now();
   FlightStats stats;
   stats.frames = static_cast<int>(cameras.size());
@@ -85,8 +89,9 @@ FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_
     if (to_render[i]) total_pixels += static_cast<long>(cameras[i].width()) * cameras[i].height();
     else ++stats.skipped;
   }
-  ProgressBar bar(total_pixels, "flight", options.progress);
-  options.shared_progress = &bar;
+  ProgressBar own_bar(options.shared_progress ? 0L : total_pixels, "flight",
+                      options.shared_progress ? ProgressMode::never : options.progress);
+  if (!options.shared_progress) options.shared_progress = &own_bar;
   // One frame is written (by the sink, on `writer`) while the next is traced.
   std::thread writer;
   std::exception_ptr write_error;
@@ -97,21 +102,16 @@ FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_
   try {
     for (std::size_t i = 0; i < cameras.size(); ++i) {
       if (!to_render[i]) continue;
-      std::optional<Frame> frame;
-      TracerReport report;
-      with_tracer(cameras[i], [&](const auto& tracer) {
-        frame.emplace(render_frame(cameras[i], tracer, options));
-        report = tracer_report(tracer);
-      });
+      auto frame = render_one(cameras[i], std::as_const(options));
+      const RenderStats& frame_stats = stats_of(std::as_const(frame));
       ++stats.rendered;
-      stats.rays += frame->stats.rays;
-      stats.traced_rays += frame->stats.traced_rays;
-      for (std::size_t s = 0; s < kRayStatusCount; ++s) stats.status_counts[s] += frame->stats.status_counts[s];
+      stats.rays += frame_stats.rays;
+      stats.traced_rays += frame_stats.traced_rays;
+      for (std::size_t s = 0; s < kRayStatusCount; ++s) stats.status_counts[s] += frame_stats.status_counts[s];
       wait_for_writer();
-      writer = std::thread([&sink, &write_error, index = static_cast<int>(i), f = std::move(*frame),
-                            r = std::move(report)]() mutable {
+      writer = std::thread([&sink, &write_error, index = static_cast<int>(i), f = std::move(frame)]() mutable {
         try {
-          sink(index, std::move(f), std::as_const(r));
+          sink(index, std::move(f));
         } catch (...) {
           write_error = std::current_exception();
         }
@@ -122,9 +122,29 @@ FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_
     if (writer.joinable()) writer.join();  // never leave a running thread behind (std::terminate)
     throw;
   }
-  bar.finish();
+  own_bar.finish();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return stats;
+}
+
+template <class WithTracer, class Skip, class Sink>
+FlightStats render_flight(const std::vector<Camera>& cameras, WithTracer&& with_tracer, Skip&& skip, Sink&& sink,
+                          RenderOptions options = {}) {
+  struct TracedFrame {
+    Frame frame;
+    TracerReport report;
+  };
+  return render_frames(
+      cameras,
+      [&](const Camera& camera, const RenderOptions& o) {
+        std::optional<TracedFrame> traced;
+        with_tracer(camera, [&](const auto& tracer) {
+          traced.emplace(TracedFrame{render_frame(camera, tracer, o), tracer_report(tracer)});
+        });
+        return std::move(*traced);
+      },
+      [](const TracedFrame& t) -> const RenderStats& { return t.frame.stats; }, skip,
+      [&](int i, TracedFrame&& t) { sink(i, std::move(t.frame), std::as_const(t.report)); }, std::move(options));
 }
 
 }  // namespace grtrace

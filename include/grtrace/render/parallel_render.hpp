@@ -31,7 +31,10 @@
 // - Exceptions: an exception thrown by the factory propagates before any pixel is traced. One thrown by the
 //   pixel function does not terminate the program: the first one is captured, the remaining tiles are skipped,
 //   the progress line is finished, and it is rethrown from render_image(); the image is then incomplete.
-// - Progress: a ProgressBar on stderr (only when it is a terminal, unless RenderOptions::progress says otherwise).
+// - Progress: a ProgressBar on stderr (only when it is a terminal, unless RenderOptions::progress says otherwise);
+//   RenderOptions::pixels_done counts finished pixels for a caller that reports progress its own way.
+// - Cancelling: RenderOptions::cancel, set from another thread, skips the tiles not yet begun and ends the call
+//   with RenderCancelled (within one tile's time per thread).
 // Without OpenMP (_OPENMP undefined) the same code runs on one thread.
 #pragma once
 
@@ -75,6 +78,17 @@ struct RenderOptions {
   /// render_frame (render/frame.hpp): copy mirror images instead of tracing them where the frame is mirror
   /// symmetric (render/mirror_symmetry.hpp); false traces every pixel (for comparisons).
   bool mirror_symmetry = true;
+  /// Set (by another thread) to stop the render: the tiles not yet begun are skipped and the call throws
+  /// RenderCancelled once the running tiles are done. Must outlive the call.
+  const std::atomic<bool>* cancel = nullptr;
+  /// Advanced by each tile's pixels as it finishes, for a caller that shows progress from another thread (the
+  /// bar above draws on stderr). Must outlive the call.
+  std::atomic<long>* pixels_done = nullptr;
+};
+
+/// A render stopped through RenderOptions::cancel: the image is incomplete and nothing was returned.
+struct RenderCancelled : std::runtime_error {
+  RenderCancelled() : std::runtime_error("render cancelled") {}
 };
 
 struct RenderStats {
@@ -192,6 +206,7 @@ RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_he
                            options.progress_label, options.shared_progress ? ProgressMode::never : options.progress);
   ProgressBar& progress = options.shared_progress ? *options.shared_progress : own_progress;
   std::atomic<bool> failed{false};
+  std::atomic<bool> cancelled{false};
   std::exception_ptr first_error;
   std::mutex error_mutex;
   int team_size = 1;
@@ -214,6 +229,10 @@ RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_he
 #endif
     for (long tile = 0; tile < tile_count; ++tile) {
       if (failed.load(std::memory_order_relaxed)) continue;
+      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+        cancelled.store(true, std::memory_order_relaxed);
+        continue;
+      }
       try {
         const int x0 = static_cast<int>(tile % tiles_x) * tile_w;
         const int y0 = static_cast<int>(tile / tiles_x) * tile_h;
@@ -231,6 +250,7 @@ RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_he
         for (int y = y0; y < y1; ++y)
           for (int x = x0; x < x1; ++x) orbit(x, y, scratch, emit);
         progress.advance(emitted);
+        if (options.pixels_done) options.pixels_done->fetch_add(emitted, std::memory_order_relaxed);
       } catch (...) {
         std::lock_guard lock(error_mutex);
         if (!first_error) first_error = std::current_exception();
@@ -241,6 +261,7 @@ RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_he
 
   own_progress.finish();
   if (first_error) std::rethrow_exception(first_error);
+  if (cancelled.load()) throw RenderCancelled();
 
   RenderStats stats;
   stats.width = image.width();

@@ -45,24 +45,37 @@ inline constexpr bool planar_tracer_applies = [] {
   else return false;
 }();
 
+/// with_auto_tracer's choice as a maker: calls f(make) once, make() building the chosen tracer and returning it by
+/// value (a prvalue: it can initialise a tracer in place, e.g. inside an owner on the heap, although the planar
+/// tracer can be neither copied nor moved). Everything else as with_auto_tracer.
+template <ExplicitTableau T, StepController C, MetricPolicy Metric, class SceneT, class F>
+decltype(auto) with_auto_tracer_maker(const Metric& metric, const TraceSettings& settings, const Camera& camera,
+                                      AngleCorrection correction, const SceneT& scene, int table_rays, F&& f) {
+  if constexpr (FlatMetric<Metric>) {
+    return f([&] { return StraightLineTracer(metric, settings.escape_radius, correction, scene); });
+  } else {
+    if constexpr (planar_tracer_applies<Metric, SceneT, C>) {
+      if (metric.horizon_radius() > 0.0)
+        return f([&] {
+          return PlanarSceneTracer<Metric, T, C, SceneT>(metric, settings, camera, correction, scene, table_rays);
+        });
+    }
+    if constexpr (kerr_mino_tracer_applies<Metric, SceneT, C>) {
+      return f([&] { return make_kerr_mino_tracer<T, C>(metric, settings, correction, scene); });
+    } else {
+      return f([&] { return make_general_tracer<T, C>(metric, settings, correction, scene); });
+    }
+  }
+}
+
 template <ExplicitTableau T, StepController C, MetricPolicy Metric, class SceneT, class F>
 decltype(auto) with_auto_tracer(const Metric& metric, const TraceSettings& settings, const Camera& camera,
                                 AngleCorrection correction, const SceneT& scene, int table_rays, F&& f) {
-  if constexpr (FlatMetric<Metric>) {
-    return f(StraightLineTracer(metric, settings.escape_radius, correction, scene));
-  } else {
-    if constexpr (planar_tracer_applies<Metric, SceneT, C>) {
-      if (metric.horizon_radius() > 0.0) {
-        const PlanarSceneTracer<Metric, T, C, SceneT> planar(metric, settings, camera, correction, scene, table_rays);
-        return f(planar);
-      }
-    }
-    if constexpr (kerr_mino_tracer_applies<Metric, SceneT, C>) {
-      return f(make_kerr_mino_tracer<T, C>(metric, settings, correction, scene));
-    } else {
-      return f(make_general_tracer<T, C>(metric, settings, correction, scene));
-    }
-  }
+  return with_auto_tracer_maker<T, C>(metric, settings, camera, correction, scene, table_rays,
+                                      [&](const auto& make) -> decltype(auto) {
+                                        const auto tracer = make();
+                                        return f(tracer);
+                                      });
 }
 
 }  // namespace grtrace

@@ -154,6 +154,22 @@ class GeneralSceneTracer {
     for (std::size_t i = 0; i < y0.size(); ++i) out[i] = scene_outcome(m, scene_, results[i], escaped(note));
   }
 
+  /// trace() with an observer called on every accepted step (GeodesicTracer::trace_observed: e.g. a PathRecorder,
+  /// trace/traced_path.hpp) and `extra` events after the scene's objects: a ray's path and its outcome in one
+  /// integration, the outcome trace()'s bit for bit while no extra event ends the ray (one that does gives status
+  /// hit with an object index past the scene's). Escaped rays are not noted for the flat continuation's estimate.
+  template <class Observer, class... Extra>
+  RayOutcome trace_observed(const GeodesicState& y0, Observer&& observer, const Extra&... extra) const {
+    const Metric& m = tracer_.metric();
+    return scene_outcome(m, scene_,
+                         apply_to_objects(
+                             [&](const auto&... o) {
+                               return tracer_.trace_observed(y0, observer, bind_to_metric(o, m)..., extra...);
+                             },
+                             scene_.objects),
+                         escaped([](const GeodesicState&) {}));
+  }
+
   /// Which continuation this tracer's escaped rays get (recorded in a frame's header: trace/tracer_report.hpp).
   GRTRACE_HD SkyContinuation sky_continuation() const { return sky_continuation_of<Metric>(correction_); }
 

@@ -69,6 +69,15 @@ inline std::vector<std::array<int, 2>> pixel_column(int width, int height, int c
   return g;
 }
 
+/// Takes a bundle ray's path, its frame pixel and the frame (or nothing); records the pixel on the path and gives it
+/// the pixel's colour where the frame has one.
+inline void mark_pixel(TracedPath& path, std::array<int, 2> p, const Rgb8Image* frame) {
+  path.pixel_x = p[0];
+  path.pixel_y = p[1];
+  if (frame && !frame->empty() && p[0] >= 0 && p[1] >= 0 && p[0] < frame->width && p[1] < frame->height)
+    path.color = frame->at(p[0], p[1]);
+}
+
 /// pixel_state(x, y) -> GeodesicState: the camera's initial state for pixel (x, y-from-top).
 /// observer_velocity: the camera's 4-velocity e_0 (gives the redshift array). frame: colours for the paths.
 template <class Tracer, class PixelState, class... Events>
@@ -80,10 +89,7 @@ std::vector<TracedPath> trace_pixels(const Tracer& tracer, const PixelState& pix
   out.reserve(pixels.size());
   for (const auto& p : pixels) {
     TracedPath path = trace_path(tracer, pixel_state(p[0], p[1]), samples_per_step, observer_velocity, events...);
-    path.pixel_x = p[0];
-    path.pixel_y = p[1];
-    if (frame && !frame->empty() && p[0] >= 0 && p[1] >= 0 && p[0] < frame->width && p[1] < frame->height)
-      path.color = frame->at(p[0], p[1]);
+    mark_pixel(path, p, frame);
     out.push_back(std::move(path));
   }
   return out;

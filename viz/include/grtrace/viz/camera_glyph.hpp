@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <concepts>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -32,8 +33,14 @@ struct CameraGlyph {
   double fov_degrees = 60.0;
 };
 
+/// Anything with the embedding to_cartesian(x): a metric policy, or a named metric's app::MetricGeometry.
+template <class M>
+concept HasEmbedding = requires(const M& m, const Vec4& x) {
+  { m.to_cartesian(x) } -> std::convertible_to<Vec3>;
+};
+
 /// d to_cartesian / dx^mu at x, 3 x 4, by central differences.
-template <MetricPolicy Metric>
+template <HasEmbedding Metric>
 Eigen::Matrix<double, 3, 4> embedding_jacobian(const Metric& metric, const Vec4& x) {
   Eigen::Matrix<double, 3, 4> J;
   for (int mu = 0; mu < 4; ++mu) {
@@ -54,7 +61,7 @@ inline Vec3 unit_or_zero(const Vec3& v) {
 }  // namespace detail
 
 /// e[a] = e_a^mu (a = 0..3). width/height fix the vertical extent of the frustum (the pixel formula).
-template <MetricPolicy Metric>
+template <HasEmbedding Metric>
 CameraGlyph make_camera_glyph(const Metric& metric, const Vec4& x, const std::array<Vec4, 4>& e, double fov_degrees,
                               int width, int height) {
   const auto J = embedding_jacobian(metric, x);

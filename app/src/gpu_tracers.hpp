@@ -5,7 +5,7 @@
 // while shading, mirrors and the frame's records stay in the CPU's one instantiation of render_frame.
 #pragma once
 
-#include "grtrace/app/frame_tracer.hpp"
+#include "grtrace/app/front_door.hpp"
 #include "grtrace/metric/named_metrics.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"

@@ -1,0 +1,53 @@
+// The application library's insides (private to grtrace_app): how a checked request becomes a concrete tracer.
+//
+// Each named metric's tracers are compiled in one unit (make_frame_renderer<M> and make_ray_tracer<M>, explicitly
+// instantiated there), so that the units compile in parallel and no other unit sees their templates:
+//   frame_tracers_schwarzschild.cpp  SchwarzschildMetric (auto/planar, general), MinkowskiSpherical (straight lines)
+//   frame_tracers_kerr.cpp           KerrMetric, Boyer-Lindquist (auto/kerr-mino, general)
+//   frame_tracers_kerr_schild.cpp    KerrSchildMetric (general)
+//   frame_tracers_rn_sds.cpp         AutoReissnerNordstrom, AutoSchwarzschildDeSitter (auto/planar, general)
+//   frame_tracers_wormhole_ef.cpp    AutoEllisWormhole, AutoEddingtonFinkelstein (general)
+// and the rays of grtrace-view and the Python module in ray_tracers.cpp (all of them, a unit of their own).
+// A metric added to the named metrics (metric/named_metrics.hpp) is named in one of these units: the front door
+// (front_door.cpp) reaches it through with_named_metric, and a metric no unit instantiates is a link error.
+#pragma once
+
+#include "grtrace/app/front_door.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+#include "grtrace/render/frame.hpp"
+#include "grtrace/trace/tracer_report.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace grtrace::app {
+
+/// The frame renderer of a checked request in metric M (defined in frame_tracers_impl.hpp, instantiated per unit).
+template <MetricPolicy M>
+std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked, const M& metric);
+
+/// The ray tracer of a checked request in metric M (defined in ray_tracers.cpp).
+template <MetricPolicy M>
+std::unique_ptr<RayTracer> make_ray_tracer(const CheckedRequest& checked, const M& metric);
+
+/// What the concrete tracer tells about a frame it drew (the rest of the report comes from the frame's statistics).
+struct FrameFacts {
+  TracerReport tracer;                      ///< name, table statistics, fallback rays of this frame
+  std::optional<ContinuationEstimate> continuation_error;
+  std::string mirrors;
+  std::string device = "cpu";               ///< cpu or cuda
+  std::optional<double> gpu_trace_seconds, gpu_seconds;
+  double trace_seconds = 0.0;               ///< the wall time of the frame's tracing and shading
+};
+
+/// The render loop's options of a request and a control (threads, mirrors, progress, cancel).
+RenderOptions render_options(const CheckedRequest& checked, const RenderControl& control);
+
+/// The result of a frame a concrete tracer drew: the typed report, the error channel (error_map), the header's
+/// record (describe_request, the report). Compiled once (front_door.cpp), not once per tracer.
+RenderResult finish_render(const CheckedRequest& checked, Frame&& frame, const FrameFacts& facts, double setup_seconds,
+                           const std::vector<SkyDirection>& directions);
+
+}  // namespace grtrace::app

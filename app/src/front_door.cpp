@@ -1,0 +1,533 @@
+// The front door (grtrace/app/front_door.hpp): the checks of a request, the renderer's creation by metric, the
+// report and the frame's header record, flights and the device choice. Compiled once; the tracers themselves are
+// in the units frame_tracers.hpp lists.
+#include "frame_tracers.hpp"
+#include "gpu_tracers.hpp"
+
+#include "grtrace/core/memory_limit.hpp"
+#include "grtrace/exact/kerr_exact.hpp"
+#include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/observer/observers.hpp"
+#include "grtrace/render/exr_io.hpp"
+#include "grtrace/scene/thin_disk.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+namespace grtrace::app {
+
+namespace {
+
+/// The shortest text that reads back as v (what a refusal prints of a number).
+std::string shortest(double v) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return ec == std::errc() ? std::string(buffer, end) : exact_number(v);
+}
+
+/// f(), a std::invalid_argument it throws (a library refusal) as a RequestError with `prefix` before its message.
+template <class F>
+decltype(auto) refusal_as_request_error(const std::string& prefix, F&& f) {
+  try {
+    return f();
+  } catch (const RequestError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(prefix + e.what());
+  }
+}
+
+/// The named metrics the planar table tracer draws: static, spherically symmetric, with a horizon (Reissner-Nordstrom's
+/// |Q| < M, check_metric_spec, always gives it one).
+bool planar_tracer_metric(const MetricSpec& metric) { return metric.name == "schwarzschild" || metric.name == "rn"; }
+
+/// The observer's name a request gets when it names none: the ZAMO for Kerr (it exists everywhere outside the
+/// horizon, the static observer not inside the ergosphere), the static observer otherwise.
+std::string observer_or_default(const RenderRequest& q) {
+  if (!q.camera.observer.empty()) return q.camera.observer;
+  return q.metric.name == "kerr" ? "zamo" : "static";
+}
+
+/// The disk's sense (+1: towards +phi; prograde follows the sign of the spin, +phi for a = 0) and, for Kerr, its
+/// inner edge: the ISCO of that sense when none was asked for, refused inside it (no stable circular orbit there).
+ThinDisk disk_of(const RenderRequest& q) {
+  ThinDisk disk;
+  const MetricSpec& ms = q.metric;
+  const bool retrograde = q.disk_retrograde;
+  const int hole = ms.name == "kerr" && ms.spin < 0.0 ? -1 : +1;
+  disk.sense = retrograde ? -hole : hole;
+  disk.r_out = q.disk_outer;
+  disk.r_in = q.disk_inner.value_or(6.0);
+  if (ms.name != "kerr") return disk;  // the others keep the inner edge as given (default 6)
+  const exact::Orbit orbit = retrograde ? exact::Orbit::retrograde : exact::Orbit::prograde;
+  const double isco = exact::isco_radius(ms.spin, orbit, ms.mass);
+  if (!q.disk_inner) {
+    disk.r_in = isco;
+  } else if (!(disk.r_in >= isco * (1.0 - 1e-12))) {  // the printed ISCO itself is accepted
+    std::ostringstream msg;
+    msg.precision(10);
+    msg << "--disk-inner " << shortest(disk.r_in) << " is inside the ISCO r_isco = " << isco << " M of this "
+        << (retrograde ? "retrograde" : "prograde") << " disk (a = " << ms.spin
+        << "): no stable circular orbit exists there; raise --disk-inner to at least the ISCO or leave it out";
+    throw RequestError(msg.str());
+  }
+  return disk;
+}
+
+/// The settings a request's method and sky give the tracers.
+TraceSettings settings_of(const RenderRequest& q) {
+  TraceSettings s;
+  s.integrator.tolerance = {q.method.rtol, q.method.atol};
+  s.initial_step = q.method.step;
+  s.max_steps = q.method.max_steps;
+  s.escape_radius = q.sky_radius;
+  return s;
+}
+
+void check_method(const MethodRequest& m) {
+  refusal_as_request_error("--tableau / --control: ", [&] { check_tool_method(m.tableau, m.control); });
+  if (!(m.rtol > 0.0 && m.rtol < 1.0))
+    throw RequestError("--rtol must lie in (0, 1) (a relative error; e.g. 1e-9), got " + shortest(m.rtol));
+  if (!(m.atol >= 0.0 && m.atol < 1.0))
+    throw RequestError("--atol must lie in [0, 1) (e.g. 1e-11), got " + shortest(m.atol));
+  if (!(m.step >= 0.0)) throw RequestError("--step must be >= 0");
+  if (m.control == "fixed" && m.step <= 0.0)
+    throw RequestError("--control fixed needs a step: add --step H > 0");
+  if (m.max_steps < 1 || m.max_steps > 100'000'000) throw RequestError("--max-steps must be in 1 .. 1e8");
+}
+
+AngleCorrection correction_of(const std::string& name) {
+  if (name == "none") return AngleCorrection::none;
+  if (name == "flat") return AngleCorrection::flat;
+  if (name == "exact") return AngleCorrection::exact;
+  throw RequestError("unknown --angle-correction '" + name + "'; choose none, flat or exact");
+}
+
+/// The camera's radius against the horizon guard and the sky sphere, in the metric's own radius (Boyer-Lindquist
+/// r for Kerr in both charts, the areal radius r(l) of the wormhole), and whether emitters at rest exist at the sky
+/// sphere (not beyond Schwarzschild-de Sitter's cosmological horizon).
+void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& x_spherical, const TraceSettings& s) {
+  const auto [camera_radius, guard, sky_ok] = with_named_metric(ms, [&](const auto& m) {
+    const Vec4 x = event_from_spherical(m, x_spherical);
+    const double rh = ms.name == "kerr" ? KerrMetric{ms.mass, ms.spin}.horizon_radius() : m.horizon_radius();
+    const Vec4 sky_event(0.0, s.escape_radius, std::numbers::pi / 2.0, 0.0);
+    const bool ok = static_velocity(m.metric(event_from_spherical(m, sky_event))).has_value();
+    return std::tuple{m.radius(x), (1.0 + s.horizon_epsilon) * rh, ok};
+  });
+  if (!(camera_radius > guard))
+    throw RequestError("--camera-r " + shortest(radius_asked) + " is at or inside the horizon (guard r = " +
+                       exact_number(guard) + "); move the camera out");
+  if (!(camera_radius < s.escape_radius)) throw RequestError("--camera-r must be inside --sky-radius");
+  if (!sky_ok)
+    throw RequestError("--sky-radius " + shortest(s.escape_radius) +
+                       " lies beyond a horizon of this metric (no emitter can be at rest there); lower it");
+}
+
+/// Which tracer can draw what (a request the tracers cannot draw is refused here, before any work).
+void check_tracer(const RenderRequest& q) {
+  if (q.tracer == "symmetric")
+    throw RequestError("--tracer symmetric is retired: the planar tracer draws every frame it drew, with a "
+                       "smaller error; use --tracer planar (or auto, which picks it)");
+  if (std::find(kTracerNames.begin(), kTracerNames.end(), q.tracer) == kTracerNames.end())
+    throw RequestError("unknown --tracer '" + q.tracer + "'; choose auto, general or planar");
+  if (q.tracer == "planar" && !planar_tracer_metric(q.metric))
+    throw RequestError("--tracer planar needs a static spherically symmetric metric with a horizon "
+                       "(--metric schwarzschild or rn); use general");
+  if (q.tracer == "planar" && q.method.control == "fixed")
+    throw RequestError("--tracer planar integrates its table in swept angle, where a fixed --step would mean "
+                       "something else; use --control i, pi or doubling, or --tracer general");
+}
+
+}  // namespace
+
+// ---- devices ------------------------------------------------------------------------------------------------
+
+std::optional<std::string> gpu_refusal(const RenderRequest& q) {
+  if (q.method.tableau != kGpuTableau || q.method.control != kGpuControl)
+    return "the GPU traces with --tableau " + std::string(kGpuTableau) + " --control " + std::string(kGpuControl) +
+           " only; use those, or --device cpu for the other methods";
+  if (q.tracer == "planar")
+    return "--tracer planar is the CPU's table tracer (the GPU integrates every pixel); use --tracer general or auto, "
+           "or --device cpu";
+  if (q.metric.name == "minkowski") return "flat space is drawn with straight lines, on the CPU; use --device cpu";
+  const GpuStatus& gpu = gpu_status();
+  if (!gpu.built || !gpu.present) return gpu.why_not + "; use --device cpu";
+  return std::nullopt;
+}
+
+bool cpu_table_tracer_draws(const RenderRequest& q) {
+  return q.tracer == "planar" || (q.tracer == "auto" && planar_tracer_metric(q.metric));
+}
+
+std::string choose_device(std::string_view asked, const RenderRequest& q) {
+  if (asked == "cpu") return "cpu";
+  if (std::find(kDeviceNames.begin(), kDeviceNames.end(), asked) == kDeviceNames.end())
+    throw RequestError("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
+  // Where auto keeps the CPU anyway, the driver is not asked (its start costs a tenth of a second where there is a
+  // GPU, and nothing is gained).
+  if (asked == "auto" && (!kAutoPicksGpu || cpu_table_tracer_draws(q))) return "cpu";
+  const auto refusal = gpu_refusal(q);
+  if (asked == "cuda" && refusal) throw RequestError("--device cuda: " + *refusal);
+  return refusal ? "cpu" : "cuda";
+}
+
+std::string device_name(std::string_view device) { return device == "cuda" ? gpu_status().name : "cpu"; }
+
+#if !defined(GRTRACE_APP_CUDA)
+// A build without the CUDA backend (no CUDA compiler found, or GRTRACE_CUDA=OFF); with it, the backend's own unit
+// (frame_tracers_gpu_exact.cu) asks the driver.
+const GpuStatus& gpu_status() {
+  static const GpuStatus status{false, false, "",
+                                "this build has no CUDA backend (configured without a CUDA compiler, or with "
+                                "-DGRTRACE_CUDA=OFF)"};
+  return status;
+}
+#endif
+
+// ---- the checks ---------------------------------------------------------------------------------------------
+
+CheckedRequest check_request(const RenderRequest& in) {
+  RenderRequest q = in;
+  if (!is_standard_scene(q.scene))
+    throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(kStandardSceneNames));
+  const bool disk = q.scene == "disk";
+  refusal_as_request_error("", [&] { check_metric_spec(q.metric); });
+  const MetricSpec& ms = q.metric;
+  if (ms.name == "minkowski" && disk)
+    throw RequestError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
+
+  check_method(q.method);
+  const TraceSettings settings = settings_of(q);
+  if (!(q.sky_radius > 0.0 && q.sky_radius <= 1e100))
+    throw RequestError("--sky-radius must lie in (0, 1e100] (r^2 must not overflow), got " + shortest(q.sky_radius));
+  // A step longer than the sky's diameter crosses the whole scene in one go: meaningless, not just coarse.
+  if (q.method.step > 2.0 * q.sky_radius)
+    throw RequestError("--step " + shortest(q.method.step) + " is longer than the sky's diameter (2 x --sky-radius = " +
+                       exact_number(2.0 * q.sky_radius) + "); use a step in (0, " + exact_number(2.0 * q.sky_radius) +
+                       "]");
+  const AngleCorrection correction = correction_of(q.angle_correction);
+
+  // The camera: the event (r, theta, phi) in Boyer-Lindquist-like coordinates for every chart.
+  const CameraRequest& c = q.camera;
+  if (!(c.theta_degrees > 0.0 && c.theta_degrees < 180.0))
+    throw RequestError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+  if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
+    throw RequestError("--fov must lie in (0, 180) degrees, got " + shortest(c.fov_degrees));
+  if (!std::isfinite(c.r) || !std::isfinite(c.phi_degrees))
+    throw RequestError("--camera-r and --camera-phi must be finite numbers");
+  q.camera.observer = observer_or_default(q);
+  const auto observer = observer_kind_from_string(q.camera.observer);
+  if (!observer) throw RequestError("unknown --observer '" + q.camera.observer + "'; choose static or zamo");
+  constexpr double deg = std::numbers::pi / 180.0;
+  const Vec4 x_spherical(0.0, c.r, c.theta_degrees * deg, c.phi_degrees * deg);
+  check_camera_radius(ms, c.r, x_spherical, settings);
+  if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
+    throw RequestError("--width and --height must be between 1 and 16384 pixels");
+  {  // the image's memory, before anything is allocated: the channels (+ error channel and double directions with
+     // the error map) and the 8-bit previews
+    const double pixels = static_cast<double>(c.width) * static_cast<double>(c.height);
+    const double channels = static_cast<double>(Image::kStandardChannels.size() + (q.error_map ? 1 : 0));
+    const double bytes = image_bytes(static_cast<double>(c.width), static_cast<double>(c.height), channels) +
+                         pixels * (3.0 + (q.error_map ? 2.0 * sizeof(double) * 2.0 : 0.0));
+    try {
+      check_memory(bytes, "--width " + std::to_string(c.width) + " --height " + std::to_string(c.height));
+    } catch (const MemoryLimitError& e) {
+      throw RequestError(std::string(e.what()) + "; or choose a smaller --width/--height");
+    }
+  }
+  if (q.threads < 0 || q.threads > 1024) throw RequestError("--threads must be 0 (all cores) .. 1024");
+  if (q.table_rays == 0) q.table_rays = grtrace::default_table_rays;
+  if (q.table_rays < 8 || q.table_rays > 1'000'000) throw RequestError("--table-rays must be in 8 .. 1e6");
+
+  CameraSpec spec;
+  spec.position = x_spherical;
+  spec.spherical_position = true;
+  spec.observer = *observer;
+  spec.velocity = c.velocity;
+  spec.look = c.look;
+  spec.up = c.up;
+  spec.width = c.width;
+  spec.height = c.height;
+  spec.fov_degrees = c.fov_degrees;
+  if (!c.velocity.allFinite() || !c.look.allFinite() || !c.up.allFinite())
+    throw RequestError("--velocity, --look and --up must be finite numbers");
+  const Camera camera = refusal_as_request_error(
+      "", [&] { return with_named_metric(ms, [&](const auto& m) { return make_camera(m, spec); }); });
+
+  StandardSceneSpec scene;
+  scene.name = q.scene;
+  // The wormhole's other universe (rays ending at l < 0) gets a sky of its own, seen through the throat.
+  scene.far_side = ms.name == "wormhole";
+  if (q.checker_squares < 1 || q.checker_squares > 10000) throw RequestError("--checker-squares must be in 1 .. 10000");
+  scene.checker_squares = q.checker_squares;
+  if (!q.sky_texture.empty()) {
+    try {
+      const Image img = read_exr(q.sky_texture);
+      if (!img.has_channel("R") || !img.has_channel("G") || !img.has_channel("B"))
+        throw RequestError("--sky-texture '" + q.sky_texture + "' has no R, G, B channels");
+      scene.texture = TextureSky{img.width(), img.height(), img.channel("R"), img.channel("G"), img.channel("B")};
+      check_texture(*scene.texture);  // a NaN texel would make every ray that sees it non_finite
+    } catch (const RequestError&) {
+      throw;
+    } catch (const MemoryLimitError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw RequestError("--sky-texture: " + std::string(e.what()));
+    }
+  }
+  if (disk) {
+    scene.disk = disk_of(q);
+    if (!q.disk_inner) q.disk_inner = scene.disk.r_in;
+    refusal_as_request_error("", [&] {
+      try {
+        with_named_metric(ms, [&](const auto& m) { check_disk_orbits(m, scene.disk); });
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string(e.what()) + " (--disk-inner, --disk-outer)");
+      }
+    });
+  }
+  if (q.error_map && ms.name != "schwarzschild" && ms.name != "minkowski")
+    throw RequestError("--error-map needs --metric schwarzschild or minkowski (the exact elliptic-integral reference)");
+
+  // Which tracer can draw this metric, scene and method, and on which device: auto picks the fastest tracer whose
+  // assumptions hold (trace/auto_tracer.hpp); --device cuda where the GPU cannot draw the request is refused here.
+  check_tracer(q);
+  q.device = choose_device(q.device, q);
+  return CheckedRequest{std::move(q), std::move(scene), settings, correction, camera};
+}
+
+CheckedRequest with_camera(CheckedRequest checked, const Camera& camera) {
+  checked.camera = camera;
+  checked.request.camera.width = camera.width();
+  checked.request.camera.height = camera.height();
+  checked.request.camera.fov_degrees = camera.fov_degrees();
+  return checked;
+}
+
+// ---- the frame ----------------------------------------------------------------------------------------------
+
+std::unique_ptr<FrameRenderer> FrameRenderer::create(const RenderRequest& request) {
+  return create(check_request(request));
+}
+
+std::unique_ptr<FrameRenderer> FrameRenderer::create(const CheckedRequest& checked) {
+  return with_named_metric(checked.request.metric,
+                           [&](const auto& metric) { return make_frame_renderer(checked, metric); });
+}
+
+RenderResult render(const RenderRequest& request, const RenderControl& control) {
+  return FrameRenderer::create(request)->render(control);
+}
+
+RenderOptions render_options(const CheckedRequest& checked, const RenderControl& control) {
+  RenderOptions o;
+  o.threads = checked.request.threads;
+  o.mirror_symmetry = checked.request.mirrors;
+  o.progress = control.bar;
+  o.progress_label = control.label;
+  o.shared_progress = control.shared_bar;
+  o.cancel = control.cancel;
+  o.pixels_done = control.pixels_done;
+  return o;
+}
+
+namespace {
+
+/// The "error" channel (radians; NaN where the ray did not escape; pi where the escaped/captured verdict disagrees
+/// with the exact one) from the frame's double-precision directions, and its summary: every pixel against the
+/// exact elliptic-integral direction from the camera (Schwarzschild and flat space).
+ErrorSummary add_error_channel(const CheckedRequest& checked, Image& image, const std::vector<SkyDirection>& directions) {
+  const Camera& cam = checked.camera;
+  const auto& status = image.channel("status");
+  std::vector<float>& error = image.add_channel("error", std::numeric_limits<float>::quiet_NaN());
+  std::vector<double> exact_error(image.pixel_count(), std::numeric_limits<double>::quiet_NaN());
+  const long n = static_cast<long>(image.pixel_count());
+  const double mass = checked.request.metric.name == "minkowski" ? 0.0 : checked.request.metric.mass;
+  long mismatches = 0;
+#if defined(_OPENMP)
+  const int threads = checked.request.threads > 0 ? checked.request.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : mismatches) num_threads(threads)
+#endif
+  for (long i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const auto s = static_cast<RayStatus>(static_cast<int>(status[k]));
+    if (s != RayStatus::escaped && s != RayStatus::captured) continue;  // hit an object or failed: not judged
+    const int col = static_cast<int>(i % image.width()), row = static_cast<int>(i / image.width());
+    const auto truth = exact::asymptotic_direction(cam.pixel_state(col, row), mass);
+    if ((s == RayStatus::escaped) != truth.has_value()) {
+      ++mismatches;
+      exact_error[k] = std::numbers::pi;
+    } else if (truth) {
+      exact_error[k] = exact::angular_distance(directions[k], *truth);
+    }
+    error[k] = static_cast<float>(exact_error[k]);
+  }
+  ErrorSummary summary;
+  summary.max = summary.median = std::numeric_limits<double>::quiet_NaN();
+  summary.mismatches = mismatches;
+  std::vector<double> judged;
+  for (const double e : exact_error)
+    if (!std::isnan(e)) judged.push_back(e);
+  summary.judged = static_cast<long>(judged.size());
+  if (!judged.empty()) {
+    const auto mid = judged.begin() + static_cast<std::ptrdiff_t>(judged.size() / 2);
+    std::nth_element(judged.begin(), mid, judged.end());
+    summary.median = *mid;
+    summary.max = *std::max_element(judged.begin(), judged.end());
+  }
+  return summary;
+}
+
+/// What the header records of a report (for users: the tools and the Python module read the typed report).
+void record_report(Image& image, const RenderReport& r) {
+  auto& m = image.metadata;
+  m["tracer"] = r.tracer;
+  m["device"] = r.device;
+  if (r.gpu_trace_seconds) m["gpu_trace_seconds"] = exact_number(*r.gpu_trace_seconds);
+  if (r.gpu_seconds) m["gpu_seconds"] = exact_number(*r.gpu_seconds);
+  if (!r.sky_continuation.empty()) m["sky_continuation"] = r.sky_continuation;
+  if (r.continuation_error) {
+    m["sky_continuation_error"] = exact_number(r.continuation_error->error);
+    m["sky_continuation_impact"] = exact_number(r.continuation_error->impact);
+    m["sky_radius_for_rtol"] = exact_number(r.continuation_error->sky_radius_for_rtol);
+  }
+  m["mirrors"] = r.mirrors;
+  if (r.error) {
+    m["error_max"] = exact_number(r.error->max);
+    m["error_median"] = exact_number(r.error->median);
+    m["error_mismatches"] = std::to_string(r.error->mismatches);
+  }
+  record_render_stats(image, r.stats);
+}
+
+}  // namespace
+
+RenderResult finish_render(const CheckedRequest& checked, Frame&& frame, const FrameFacts& facts, double setup_seconds,
+                           const std::vector<SkyDirection>& directions) {
+  RenderResult result{std::move(frame.image), {}};
+  RenderReport& r = result.report;
+  r.stats = frame.stats;
+  // The table (planar tracer) is part of the frame's cost: the whole thing is timed.
+  r.setup_seconds = setup_seconds;
+  r.seconds = setup_seconds + facts.trace_seconds;
+  r.stats.seconds = r.seconds;
+  r.rays_per_second = r.seconds > 0.0 ? static_cast<double>(r.stats.rays) / r.seconds : 0.0;
+  r.stats.rays_per_second = r.rays_per_second;
+  r.tracer = facts.tracer.name;
+  r.table_rays = facts.tracer.table_rays;
+  r.table_steps = facts.tracer.table_steps;
+  r.fallback_rays = facts.tracer.fallback_rays;
+  const bool tabulated = r.tracer == "planar";
+  r.mean_steps = tabulated && r.stats.rays > 0
+                     ? static_cast<double>(r.table_steps) / static_cast<double>(r.stats.rays)
+                     : r.stats.mean_steps;
+  r.device = device_name(facts.device);
+  r.gpu_trace_seconds = facts.gpu_trace_seconds;
+  r.gpu_seconds = facts.gpu_seconds;
+  r.mirrors = facts.mirrors;
+  r.sky_continuation = facts.tracer.sky_continuation;
+  r.continuation_error = facts.continuation_error;
+  // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
+  if (checked.request.error_map) r.error = add_error_channel(checked, result.image, directions);
+  describe_request(result.image, checked);
+  record_report(result.image, r);
+  return result;
+}
+
+void describe_request(Image& image, const CheckedRequest& checked) {
+  const RenderRequest& q = checked.request;
+  auto& m = image.metadata;
+  m["scene"] = q.scene;
+  m["metric"] = q.metric.name;
+  m["mass"] = exact_number(named_metric_has_mass(q.metric.name) ? q.metric.mass : 0.0);
+  for (const auto& [option, value] : metric_parameter_values(q.metric)) m[std::string(option)] = exact_number(value);
+  if (q.metric.name == "kerr") {
+    m["chart"] = q.metric.chart;
+    if (q.metric.chart == "ks")
+      m["kerr_schild_slicing"] = q.metric.slicing == KerrSchildSlicing::ingoing ? "ingoing" : "outgoing";
+  }
+  m["observer"] = q.camera.observer;
+  if (q.scene == "disk") {
+    m["disk_sense"] = q.disk_retrograde ? "retrograde" : "prograde";
+    m["disk_inner"] = exact_number(checked.scene.disk.r_in);
+    m["disk_outer"] = exact_number(checked.scene.disk.r_out);
+  }
+  m["tableau"] = q.method.tableau;
+  m["control"] = q.method.control;
+  m["rtol"] = exact_number(q.method.rtol);
+  m["atol"] = exact_number(q.method.atol);
+  m["max_steps"] = std::to_string(q.method.max_steps);
+  m["sky_radius"] = exact_number(q.sky_radius);
+  m["angle_correction"] = q.angle_correction;
+}
+
+std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequest& checked) {
+  const RenderRequest& q = checked.request;
+  std::vector<ReportEntry> e;
+  const auto add = [&e](std::string key, auto value) { e.push_back({std::move(key), value}); };
+  add("width", static_cast<long>(r.stats.width));
+  add("height", static_cast<long>(r.stats.height));
+  add("seconds", r.seconds);
+  add("rays_per_second", r.rays_per_second);
+  add("mean_steps", r.mean_steps);
+  ReportEntry::Counts counts;
+  for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.emplace_back(std::string(kRayStatusNames[i]), r.stats.status_counts[i]);
+  add("status_counts", counts);
+  add("tracer", r.tracer);
+  add("tableau", q.method.tableau);
+  add("control", q.method.control);
+  add("device", r.device);
+  if (r.gpu_trace_seconds) add("gpu_trace_seconds", *r.gpu_trace_seconds);  // the kernel's share of "seconds"
+  if (r.gpu_seconds) add("gpu_seconds", *r.gpu_seconds);                    // and the GPU's whole share
+  add("sky_continuation", r.sky_continuation);
+  if (r.continuation_error) {  // a flat continuation's estimated error
+    add("sky_continuation_error", r.continuation_error->error);
+    add("sky_radius_for_rtol", r.continuation_error->sky_radius_for_rtol);
+  }
+  add("rtol", q.method.rtol);
+  add("atol", q.method.atol);
+  add("threads", static_cast<long>(r.stats.threads));
+  add("traced_rays", r.stats.traced_rays);
+  add("mirrors", r.mirrors);
+  if (r.error) {
+    add("max_error", r.error->max);
+    add("median_error", r.error->median);
+    add("error_pixels", r.error->judged);
+    add("error_mismatches", r.error->mismatches);
+  }
+  if (r.tracer == "planar") {
+    add("table_rays", r.table_rays);
+    add("table_steps", r.table_steps);
+    add("fallback_rays", r.fallback_rays);
+  }
+  return e;
+}
+
+FlightStats render_flight(const CheckedRequest& checked, const std::vector<Camera>& cameras, const FlightSkip& skip,
+                          const FlightSink& sink, const RenderControl& control) {
+  RenderOptions options = render_options(checked, control);
+  return render_frames(
+      cameras,
+      [&](const Camera& camera, const RenderOptions& o) {
+        RenderControl c = control;
+        c.shared_bar = o.shared_progress;
+        return FrameRenderer::create(with_camera(checked, camera))->render(c);
+      },
+      [](const RenderResult& r) -> const RenderStats& { return r.report.stats; }, skip,
+      [&](int i, RenderResult&& r) { sink(i, std::move(r)); }, options);
+}
+
+}  // namespace grtrace::app

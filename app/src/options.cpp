@@ -1,0 +1,249 @@
+// A render request by option names (grtrace/app/front_door.hpp): the options' table (names, defaults, help) that
+// grtrace-render's --help lists and the Python module's keywords follow, and the reading of their texts, so that a
+// command line, a scene file, a frame's header and Python keywords are read by one piece of code.
+#include "grtrace/app/front_door.hpp"
+
+#include "grtrace/core/number_text.hpp"
+#include "grtrace/trace/critical_angle_grid.hpp"
+
+#include <algorithm>
+#include <deque>
+#include <stdexcept>
+#include <string>
+
+namespace grtrace::app {
+
+namespace {
+
+/// The texts the table points at that are built at run time (the metric list, the methods), kept for the process.
+std::deque<std::string>& built_texts() {
+  static std::deque<std::string> texts;
+  return texts;
+}
+std::string_view keep(std::string text) { return built_texts().emplace_back(std::move(text)); }
+
+std::vector<OptionInfo> make_render_options() {
+  std::vector<OptionInfo> o;
+  o.push_back({"scene", "checker", "checker | sky | redshift | disk"});
+  std::string metrics;
+  for_each_named_metric([&]<class E>() { metrics += (metrics.empty() ? "" : " | ") + std::string(E::help); });
+  o.push_back({"metric", kMetricNames[0], keep(metrics)});
+  o.push_back({"mass", "1", "black-hole mass M (G = c = 1)"});
+  for (const NamedMetricParameter& p : named_metric_parameters())
+    o.push_back({p.parameter.option, p.parameter.default_text, p.parameter.help});
+  o.push_back({"chart", "bl",
+               "kerr: bl (Boyer-Lindquist) | ks (Kerr-Schild, horizon-penetrating); the camera is placed in "
+               "Boyer-Lindquist coordinates for both"});
+  o.push_back({"camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)"});
+  o.push_back({"camera-theta", "90",
+               "camera polar angle theta in degrees, strictly between 0 and 180 (90: the equatorial plane)"});
+  o.push_back({"camera-phi", "0", "camera azimuth phi in degrees"});
+  o.push_back({"observer", "static",
+               "static | zamo: the observer whose frame carries the camera (same for a non-rotating hole); "
+               "--metric kerr defaults to zamo (valid in the ergosphere)"});
+  o.push_back({"velocity", "0,0,0", "camera 3-velocity beta_r,beta_theta,beta_phi (fraction of c, observer's frame)"});
+  o.push_back({"look", "-1,0,0", "look direction r,theta,phi in the observer's frame (-1,0,0: at the hole)"});
+  o.push_back({"up", "0,-1,0", "up direction r,theta,phi in the observer's frame (0,-1,0: the north pole)"});
+  o.push_back({"fov", "90", "horizontal field of view in degrees, in (0, 180)"});
+  o.push_back({"width", "1024", "image width in pixels"});
+  o.push_back({"height", "1024", "image height in pixels"});
+  o.push_back({"tableau", "rkf78",
+               keep("Runge-Kutta tableau: " + tool_tableau_names() + ". With --control, one of the offered methods: " +
+                    tool_methods_list() + " (every pair: grtrace-work-precision, grtrace-geodesic)")});
+  o.push_back({"control", "i", keep("step control: " + tool_control_names() + " (see --tableau for the pairs)")});
+  o.push_back({"step", "0", "initial step (0 = automatic), or the step of --control fixed"});
+  o.push_back({"rtol", "1e-9", "relative tolerance"});
+  o.push_back({"atol", "1e-11", "absolute tolerance"});
+  o.push_back({"sky-radius", "400", "radius of the sky sphere where rays are taken as escaped"});
+  o.push_back({"angle-correction", "exact", "escaped rays: none | flat (seed eq. 7-8) | exact (bending to infinity)"});
+  o.push_back({"max-steps", "100000", "step budget per ray"});
+  o.push_back({"tracer", "auto",
+               "auto | general | planar. planar: one table of rays for the frame, every scene of a Schwarzschild "
+               "hole, disk included (auto's choice there with an adaptive --control); general: every pixel "
+               "integrated (any metric). auto picks kerr-mino for --metric kerr --chart bl with an adaptive "
+               "--control: every pixel on Kerr's separated equations in Mino time, 3x cheaper per ray than general"});
+  o.push_back({"device", "auto",
+               "auto | cpu | cuda. cuda: rays traced on the GPU (a build with the CUDA backend and a CUDA device; "
+               "--tableau rkf78 --control i; every pixel integrated: --tracer general, or auto = kerr-mino for "
+               "--metric kerr --chart bl, general otherwise); auto: the GPU where it can draw the request and a "
+               "device is present, except where the CPU's table tracer draws it (Schwarzschild and "
+               "Reissner-Nordstrom with --tracer auto), else the CPU. The report and the EXR header (device) name "
+               "the device that ran"});
+  o.push_back({"table-rays", keep(std::to_string(grtrace::default_table_rays)),
+               "planar tracer: table rays on each side of the critical angle"});
+  o.push_back({"sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes"});
+  o.push_back({"checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)"});
+  o.push_back({"disk-inner", "6",
+               "disk inner radius (disk scene); kerr: default and lower bound the ISCO of the disk's sense (BPT "
+               "1972), e.g. 2.32 for a = 0.9 prograde"});
+  o.push_back({"disk-outer", "20", "disk outer radius (disk scene)"});
+  o.push_back({"disk-retrograde", "",
+               "disk scene: the gas turns against the hole's rotation (default: with it; towards +phi for a "
+               "non-rotating hole)",
+               true});
+  o.push_back({"threads", "0", "OpenMP threads (0 = all cores)"});
+  o.push_back({"error-map", "",
+               "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
+               "elliptic-integral direction from the camera (Schwarzschild/flat only); report max_error/median_error",
+               true});
+  o.push_back({"no-mirrors", "",
+               "trace every pixel: by default a frame that is mirror symmetric (camera on the equator looking along "
+               "its axes; no metric rotation or orbiting disk for the left-right mirror) traces half or a quarter of "
+               "its pixels and reflects the rest (report traced_rays, EXR header mirrors)",
+               true});
+  return o;
+}
+
+/// The option's effective text: the source's, else the table's default.
+std::string text_of(const OptionSource& s, const std::string& name) {
+  if (auto t = s.text(name)) return *t;
+  for (const OptionInfo& o : render_options())
+    if (o.name == name) return std::string(o.default_text);
+  throw std::logic_error("grtrace_app: option --" + name + " is not a render option");
+}
+
+template <class F>
+auto as_request_error(F&& f) {
+  try {
+    return f();
+  } catch (const RequestError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(e.what());
+  }
+}
+
+/// An option given where it means nothing (a spin without Kerr, a disk's radius without the disk) is refused
+/// instead of ignored silently.
+void refuse_unless(const OptionSource& s, const std::string& option, bool applies, const std::string& needs) {
+  if (!applies && s.given(option))
+    throw RequestError("--" + option + " applies only with " + needs +
+                       ", which this command does not have; leave it out or add " + needs);
+}
+
+/// A whole number in [lo, hi], or `message`.
+int integer_in(const OptionSource& s, const std::string& name, long lo, long hi, const std::string& message) {
+  const long v = option_integer(s, name);
+  if (v < lo || v > hi) throw RequestError(message);
+  return static_cast<int>(v);
+}
+
+Vec3 triple(const OptionSource& s, const std::string& name) {
+  const std::vector<double> v = option_numbers(s, name, 3);
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+const std::vector<OptionInfo>& render_options() {
+  static const std::vector<OptionInfo> table = make_render_options();
+  return table;
+}
+
+double option_number(const OptionSource& s, const std::string& name) {
+  return as_request_error([&] { return grtrace::option_number(name, text_of(s, name), s.origin(name)); });
+}
+
+long option_integer(const OptionSource& s, const std::string& name) {
+  return as_request_error([&] { return grtrace::option_integer(name, text_of(s, name), s.origin(name)); });
+}
+
+std::vector<double> option_numbers(const OptionSource& s, const std::string& name, std::size_t count) {
+  return as_request_error([&] { return grtrace::option_numbers(name, text_of(s, name), count); });
+}
+
+MetricSpec read_metric(const OptionSource& s, const std::vector<std::string>& offered) {
+  MetricSpec ms;
+  ms.name = text_of(s, "metric");
+  if (std::find(offered.begin(), offered.end(), ms.name) == offered.end())
+    throw RequestError("--metric must be " + choice_list(offered) + ", got '" + ms.name + "'");
+  ms.mass = option_number(s, "mass");
+  ms.chart = text_of(s, "chart");
+  if (ms.chart.empty()) ms.chart = "bl";
+  for (const NamedMetricParameter& p : named_metric_parameters()) {
+    if (std::find(offered.begin(), offered.end(), p.metric) == offered.end()) continue;
+    const std::string option(p.parameter.option);
+    refuse_unless(s, option, ms.name == p.metric, "--metric " + std::string(p.metric));
+    if (ms.name == p.metric) ms.*p.parameter.field = option_number(s, option);
+  }
+  as_request_error([&] { check_metric_spec(ms); });
+  return ms;
+}
+
+CameraRequest read_camera(const OptionSource& s) {
+  CameraRequest c;
+  c.r = option_number(s, "camera-r");
+  c.theta_degrees = option_number(s, "camera-theta");
+  c.phi_degrees = option_number(s, "camera-phi");
+  if (!(c.theta_degrees > 0.0 && c.theta_degrees < 180.0))
+    throw RequestError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+  c.fov_degrees = option_number(s, "fov");
+  if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
+    throw RequestError("--fov must lie in (0, 180) degrees, got " + text_of(s, "fov"));
+  if (s.given("observer")) c.observer = text_of(s, "observer");
+  if (!c.observer.empty() && c.observer != "static" && c.observer != "zamo")
+    throw RequestError("unknown --observer '" + c.observer + "'; choose static or zamo");
+  c.velocity = triple(s, "velocity");
+  c.look = triple(s, "look");
+  c.up = triple(s, "up");
+  return c;
+}
+
+MethodRequest read_method(const OptionSource& s, const std::string& prefix) {
+  MethodRequest m;
+  m.tableau = text_of(s, prefix + "tableau");
+  m.control = text_of(s, prefix + "control");
+  as_request_error([&] {
+    try {
+      check_tool_method(m.tableau, m.control);
+    } catch (const std::invalid_argument& e) {
+      throw RequestError("--" + prefix + "tableau / --" + prefix + "control: " + e.what());
+    }
+  });
+  m.rtol = option_number(s, prefix + "rtol");
+  m.atol = option_number(s, prefix + "atol");
+  if (!(m.rtol > 0.0 && m.rtol < 1.0))
+    throw RequestError("--" + prefix + "rtol must lie in (0, 1) (a relative error; e.g. 1e-9), got " +
+                       text_of(s, prefix + "rtol"));
+  if (!(m.atol >= 0.0 && m.atol < 1.0))
+    throw RequestError("--" + prefix + "atol must lie in [0, 1) (e.g. 1e-11), got " + text_of(s, prefix + "atol"));
+  m.step = option_number(s, prefix + "step");
+  if (m.step < 0.0) throw RequestError("--" + prefix + "step must be >= 0");
+  if (m.control == "fixed" && m.step <= 0.0)
+    throw RequestError("--" + prefix + "control fixed needs a step: add --" + prefix + "step H > 0");
+  return m;
+}
+
+RenderRequest read_render_request(const OptionSource& s) {
+  RenderRequest q;
+  q.scene = text_of(s, "scene");
+  if (!is_standard_scene(q.scene))
+    throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(kStandardSceneNames));
+  const bool disk = q.scene == "disk";
+  q.metric = read_metric(s, {kMetricNames.begin(), kMetricNames.end()});
+  refuse_unless(s, "disk-inner", disk, "--scene disk");
+  refuse_unless(s, "disk-outer", disk, "--scene disk");
+  refuse_unless(s, "disk-retrograde", disk, "--scene disk");
+  q.method = read_method(s, "");
+  q.method.max_steps = integer_in(s, "max-steps", 1, 100'000'000, "--max-steps must be in 1 .. 1e8");
+  q.sky_radius = option_number(s, "sky-radius");
+  q.angle_correction = text_of(s, "angle-correction");
+  q.camera = read_camera(s);
+  q.camera.width = static_cast<int>(
+      std::clamp(option_integer(s, "width"), -1L, 1L << 20));  // range checked with the height, by check_request
+  q.camera.height = static_cast<int>(std::clamp(option_integer(s, "height"), -1L, 1L << 20));
+  q.threads = integer_in(s, "threads", 0, 1024, "--threads must be 0 (all cores) .. 1024");
+  q.table_rays = integer_in(s, "table-rays", 8, 1'000'000, "--table-rays must be in 8 .. 1e6");
+  q.tracer = text_of(s, "tracer");
+  q.checker_squares = integer_in(s, "checker-squares", 1, 10000, "--checker-squares must be in 1 .. 10000");
+  q.sky_texture = text_of(s, "sky-texture");
+  if (s.given("disk-inner")) q.disk_inner = option_number(s, "disk-inner");
+  q.disk_outer = option_number(s, "disk-outer");
+  q.disk_retrograde = s.given("disk-retrograde");
+  q.error_map = s.given("error-map");
+  q.mirrors = !s.given("no-mirrors");
+  q.device = text_of(s, "device");
+  return q;
+}
+
+}  // namespace grtrace::app

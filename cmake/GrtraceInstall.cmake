@@ -6,6 +6,8 @@
 #   <prefix>/<libdir>/cmake/grtrace/grtraceTargets.cmake       grtrace::grtrace (Eigen3 + GLM only)
 #   <prefix>/<libdir>/cmake/grtrace/grtraceRenderTargets.cmake grtrace::render  (+ OpenMP, OpenEXR, libpng, libdeflate), if built
 #   <prefix>/<libdir>/cmake/grtrace/grtraceVizTargets.cmake    grtrace::viz     (compiled, VTK), if built
+#   <prefix>/<libdir>/cmake/grtrace/grtraceAppTargets.cmake    grtrace::app     (the compiled application library:
+#                                                              the tools' front door; + grtrace::render), if built
 #   <prefix>/<libdir>/cmake/grtrace/grtraceTestingTargets.cmake grtrace::testing (+ GTest), if GTest was found
 #
 # Each optional target lives in its own export set, so the package config loads it (and looks for its
@@ -78,6 +80,23 @@ if(TARGET grtrace_viz)
   set(GRTRACE_EXPORTED_VIZ ON)
 endif()
 
+# ---- grtrace::app (the compiled application library: grtrace/app/front_door.hpp) ------------------------------
+# Its headers are installed by app/CMakeLists.txt (component app); its two static libraries and the target that
+# links both here. A build with the CUDA backend links CUDA's static runtime: the consumer then needs the toolkit's
+# CMake package too (CUDA::cudart_static).
+set(GRTRACE_EXPORTED_APP OFF)
+if(TARGET grtrace_app)
+  install(TARGETS grtrace_app_frames grtrace_app_rays grtrace_app EXPORT grtraceAppTargets
+          ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT app
+          INCLUDES DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+  install(EXPORT grtraceAppTargets
+          NAMESPACE grtrace::
+          DESTINATION "${GRTRACE_INSTALL_CMAKEDIR}"
+          COMPONENT app)
+  set(GRTRACE_EXPORTED_APP ON)
+endif()
+set(GRTRACE_APP_NEEDS_CUDA ${GRTRACE_HAVE_CUDA})
+
 # ---- package config + version --------------------------------------------------------------------------
 configure_package_config_file(
   "${PROJECT_SOURCE_DIR}/cmake/grtraceConfig.cmake.in"
@@ -85,8 +104,8 @@ configure_package_config_file(
   INSTALL_DESTINATION "${GRTRACE_INSTALL_CMAKEDIR}"
   PATH_VARS CMAKE_INSTALL_INCLUDEDIR)
 
-# Header-only unless the compiled viz library is part of the package.
-if(GRTRACE_EXPORTED_VIZ)
+# Header-only unless a compiled library (viz, app) is part of the package.
+if(GRTRACE_EXPORTED_VIZ OR GRTRACE_EXPORTED_APP)
   set(_grtrace_arch_independent "")
 else()
   set(_grtrace_arch_independent ARCH_INDEPENDENT)

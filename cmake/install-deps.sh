@@ -16,6 +16,9 @@ packages=(
   nlohmann-json3-dev                  # tools only: JSON output
   ffmpeg                              # grtrace-render --mp4: camera flights assembled into a video
   ccache                              # builds: a rebuild after a touch, branch switch or undone edit reuses objects
+  python3-dev pybind11-dev python3-numpy   # the Python module (python/): Debian's python3 and its headers
+  python3-pytest                      # the Python module's tests
+  python3-scipy python3-matplotlib python3-nbclient python3-ipykernel python3-nbformat  # its notebook, run by the tests
 )
 # Optional, not part of CI: GRTRACE_FUZZ=1 also installs AFL++ for the fuzz targets in tests/fuzz/.
 if [ "${GRTRACE_FUZZ:-0}" = 1 ]; then

@@ -8,6 +8,7 @@
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/observer/observers.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/scene/thin_disk.hpp"
@@ -22,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -50,9 +52,22 @@ decltype(auto) refusal_as_request_error(const std::string& prefix, F&& f) {
   }
 }
 
-/// The named metrics the planar table tracer draws: static, spherically symmetric, with a horizon (Reissner-Nordstrom's
-/// |Q| < M, check_metric_spec, always gives it one).
-bool planar_tracer_metric(const MetricSpec& metric) { return metric.name == "schwarzschild" || metric.name == "rn"; }
+/// The named metrics the planar table tracer draws (trace/auto_tracer.hpp): static and spherically symmetric
+/// (StaticSphericalMetric), with a horizon (Reissner-Nordstrom's |Q| < M, check_metric_spec, always gives it one).
+/// Asked of the metric's type, so a metric added to the named metrics gets the table where it applies.
+bool planar_tracer_metric(const MetricSpec& metric) {
+  if (!is_named_metric(metric.name)) return false;
+  return with_named_metric(metric, [](const auto& m) {
+    if constexpr (StaticSphericalMetric<std::remove_cvref_t<decltype(m)>>) return m.horizon_radius() > 0.0;
+    else return false;
+  });
+}
+
+/// Flat space is drawn with straight lines (FlatMetric, metric/metric_traits.hpp), never integrated.
+bool flat_metric(const MetricSpec& metric) {
+  if (!is_named_metric(metric.name)) return false;
+  return with_named_metric(metric, [](const auto& m) { return FlatMetric<std::remove_cvref_t<decltype(m)>>; });
+}
 
 /// The observer's name a request gets when it names none: the ZAMO for Kerr (it exists everywhere outside the
 /// horizon, the static observer not inside the ergosphere), the static observer otherwise.
@@ -162,7 +177,7 @@ std::optional<std::string> gpu_refusal(const RenderRequest& q) {
   if (q.tracer == "planar")
     return "--tracer planar is the CPU's table tracer (the GPU integrates every pixel); use --tracer general or auto, "
            "or --device cpu";
-  if (q.metric.name == "minkowski") return "flat space is drawn with straight lines, on the CPU; use --device cpu";
+  if (flat_metric(q.metric)) return "flat space is drawn with straight lines, on the CPU; use --device cpu";
   const GpuStatus& gpu = gpu_status();
   if (!gpu.built || !gpu.present) return gpu.why_not + "; use --device cpu";
   return std::nullopt;

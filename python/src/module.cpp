@@ -336,8 +336,7 @@ py::dict trace_ray(const py::object& pixel, const py::object& position, const py
   o["redshift"] = outcome.redshift;
   o["steps"] = outcome.steps;
   d["outcome"] = o;
-  d["chart"] = checked.request.metric.name == "kerr" && checked.request.metric.chart == "ks" ? "cartesian"
-                                                                                            : "spherical";
+  d["chart"] = ray.cartesian ? "cartesian" : "spherical";
   return d;
 }
 

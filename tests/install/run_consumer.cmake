@@ -4,6 +4,7 @@
 #   3. configure + build consumer/ against it with find_package(grtrace CONFIG REQUIRED)
 #   4. run the consumer (non-zero exit = a failed check)
 #   5. run grtrace_consumer_kit (the testing component's GoogleTest suite) when the consumer built it
+#   6. run grtrace_consumer_app (a program on the app component, the application library) when it built it
 # Inputs (-D): GRTRACE_BUILD_DIR GRTRACE_CONFIG GRTRACE_VERSION WORK_DIR CONSUMER_SOURCE_DIR
 #              CONSUMER_GENERATOR CONSUMER_CXX_COMPILER
 cmake_minimum_required(VERSION 3.25)
@@ -95,4 +96,10 @@ get_filename_component(_exe_dir "${_exe}" DIRECTORY)
 if(EXISTS "${_exe_dir}/grtrace_consumer_kit")
   run_step("run consumer kit suite" "${_exe_dir}/grtrace_consumer_kit" --gtest_brief=1)
   message(STATUS "install test: kit suite says:\n${step_output}")
+endif()
+
+# 6. the app component's consumer (a program on the application library's front door), when it was built
+if(EXISTS "${_exe_dir}/grtrace_consumer_app")
+  run_step("run consumer app" "${_exe_dir}/grtrace_consumer_app")
+  message(STATUS "install test: app consumer says:\n${step_output}")
 endif()

@@ -240,6 +240,7 @@ struct TracedRay {
   TracedPath path;
   RayOutcome outcome;
   std::string object;  ///< the scene's name of outcome.object ("sky", "horizon", "disk", ...); "" for a failed ray
+  bool cartesian = false;  ///< the metric's chart is Cartesian (t, x, y, z), else spherical (t, r, theta, phi)
 };
 
 /// Single rays in a checked request's metric, scene and method: the paths grtrace-view draws and grtrace.trace_ray

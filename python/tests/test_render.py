@@ -1,0 +1,239 @@
+"""grtrace.render against grtrace-render: the same request gives the same channels, bit for bit; the same bad request
+the same refusal (ValueError with the tool's message); renders in threads, in loops and interrupted behave."""
+
+import gc
+import json
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import grtrace
+
+from conftest import command_line
+
+KERR_DISK = dict(metric="kerr", spin=0.9, scene="disk", camera_r=50, camera_theta=80, fov=30, width=96, height=64)
+MAIN_FRAME = dict(width=80, height=60)  # the seed's main frame, small: the planar tracer, mirrors
+WORMHOLE = dict(metric="wormhole", throat=1.5, scene="checker", camera_r=-8, width=48, height=40, tracer="general")
+
+
+def bits(a):
+    """The array's bits (NaN payloads included), for comparisons bit for bit."""
+    return np.ascontiguousarray(a).view(np.uint32)
+
+
+@pytest.mark.parametrize("options", [KERR_DISK, MAIN_FRAME, WORMHOLE], ids=["kerr-disk", "main-frame", "wormhole"])
+def test_channels_equal_the_tools_exr_bit_for_bit(options, run_tool):
+    frame = grtrace.render(**options)
+    code, out, err, exr = run_tool(options)
+    assert code == 0, err
+    tool = grtrace.read_exr(str(exr))
+    assert frame.channel_names == tool.channel_names
+    for name in frame.channel_names:
+        assert np.array_equal(bits(frame[name]), bits(tool[name])), name
+    # The report is the tool's JSON line's: the same keys' values (but the times).
+    line = json.loads(out.strip().splitlines()[-1])
+    report = frame.report
+    for key in ("width", "height", "status_counts", "tracer", "tableau", "control", "device", "mirrors",
+                "traced_rays", "rtol", "atol", "sky_continuation"):
+        assert report[key] == line[key], key
+    assert set(line) - {"out", "png"} <= set(report)
+    # The header records the same request.
+    for key in ("metric", "scene", "mass", "tableau", "rtol", "camera_position", "tetrad_e1", "tracer", "observer"):
+        assert frame.header[key] == tool.header[key], key
+
+
+def test_channels_are_views_of_the_frames_memory():
+    frame = grtrace.render(**MAIN_FRAME)
+    a = frame["redshift"]
+    assert a.shape == (60, 80) and a.dtype == np.float32
+    assert a.base is not None and not a.flags["OWNDATA"]
+    b = frame.channel("redshift")
+    assert a.__array_interface__["data"][0] == b.__array_interface__["data"][0]  # the same buffer, twice
+    del frame
+    gc.collect()
+    assert np.isfinite(a[0, 0]) or np.isnan(a[0, 0])  # the array keeps the frame alive
+    assert sorted(grtrace.render(**MAIN_FRAME).channels) == sorted(
+        ["R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"])
+
+
+# Each bad argument kind, as a keyword and as the tool's command line: the same refusal, word for word.
+BAD = [
+    dict(metric="teapot"),
+    dict(spin=0.5),
+    dict(metric="kerr", spin=1.2),
+    dict(camera_r=1.5),
+    dict(camera_r=500),
+    dict(camera_theta=0),
+    dict(fov=180),
+    dict(fov="wide"),
+    dict(camera_phi=float("inf")),
+    dict(look=(1, 0)),
+    dict(up=(1, 0, 0), look=(1, 0, 0), width=8, height=8),
+    dict(width=0),
+    dict(height=20000),
+    dict(rtol=2),
+    dict(atol=-1),
+    dict(tableau="rkf45"),
+    dict(tableau="dopri5", control="i"),
+    dict(control="fixed", tableau="rk4"),
+    dict(tracer="planar", metric="kerr"),
+    dict(tracer="teapot"),
+    dict(device="tpu"),
+    dict(scene="teapot"),
+    dict(disk_outer=30),
+    dict(scene="disk", metric="kerr", spin=0.9, disk_inner=1.5),
+    dict(scene="disk", metric="minkowski"),
+    dict(threads=-1),
+    dict(table_rays=3),
+    dict(max_steps=0),
+    dict(sky_radius=1e200),
+    dict(angle_correction="some"),
+    dict(observer="moving"),
+    dict(metric="schwarzschild", chart="ks"),
+    dict(error_map=True, metric="kerr"),
+    dict(sky_texture="/nonexistent/texture.exr", scene="sky"),
+]
+
+
+@pytest.mark.parametrize("options", BAD, ids=[repr(b) for b in BAD])
+def test_bad_arguments_raise_value_error_with_the_tools_message(options, run_tool):
+    with pytest.raises(ValueError) as raised:
+        grtrace.render(**options)
+    code, out, err, exr = run_tool(options)
+    assert code == 2, (out, err)
+    assert not exr.exists()
+    tool_message = err.strip().splitlines()[-1].removeprefix("grtrace-render: error: ")
+    assert str(raised.value) == tool_message
+
+
+def test_python_only_mistakes_raise_value_error_too():
+    for options, says in [
+        (dict(camera_radius=20), "unknown option 'camera_radius'"),
+        (dict(look="sideways"), "--look expects a number"),
+        (dict(look=[1, "a", 0]), "look expects numbers"),
+        (dict(no_mirrors="yes"), "no_mirrors is a flag"),
+        (dict(width=object()), "width expects a number"),
+    ]:
+        with pytest.raises(ValueError, match=says.replace("(", r"\(")):
+            grtrace.render(**options)
+    with pytest.raises(ValueError, match="progress must be"):
+        grtrace.render(progress="yes", **MAIN_FRAME)
+    with pytest.raises(ValueError, match="pixel .* is outside"):
+        grtrace.trace_ray(pixel=(80, 0), **MAIN_FRAME)
+
+
+def test_lambda_is_spelt_lambda_underscore():
+    frame = grtrace.render(metric="sds", lambda_=1.5e-5, width=16, height=12)
+    assert float(frame.header["lambda"]) == 1.5e-5
+    with pytest.raises(ValueError, match="--lambda must lie in"):
+        grtrace.render(metric="sds", lambda_=1.0, width=8, height=8)
+
+
+def test_progress_reaches_every_pixel():
+    seen = []
+    frame = grtrace.render(progress=lambda done, total: seen.append((done, total)), **KERR_DISK)
+    assert seen, "the callback was never called"
+    assert all(t == 96 * 64 for _, t in seen)
+    assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+    assert seen[-1][0] == 96 * 64
+    assert frame.report["status_counts"]["hit"] > 0
+
+
+def test_an_exception_in_the_progress_callback_stops_the_render():
+    def fail(done, total):
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        grtrace.render(progress=fail, **dict(KERR_DISK, width=512, height=512, tracer="general"))
+
+
+def thread_count():
+    return len(os.listdir("/proc/self/task"))
+
+
+def test_ctrl_c_stops_a_render_within_a_fifth_of_a_second_and_leaves_nothing_behind(tmp_path):
+    before = thread_count()
+    grtrace.render(**dict(KERR_DISK, width=8, height=8))  # the OpenMP runtime's first start, outside the timing
+    fired = []
+
+    def interrupt():
+        fired.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    # A frame of several seconds on two cores (every pixel integrated).
+    big = dict(KERR_DISK, width=1024, height=1024, tracer="general")
+    timer = threading.Timer(0.5, interrupt)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        grtrace.render(**big)
+    stopped = time.monotonic()
+    timer.join()
+    assert fired, "the render ended before the interrupt"
+    assert stopped - fired[0] <= 0.2
+    # Nothing left behind: the render's threads are gone, no file was written, and the next render works.
+    deadline = time.monotonic() + 2.0
+    while thread_count() > before + 1 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert thread_count() <= before + 1  # (pytest's timer thread may linger a moment)
+    assert list(tmp_path.iterdir()) == []
+    assert grtrace.render(**dict(KERR_DISK, width=16, height=16)).report["width"] == 16
+
+
+def test_the_gil_is_released_while_tracing():
+    ticks = []
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    try:
+        grtrace.render(**dict(KERR_DISK, width=256, height=256, tracer="general"))
+    finally:
+        stop.set()
+        counter.join()
+    assert len(ticks) > 20  # the other thread ran while the frame was traced
+
+
+def test_two_threads_rendering_at_once_give_the_arrays_of_one():
+    alone = grtrace.render(**KERR_DISK)
+    results = [None, None]
+
+    def work(i):
+        results[i] = grtrace.render(**KERR_DISK)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for r in results:
+        for name in alone.channel_names:
+            assert np.array_equal(bits(r[name]), bits(alone[name])), name
+
+
+def rss_bytes():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+
+
+def test_two_hundred_renders_do_not_grow_the_process_by_more_than_one_frame():
+    options = dict(KERR_DISK, width=128, height=128)
+    frame_bytes = 128 * 128 * 9 * 4
+    for _ in range(20):  # the allocator's and the OpenMP runtime's first growth, outside the measure
+        grtrace.render(**options)
+    gc.collect()
+    before = rss_bytes()
+    for _ in range(200):
+        frame = grtrace.render(**options)
+        del frame
+    gc.collect()
+    grown = rss_bytes() - before
+    assert grown <= frame_bytes, f"grew by {grown} bytes over 200 renders (one frame: {frame_bytes})"

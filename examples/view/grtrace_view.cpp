@@ -622,7 +622,10 @@ viz::Rgb8 encode(const Rgb& c) { return {srgb_encode8(c[0]), srgb_encode8(c[1]),
 int run_view(const Request& q) {
   const Camera& camera = q.camera();
   const auto t0 = std::chrono::steady_clock::now();
-  const Image frame_image = q.frame ? *q.frame : view::render_frame(q);
+  // The frame: the file's, or drawn here (its report says which tracer ran: auto picks the fastest exact one).
+  std::optional<app::RenderResult> rendered;
+  if (!q.frame) rendered = view::render_frame(q);
+  const Image& frame_image = q.frame ? *q.frame : rendered->image;
   const double frame_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const viz::Rgb8Image frame_rgb = viz::frame_from_image(frame_image, q.exposure);
 
@@ -713,13 +716,10 @@ int run_view(const Request& q) {
     std::snprintf(frame_caption, sizeof frame_caption, "frame %s (%dx%d)%s",
                   std::filesystem::path(q.frame_file).filename().c_str(), q.width, q.height, marked);
   } else {
-    // The header names the tracer that ran (trace/auto_tracer.hpp picks the fastest exact one).
-    const auto tracer = frame_image.metadata.find("tracer");
     const std::string which =
         q.flight ? " " + std::to_string(q.flight->frame) + " of flight " + q.flight->kind : std::string();
     std::snprintf(frame_caption, sizeof frame_caption, "frame%s (%dx%d, %s tracer, rendered in %.2f s)%s",
-                  which.c_str(), q.width, q.height, tracer == frame_image.metadata.end() ? "?" : tracer->second.c_str(),
-                  frame_seconds, marked);
+                  which.c_str(), q.width, q.height, rendered->report.tracer.c_str(), frame_seconds, marked);
   }
   char flight_caption[160] = "";
   if (q.flight)

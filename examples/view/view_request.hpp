@@ -87,8 +87,8 @@ viz::TracedPath trace_orbit(const Request& q);
 std::vector<viz::TracedPath> trace_bundle(const Request& q, std::span<const std::array<int, 2>> pixels,
                                           const viz::Rgb8Image& frame);
 
-/// The frame as grtrace-render renders it (--tracer auto, --device auto).
-Image render_frame(const Request& q);
+/// The frame as grtrace-render renders it (--tracer auto, --device auto), with its report.
+app::RenderResult render_frame(const Request& q);
 
 /// One frame pixel (column, row from the top) picked: its ray traced with the request's method through the scene by
 /// the general scene tracer (path drawn and outcome listed), coloured from `frame`. Assumes the pixel lies in the

@@ -42,10 +42,10 @@ std::vector<viz::TracedPath> trace_bundle(const Request& q, std::span<const std:
   return paths;
 }
 
-Image render_frame(const Request& q) {
+app::RenderResult render_frame(const Request& q) {
   app::RenderControl control;
   control.label = "frame";
-  return app::FrameRenderer::create(*q.checked)->render(control).image;
+  return app::FrameRenderer::create(*q.checked)->render(control);
 }
 
 viz::RayPick pick_ray(const Request& q, std::array<int, 2> pixel, const viz::Rgb8Image& frame) {

@@ -6,8 +6,9 @@
 // per instruction: the stage sums and, for a metric with a lane acceleration (metric/metric_traits.hpp
 // HasLaneAcceleration), the right-hand side itself. Lanes gathered from and scattered back into W scalar integrators
 // every trial measured slower than one ray at a time: the traffic cost more than the overlap saved
-// (docs/benchmarks-archive.md, "Tried, not kept: batching the general tracer through per-ray integrators"). Here
-// the lanes' states stay in the batch, and only the controller's decision (a few scalars) is taken lane by lane.
+// (docs/benchmarks-archive.md, "The build machine's instruction set": "Tried, not kept: batching the general tracer
+// through per-ray integrators"). Here the lanes' states stay in the batch, and only the controller's decision (a
+// few scalars) is taken lane by lane.
 //
 // Takes:   a batched right-hand side f(const Batch<N, W>&, Batch<N, W>&) (integrate/batch_stepper.hpp), each lane
 //          loaded from a started ControlledIntegrator (load) with the same settings and controller type.

@@ -1,6 +1,6 @@
 // tests/event_refinement_test.cpp
 // Tests that a ray's event crossing (a scene surface, the sky sphere, the horizon guard) is located to the
-// integration's accuracy for every adaptive tableau, not to its interpolant's (item 5 of issue 10): the tracer
+// integration's accuracy for every adaptive tableau, not to its interpolant's: the tracer
 // brackets a crossing on the dense output and then refines it on the integrator's own step map
 // (ControlledIntegrator::step_from_previous, refine_crossing in integrate/event_locator.hpp).
 //
@@ -547,7 +547,7 @@ TEST(EventRefinement, AFrameOfRaysEndsTheSameWayWithAndWithoutRefinement) {
   // were 5.5e-4 and 1.0e-5 M off and vern6 3.5e-3 M.
   check_same_outcomes<Tsitouras54, IController>(2e-9, 1e-7);  // the renderer's default (refined 2.9e-8)
   check_same_outcomes<Fehlberg78, PIController>(1e-9, 2e-7);   // refined 4.7e-8
-  check_same_outcomes<Fehlberg78, IController>(1e-13, 2e-11);  // issue 10's configuration; refined 5.9e-12
+  check_same_outcomes<Fehlberg78, IController>(1e-13, 2e-11);  // far below the interpolant's error; refined 5.9e-12
   check_same_outcomes<Verner65, PIController>(1e-6, 1.5e-3);   // refined 4.4e-4
   check_same_outcomes<BogackiShampine32, PIController>(1e-6, 5e-4);  // 1.5e-4 (integration error, both)
   check_same_outcomes<ClassicRK4, StepDoubling>(1e-8, 5e-5);   // 1.2e-5 (integration error, both)

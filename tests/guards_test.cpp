@@ -1,5 +1,5 @@
 // Every place a method can fail ends in a reported status, in bounded time, with no NaN in what is reported
-// (issue 7, part 3). Each test drives one guard.
+// Each test drives one guard.
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/observer/initial_data.hpp"
 #include "grtrace/tableau/classic_rk4.hpp"

@@ -1,4 +1,4 @@
-// Library functions validate their input as documented (issue 14, item 10): exact::asymptotic_direction gives
+// Library functions validate their input as documented: exact::asymptotic_direction gives
 // nullopt, never a NaN direction, for input that is not a ray; a ray started exactly on the polar axis of the
 // spherical chart (theta = 0) ends as non_finite (its right-hand side has cot(theta) = inf), not as a step-size
 // problem.

@@ -150,7 +150,7 @@ TEST(KerrSchildMetric, AccelerationMatchesChristoffelAndFiniteDifferencesAndInve
       for (int i = 0; i < 50; ++i) {
         const Vec4 x = random_ks_event(rng, m), k = random_vector(rng);
         const Vec4 acc = m.acceleration(x, k);
-        // the scalar form against the Eigen form it was rewritten from (issue 11): the same up to round-off
+        // the scalar form against the Eigen form it was rewritten from: the same up to round-off
         worst_ref = std::max(worst_ref, rel_diff(acc, m.acceleration_reference(x, k)));
         worst_table = std::max(worst_table, rel_diff(acc, acceleration_from_christoffel(m.christoffel(x), k)));
         worst_fd = std::max(worst_fd, rel_diff(acc, acceleration_from_christoffel(fd_christoffel(m, x, 1e-3), k)));

@@ -7,7 +7,7 @@
 //   * Gauss-Legendre: order, exact quadratic invariants, A-stability, reported non-convergence;
 //   * over 100 orbits at equal work (as many RHS evaluations as DP5(4) at its defaults), the Gauss-Legendre energy
 //     errors stay bounded while RK4's grow;
-//   * issue 7 part 5 (the seed's Fig. 2 claim): with the default adaptive settings (DP5(4) + PI, rtol 1e-8,
+//   * the seed's Fig. 2 claim: with the default adaptive settings (DP5(4) + PI, rtol 1e-8,
 //     atol 1e-10) g(u,u) stays within 1e-5 of 1 over a dozen orbits, and our stricter, measured claims.
 // Core only (no VTK); runs in well under a second.
 #include "grtrace/tableau/stability.hpp"
@@ -455,7 +455,7 @@ TEST_F(SeedOrbitDrift, GaussLegendreStaysBoundedWhileRk4AndDp5GrowAtEqualWork) {
 }
 
 TEST_F(SeedOrbitDrift, DefaultAdaptiveSettingsKeepTheNormOverADozenOrbits) {
-  // Issue 7 part 5, the seed's Fig. 2: the default tracer (DP5(4) + PI, rtol 1e-8, atol 1e-10) keeps
+  // The seed's Fig. 2: the default tracer (DP5(4) + PI, rtol 1e-8, atol 1e-10) keeps
   // |g(u,u) - 1| <= 1e-5 over "a dozen orbits". Measured: max |g(u,u) - 1| ~ 4e-9 and max |E/E0 - 1| ~ 5e-10 over
   // 12 orbits, so our own, stricter claims for the default method are 1e-8 and 1e-9.
   const TraceSettings settings;  // the defaults

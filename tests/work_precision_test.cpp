@@ -1,6 +1,6 @@
 // The measuring core of grtrace-work-precision (examples/work_precision/work_precision.hpp) on a tiny sweep:
 // a method's error against the exact reference falls as its tolerance (or step) falls, the CSV carries its
-// columns, and a ray that fails is scored as a wrong answer, never as an accurate one. Kerr (issue 12): equatorial
+// columns, and a ray that fails is scored as a wrong answer, never as an accurate one. Kerr: equatorial
 // prograde and retrograde rays converge on Iyer & Hansen's exact deflection, and the tool refuses a Kerr run it
 // cannot judge (--spin 1, camera rays) with exit code 2.
 #include "../examples/work_precision/work_precision.hpp"

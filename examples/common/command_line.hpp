@@ -11,7 +11,7 @@
 // configuration as TOML (given options as keys, the others as commented defaults) and exits 0 without the
 // tool's work, after the tool has checked the options as for a run: a configuration the tool would refuse is
 // refused, not saved.
-// Why the hand tokenizer and not CLI11 (Debian 12's 2.1.2; measured, see the session notes): CLI11 refuses the
+// Why the hand tokenizer and not CLI11 (Debian 12's 2.1.2, tried on these three cases): CLI11 refuses the
 // explicit empty value `--out=`, takes the next option as the value in `--out= --camera-r 3`, and turns
 // `--status-map=` into true; this parser's contract (kept by tests and the fuzz corpus) is the opposite for all
 // three, and its messages name the option and what to change.

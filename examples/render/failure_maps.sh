@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Where methods fail (issue 7): renders the seed's checkerboard frame (camera at 20 M) and a frame looking
+# Where methods fail: renders the seed's checkerboard frame (camera at 20 M) and a frame looking
 # through the photon ring with several methods and step settings, using the general tracer (one integration
 # per pixel), and keeps a status map per configuration (docs/images/status-*.png: grey escaped, black captured,
 # orange max_steps, red step_underflow, magenta non_finite) plus a table of status counts (docs/failure-maps.md).

@@ -19,7 +19,7 @@
 // A wrong verdict (escaped/captured) or a failed ray (max_steps, step_underflow, non_finite) scores pi, the
 // largest angular error there is, so a method that fails can never look accurate.
 // The exact continuation of an escaped ray starts where the tracer reports its end (ExitPoint::surface, the
-// sky-sphere crossing, refined on the step map since issue 10's event refinement) or at the last accepted node
+// sky-sphere crossing, refined on the integrator's step map: TraceSettings::refine_events) or at the last accepted node
 // (ExitPoint::node).
 #pragma once
 

@@ -14,7 +14,7 @@
 // exact::asymptotic_direction at the camera, in double precision, computed after the timed loop); mismatches
 // (escaped/captured verdicts that disagree with the exact one); failures.
 //
-// The general tracer per metric (issue 11, item 3: the cost of one accepted step in a frame):
+// The general tracer per metric (the cost of one accepted step in a frame):
 //   frame/metric/<metric>/<method>/<N>   a ZAMO camera at r = 50 M, theta = 80 deg looking at the hole, fov 60,
 //                                        sky sphere at 400 M (flat continuation), N x N, 2 threads; <metric> is
 //                                        schwarzschild, kerr_bl (a = 0.9 M, Boyer-Lindquist), kerr_ks (a = 0.9 M,
@@ -219,7 +219,7 @@ void register_symmetric(const std::string& name, double rtol, int nodes, std::in
         ->UseRealTime();
 }
 
-// ---- the general tracer per metric (issue 11, item 3) --------------------------------------------------------
+// ---- the general tracer per metric ---------------------------------------------------------------------------
 
 template <class Metric>
 Camera metric_camera(const Metric& metric, int n) {
@@ -320,7 +320,7 @@ void frame_mino(benchmark::State& state, const KerrMetric& metric, const SceneT&
                     metric, scene, n);
 }
 
-/// Issue 12's Kerr disk frame (a = 0.9, prograde disk from the ISCO to 20 M, ZAMO camera at r = 50 M, 80 degrees,
+/// The Kerr disk frame (a = 0.9, prograde disk from the ISCO to 20 M, ZAMO camera at r = 50 M, 80 degrees,
 /// fov 60), as grtrace-render --metric kerr --spin 0.9 --scene disk draws it.
 DiskScene kerr_disk() {
   StandardSceneSpec spec;
@@ -376,12 +376,12 @@ const bool registered = [] {
   register_symmetric<Tsitouras54, IController>("tsit5-i-2e-9-512", 2e-9, 512, {1024});
   register_symmetric<DormandPrince54, PIController>("dopri5-pi-1e-10-1024", 1e-10, 1024, {1024});
   register_symmetric<Fehlberg78, PIController>("rkf78-pi-1e-13-1024", 1e-13, 1024, {1024});
-  // The general tracer per metric and per tableau (issue 11, item 3).
+  // The general tracer per metric and per tableau.
   register_metric_frames<Tsitouras54, IController>("tsit5/i/2e-9", 2e-9, 128);
   register_metric_frames<DormandPrince54, PIController>("dopri5/pi/1e-10", 1e-10, 128);
   register_metric_frames<Fehlberg78, IController>("rkf78/i/1e-9", 1e-9, 128);
   register_metric_frames<ClassicRK4, StepDoubling>("rk4/doubling/1e-8", 1e-8, 128);
-  // The Kerr disk frame at looser tolerances (issue 12: its target is set at 1e-6 in hit radius and redshift).
+  // The Kerr disk frame at looser tolerances (its accuracy target is 1e-6 in hit radius and redshift).
   for (const double rtol : {2e-8, 2e-7, 1e-6}) {
     char name[64];
     std::snprintf(name, sizeof name, "frame/metric/kerr_bl_disk/tsit5/i/%g/128", rtol);

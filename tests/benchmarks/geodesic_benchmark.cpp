@@ -47,7 +47,7 @@ void impact_ray(benchmark::State& state, bool refine) {
   state.SetLabel(std::string(C::name));
 }
 
-// ---- disk hits with and without refinement on the step map (issue 10, item 5) ----------------------------
+// ---- disk hits with and without refinement on the step map -----------------------------------------------
 // disk_hit/<tableau>/<refined|dense>: one photon from r = 30, 0.4 rad above the equator, impact parameter 8,
 // its orbital plane inclined, crossing the equatorial annulus 6 <= r <= 20 at r = 9.2645 (the first photon of
 // tests/event_refinement_test.cpp); counters: rhs_evals, the right-hand sides spent on refinement, and the

@@ -1,4 +1,4 @@
-// The planar-path tracer (issue 11) on the disk frame of the issue: camera r = 50 M, inclination 80 degrees,
+// The planar-path tracer on the disk frame: camera r = 50 M, inclination 80 degrees,
 // fov 60, static, Schwarzschild M = 1, disk 6 .. 20 M, tsit5 + I at grtrace-render's default tolerance: the table
 // (its build, including the scan of the frame's angles), the per-pixel read-out, and the whole frame; against the
 // general tracer on the same frame (every pixel integrated) for the ratio. Run, e.g.:

@@ -288,7 +288,7 @@ void register_lanes(const std::string& name, double rtol) {
   benchmark::RegisterBenchmark(("lanes/" + name + "/8").c_str(), [rtol](benchmark::State& s) { lanes<T, C, 8>(s, rtol); });
 }
 
-// ---- automatic differentiation against the closed form (issue 13) ----------------------------------------
+// ---- automatic differentiation against the closed form ---------------------------------------------------
 
 /// SchwarzschildComponents without depends_on: acceleration() differentiates along all four coordinates (Dual<4>).
 struct SchwarzschildEveryCoordinate {

@@ -1,4 +1,4 @@
-// Cameras, tetrads and the scene tracers against closed-form physics (issue 4's tests).
+// Cameras, tetrads and the scene tracers against closed-form physics.
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/static_frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"

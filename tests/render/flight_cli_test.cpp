@@ -1,4 +1,4 @@
-// grtrace-render --flight (issue 15, item 1): numbered frames with their PNGs and one JSON line, a re-run that
+// grtrace-render --flight: numbered frames with their PNGs and one JSON line, a re-run that
 // skips the frames written whole (and renders again those of another flight), the MP4 from ffmpeg, the frames'
 // headers (proper time, camera on the orbit), and bad input refused before any work (exit 2, nothing written).
 #include "grtrace/render/exr_io.hpp"

@@ -1,4 +1,4 @@
-// Camera flights (issue 15, item 1): the camera path against exact timelike geodesics (circular orbit, radial
+// Camera flights: the camera path against exact timelike geodesics (circular orbit, radial
 // infall from rest: Misner, Thorne & Wheeler 25.4 cycloid), conserved E and L on the seed orbit, the moving
 // camera's tetrad against the static observer boosted to the same 4-velocity, a flight's frames bit for bit equal
 // to single renders at the same camera states, and the flight's files (names, resume test, CSV paths).

@@ -1,5 +1,5 @@
-// A camera that falls through the horizon (issue 15, item 1: "with a horizon-penetrating chart a radial infall
-// continues through the horizon"), in Kerr-Schild's ingoing slicing (kerr_schild_for_flights):
+// A camera that falls through the horizon (with a horizon-penetrating chart a radial infall continues through the
+// horizon), in Kerr-Schild's ingoing slicing (kerr_schild_for_flights):
 //   - the camera's path is the exact radial fall from rest (the cycloid of Misner, Thorne & Wheeler 25.4) on both
 //     sides of r = 2M, and E, L_z and g(u, u) stay constant through the Kerr horizon;
 //   - outside the horizon the Kerr-Schild flight's cameras are the Schwarzschild flight's, mapped between charts;

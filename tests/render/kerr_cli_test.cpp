@@ -1,4 +1,4 @@
-// grtrace-render --metric kerr as a program (issue 12): bad Kerr input is refused before any ray is traced (exit
+// grtrace-render --metric kerr as a program: bad Kerr input is refused before any ray is traced (exit
 // code 2, a message on stderr that says what to change, nothing on stdout, no file left behind); the disk defaults
 // to the ISCO of its sense and the EXR header records spin, chart, observer, the disk's sense and radii and the
 // tracer auto picked (kerr-mino in Boyer-Lindquist with an adaptive controller, general otherwise).

@@ -1,4 +1,4 @@
-// grtrace-geodesic --metric kerr as a program (issue 12): the JSON reports E, L_z and Carter's Q, conserved along
+// grtrace-geodesic --metric kerr as a program: the JSON reports E, L_z and Carter's Q, conserved along
 // the ray; both charts start from the same Boyer-Lindquist data and report the same constants; an equatorial
 // photon's deflection matches the exact Iyer-Hansen value; bad Kerr input exits with code 2.
 //

@@ -1,4 +1,4 @@
-// The reduced Kerr tracer (trace/kerr_mino_tracer.hpp, issue 12 item 6) against the general tracer and against
+// The reduced Kerr tracer (trace/kerr_mino_tracer.hpp) against the general tracer and against
 // the constants of motion:
 //  (a) per pixel, the same frame as the general tracer for disk scenes seen from several cameras (a = 0.5, 0.9,
 //      0.998; r = 8 to 1000 M; inclinations 10 to 90 degrees; static, ZAMO and moving observers, prograde and

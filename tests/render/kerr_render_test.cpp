@@ -1,4 +1,4 @@
-// Kerr frames through the open scene layer (issue 12), each judged against an exact reference:
+// Kerr frames through the open scene layer, each judged against an exact reference:
 //  (a) Kerr with a = 0 is Schwarzschild: same camera, same scene (disk included), same outcome per pixel;
 //  (b) the Boyer-Lindquist and Kerr-Schild charts give the same sky map for the same camera (placed in BL
 //      coordinates), static and ZAMO observers, a = 0.9 (the ZAMO is the Boyer-Lindquist one in both charts:

@@ -50,7 +50,7 @@ TEST_F(RenderCli, WritesTheContractedJsonExrAndPng) {
   EXPECT_EQ(img.metadata.at("angle_correction"), "exact");
 }
 
-// Issue 6's target on the seed's main frame with the default settings: every escaped pixel's direction within
+// The accuracy target on the seed's main frame with the default settings: every escaped pixel's direction within
 // 1e-6 rad of the exact elliptic-integral answer (judged by --error-map, after the clock has stopped).
 TEST_F(RenderCli, DefaultsKeepTheMainFrameWithinOneMicroradian) {
   const fs::path out = scratch("main.exr");
@@ -124,7 +124,7 @@ TEST_F(RenderCli, OneAndTwoThreadsGiveIdenticalPixels) {
 }
 
 // --exr-compression changes how the EXR is stored, never what it holds: every choice reads back the same bits as
-// the default, and the file says which compression it uses (zips by default, issue 11: the fastest to write on
+// the default, and the file says which compression it uses (zips by default: the fastest to write on
 // all cores among those that keep files small).
 TEST_F(RenderCli, EveryExrCompressionHoldsTheSamePixels) {
   const std::string common = "--width 40 --height 36 --camera-r 15 --scene disk --fov 60 --camera-theta 80 ";

@@ -1,4 +1,4 @@
-// Hardening (issue 14): outputs created safely (no link followed, unpredictable exclusive temporaries, normal
+// Hardening: outputs created safely (no link followed, unpredictable exclusive temporaries, normal
 // permissions, all-or-nothing sets, temporaries removed on a signal), sizes checked against the memory limit
 // before allocation (forged EXR headers), and the command-line tools refusing bad input with exit 2, a message
 // that names the option, and no file created or changed.

@@ -1,4 +1,4 @@
-// The open scene layer (issue 10): scene tracing generic in the metric, objects by concept, the frame pipeline as
+// The open scene layer: scene tracing generic in the metric, objects by concept, the frame pipeline as
 // library code. Each test checks physics against a closed form or an independent computation:
 //  - the generic tracer with SchwarzschildMetric against the Schwarzschild-only formulas it replaced (static
 //    emitter sqrt(1 - 2M/r) k^t, Keplerian u^t = 1/sqrt(1 - 3M/r), elliptic continuation), main and disk frames;

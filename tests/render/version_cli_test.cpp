@@ -1,4 +1,4 @@
-// `--version` on every command-line tool (issue 15 item 5): "<tool> <version>" on stdout, nothing on stderr, exit
+// `--version` on every command-line tool: "<tool> <version>" on stdout, nothing on stderr, exit
 // code 0, before any other work (no file written, no display needed, no ray traced), and the version is the CMake
 // project version (project(grtrace VERSION ...)), which the generated grtrace/version.hpp carries.
 // The tools and their paths come from tests/render/CMakeLists.txt (GRTRACE_VERSION_TOOLS: "name=path|name=path").

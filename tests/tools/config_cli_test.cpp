@@ -1,4 +1,4 @@
-// Scene files (issue 15 item 4): every option of every tool from `--config FILE` (TOML, or the header of an EXR
+// Scene files: every option of every tool from `--config FILE` (TOML, or the header of an EXR
 // written by grtrace-render), command-line options over it, `--write-config FILE` saving the effective
 // configuration; a frame rendered again from its EXR header or from a written config equals the first bit for bit;
 // bad config files are refused with exit code 2, a message naming the key or file, and no output. Also the JSON

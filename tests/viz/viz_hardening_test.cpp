@@ -1,4 +1,4 @@
-// Hardening of the drawing tools (issue 14): without an X server they refuse up front (exit 2, a message that
+// Hardening of the drawing tools: without an X server they refuse up front (exit 2, a message that
 // says to use xvfb-run, no file) instead of dying with SIGSEGV/abort; output paths are checked before any work;
 // grtrace-view --frame refuses headers that are not a grtrace-render camera, naming what is wrong.
 // None of these cases needs a display: every refusal comes before VTK renders anything.

@@ -1,4 +1,4 @@
-// grtrace::viz for Kerr (issue 12): the ergosphere surface lies on the static limit r_E(theta) =
+// grtrace::viz for Kerr: the ergosphere surface lies on the static limit r_E(theta) =
 // M + sqrt(M^2 - a^2 cos^2 theta) of KerrMetric (where g_tt = 0), and the scene view of a spinning hole has the
 // ergosphere layer, the horizon at r_+ and no photon sphere. Data only (no pixels): runs with or without a display.
 #include "grtrace/exact/kerr_exact.hpp"

@@ -1,4 +1,4 @@
-// grtrace-view --metric kerr as a program (issue 12): bad Kerr input is refused (exit 2, a message naming the
+// grtrace-view --metric kerr as a program: bad Kerr input is refused (exit 2, a message naming the
 // option), and a Kerr scene (frame by the general tracer, rays, outer horizon, ergosphere, ISCO) is drawn offscreen.
 // grtrace-render's Kerr options in the viewer (examples/common/kerr_options.hpp): --chart bl|ks (rays and surfaces
 // exported in one picture; a Kerr-Schild ray lies on the Boyer-Lindquist ray of the same pixel mapped into KS

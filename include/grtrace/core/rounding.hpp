@@ -1,7 +1,8 @@
 // grtrace/core/rounding.hpp
 // floor and round-to-nearest as integers, inline. The build targets baseline x86-64 (SSE2), which has no rounding
 // instruction, so std::floor and std::lround are calls into libm: about 5 ns each, several times per pixel (a sky's
-// checkerboard cell, a table stencil's first node), a tenth of the main frame's pixel loop (docs/benchmarks.md).
+// checkerboard cell, a table stencil's first node), a tenth of the main frame's pixel loop
+// (docs/benchmarks-archive.md, "Table rays four at a time, and the pixel loop's stalls").
 #pragma once
 
 namespace grtrace {

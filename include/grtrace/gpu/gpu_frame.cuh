@@ -159,7 +159,7 @@ std::vector<RayOutcome> trace_pixels(const Camera& camera, const Tracer& tracer,
   // The host's array of outcomes is built on a thread of its own while CUDA creates its context (a new process's
   // first CUDA call: ~0.1 s), copies and traces: a million default-constructed outcomes, their first touch of fresh
   // memory included, cost the host 50-90 ms on an H200's machine, longer than the Kerr frame's kernel
-  // (docs/benchmarks.md, "GPU"). Joined on every path out (std::jthread); what it throws is rethrown here.
+  // (docs/benchmarks-archive.md, "GPU"). Joined on every path out (std::jthread); what it throws is rethrown here.
   std::vector<RayOutcome> outcomes;
   std::exception_ptr host_failure;
   std::jthread host_side([&outcomes, &host_failure, count] {

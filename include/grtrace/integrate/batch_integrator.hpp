@@ -4,9 +4,11 @@
 // Why: one ray's step is a chain of dependent operations (each stage waits for the last right-hand side), so a
 // processor with four-wide registers runs it at a quarter of its width. W rays in lanes give W independent chains
 // per instruction: the stage sums and, for a metric with a lane acceleration (metric/metric_traits.hpp
-// HasLaneAcceleration), the right-hand side itself. Session 11 measured that lanes gathered from and scattered back
-// into W scalar integrators every trial cost more than they saved; here the lanes' states stay in the batch, and
-// only the controller's decision (a few scalars) is taken lane by lane.
+// HasLaneAcceleration), the right-hand side itself. Lanes gathered from and scattered back into W scalar integrators
+// every trial measured slower than one ray at a time: the traffic cost more than the overlap saved
+// (docs/benchmarks-archive.md, "The build machine's instruction set": "Tried, not kept: batching the general tracer
+// through per-ray integrators"). Here the lanes' states stay in the batch, and only the controller's decision (a
+// few scalars) is taken lane by lane.
 //
 // Takes:   a batched right-hand side f(const Batch<N, W>&, Batch<N, W>&) (integrate/batch_stepper.hpp), each lane
 //          loaded from a started ControlledIntegrator (load) with the same settings and controller type.

@@ -82,7 +82,8 @@ class ControlledIntegrator {
 
   /// One accepted step. Flattened on the CPU (GCC/Clang: everything it calls is inlined into it, the stepper's
   /// stages and the right-hand side each of them evaluates): measured 0.74-0.88 of the time per general-tracer frame
-  /// against the compiler's own choices (tsit5, dopri5, rkf78; docs/benchmarks.md), for ~20 % more compile time.
+  /// against the compiler's own choices (tsit5, dopri5, rkf78; docs/benchmarks-archive.md, "The flattened step (all
+  /// tracers)"), for ~20 % more compile time.
   /// Not on the GPU, where the code's size is the cost (core/host_device.hpp).
   /// Where a trial's stages live differs: on the CPU in the integrator's stepper; on the GPU in a stepper of this
   /// call, from copies of the state and its derivative, so that nothing the stages write or read is reachable from

@@ -33,9 +33,10 @@ namespace grtrace {
 /// multiply-add: a step is one chain of dependent operations (a stage's input waits for the stage before it), and
 /// k_L is the link that arrives last. Everything else is ready before it: the earlier stages' sum (additions of
 /// products, in the order of j), y + h times that sum, and h c_L. So the chain from k_L to the next stage's input
-/// is one multiply-add, where y + h (sum + c_L k_L) made it a product, a sum and a multiply-add. Measured
-/// (docs/benchmarks.md, session 14): one accepted rkf78 step around Schwarzschild 336 -> 316 ns, tsit5 within 1 %;
-/// the 5-variable reduced Kerr system with dopri5 up to 5 % slower (its right-hand side, not the sums, is its chain).
+/// is one multiply-add, where y + h (sum + c_L k_L) made it a product, a sum and a multiply-add. Measured against
+/// the same sums with k_L inside them: one accepted rkf78 step around Schwarzschild 336 -> 316 ns, tsit5 within
+/// 1 %; the 5-variable reduced Kerr system with dopri5 up to 5 % slower (its right-hand side, not the sums, is its
+/// chain).
 template <ExplicitTableau T>
 struct StageSums {
   enum class Weights { b, difference };

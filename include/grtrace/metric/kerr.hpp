@@ -189,7 +189,7 @@ struct KerrMetric {
   GRTRACE_HD Vec4 acceleration(const Vec4& x, const Vec4& k) const {
     // The inline sincos (core/sin_cos.hpp) where the build has fused multiply-add: 0.87-0.9 of the step time in a
     // frame (tsit5, rkf78; frame_benchmark frame/metric/kerr_bl). Without it, libm's: the inline kernels measured
-    // 2-4 % slower here then (docs/benchmarks.md).
+    // 2-4 % slower here then (docs/benchmarks-archive.md, "Fused multiply-adds where the chain waits").
     const SinCos sin_cos_theta = fused_mul_add ? polar_sin_cos(x[2]) : SinCos{std::sin(x[2]), std::cos(x[2])};
     const double m = mass, a = spin, r = x[1], s = sin_cos_theta.sin, c = sin_cos_theta.cos;
     const double kt = k[0], kr = k[1], kth = k[2], kph = k[3];

@@ -9,7 +9,7 @@
 //   level 1, compressed on all cores (ExrWriteOptions::threads), unless ExrWriteOptions says otherwise.
 //   exr_compression_from_name() maps the lossless compressions' names ("none", "rle", "zips", "zip", "piz") to
 //   Imf::Compression for command lines. Level 1 instead of OpenEXR's default 4 makes a 1024x1024 frame about 4%
-//   larger and 20% cheaper to write; any level reads back the same (docs/benchmarks.md).
+//   larger and 20% cheaper to write; any level reads back the same (docs/benchmarks-archive.md, "Outside tracing").
 // - ZIP, ZIPS and uncompressed files (the tools' choices by default) are laid out by write_exr_scanlines below and
 //   deflated with libdeflate, which compresses the main frame's chunks in 0.6 of zlib's time at level 1 and a
 //   little smaller; OpenEXR's header writer, its reader and any other reader see an ordinary scanline file

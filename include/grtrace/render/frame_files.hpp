@@ -1,8 +1,8 @@
 // grtrace/render/frame_files.hpp
 // A frame's two files, the EXR (all channels) and its 8-bit PNG preview, written at the same time: the preview is
 // converted and encoded on a thread of its own while the calling thread (and OpenEXR's pool) writes the EXR, so
-// the preview costs no wall time on a machine with a spare core (issue 11: the time grtrace-render spends outside
-// tracing; docs/benchmarks.md).
+// the preview costs no wall time on a machine with a spare core (docs/benchmarks.md, "Outside tracing": the time
+// grtrace-render spends outside tracing).
 //
 //   grtrace::OutputSet files;
 //   grtrace::write_exr_and_preview(files, "frame.exr", "frame.png", frame.image);   // + ExrWriteOptions, exposure

@@ -47,9 +47,9 @@ namespace detail {
 /// Before the first touch of a large buffer of n floats: reserves it with 2 MB of slack and asks Linux to back it
 /// with transparent huge pages (madvise MADV_HUGEPAGE; with the kernel's default "madvise" mode only advised memory
 /// gets them), so that zeroing it costs a few 2 MB page faults instead of a thousand 4 kB ones (the main frame's nine
-/// channels: ~6 ms less of a fresh process's ~10 ms, docs/benchmarks.md). A hint only: small buffers, other systems
-/// and a refusal (no huge pages free) leave the buffer as it is. The slack lets every 2 MB-aligned block that holds
-/// data lie inside the advised range; it is virtual memory, never touched.
+/// channels: ~6 ms less of a fresh process's ~10 ms, docs/benchmarks-archive.md). A hint only: small buffers, other
+/// systems and a refusal (no huge pages free) leave the buffer as it is. The slack lets every 2 MB-aligned block that
+/// holds data lie inside the advised range; it is virtual memory, never touched.
 inline void advise_huge_pages([[maybe_unused]] std::vector<float>& v, [[maybe_unused]] std::size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::size_t huge = std::size_t{1} << 21, page = std::size_t{1} << 12;
@@ -77,8 +77,8 @@ class Image {
                  "a " + std::to_string(width) + " x " + std::to_string(height) + " image with " +
                      std::to_string(kStandardChannels.size()) + " channels");
     // The first touch of a 1024 x 1024 frame's 36 MB (a page fault per 4 kB page, and zeroing) took 13 ms on one
-    // thread, a tenth of the main frame (docs/benchmarks.md). So the nine channels are zeroed on several threads
-    // where OpenMP is on, and large channels ask Linux for 2 MB pages first (detail::advise_huge_pages).
+    // thread, a tenth of the main frame (docs/benchmarks-archive.md). So the nine channels are zeroed on several
+    // threads where OpenMP is on, and large channels ask Linux for 2 MB pages first (detail::advise_huge_pages).
     std::array<std::vector<float>*, kStandardChannels.size()> planes{};
     for (std::size_t c = 0; c < kStandardChannels.size(); ++c) {
       planes[c] = &channels_[kStandardChannels[c]];

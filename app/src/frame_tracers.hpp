@@ -34,12 +34,12 @@ std::unique_ptr<RayTracer> make_ray_tracer(const CheckedRequest& checked, const 
 
 /// What the concrete tracer tells about a frame it drew (the rest of the report comes from the frame's statistics).
 struct FrameFacts {
-  TracerReport tracer;                      ///< name, table statistics, fallback rays of this frame
+  TracerReport tracer;  ///< name, table statistics, fallback rays of this frame
   std::optional<ContinuationEstimate> continuation_error;
   std::string mirrors;
-  std::string device = "cpu";               ///< cpu or cuda
+  std::string device = "cpu";  ///< cpu or cuda
   std::optional<double> gpu_trace_seconds, gpu_seconds;
-  double trace_seconds = 0.0;               ///< the wall time of the frame's tracing and shading
+  double trace_seconds = 0.0;  ///< the wall time of the frame's tracing and shading
 };
 
 /// The render loop's options of a request and a control (threads, mirrors, progress, cancel).

@@ -4,7 +4,6 @@
 
 #include "frame_tracers.hpp"
 #include "gpu_tracers.hpp"
-
 #include "grtrace/app/tool_methods.hpp"
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
@@ -109,12 +108,12 @@ std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked
           const bool on_gpu = q.device == "cuda";
           if (q.tracer == "general" || (on_gpu && !kerr_mino_tracer_applies<M, Scene, C>)) {
             out = own_tracer(
-                checked,
-                [&] { return make_general_tracer<T, C>(metric, checked.settings, checked.correction, scene); },
+                checked, [&] { return make_general_tracer<T, C>(metric, checked.settings, checked.correction, scene); },
                 on_gpu);
           } else {
             with_auto_tracer_maker<T, C>(metric, checked.settings, checked.camera, checked.correction, scene,
-                                         q.table_rays, [&](const auto& make) { out = own_tracer(checked, make, on_gpu); });
+                                         q.table_rays,
+                                         [&](const auto& make) { out = own_tracer(checked, make, on_gpu); });
           }
         } else {
           throw RequestError("--scene " + q.scene + " cannot be drawn in the " + std::string(M::name) +

@@ -3,7 +3,6 @@
 // in the units frame_tracers.hpp lists.
 #include "frame_tracers.hpp"
 #include "gpu_tracers.hpp"
-
 #include "grtrace/core/memory_limit.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
@@ -119,8 +118,7 @@ void check_method(const MethodRequest& m) {
   if (!(m.atol >= 0.0 && m.atol < 1.0))
     throw RequestError("--atol must lie in [0, 1) (e.g. 1e-11), got " + shortest(m.atol));
   if (!(m.step >= 0.0)) throw RequestError("--step must be >= 0");
-  if (m.control == "fixed" && m.step <= 0.0)
-    throw RequestError("--control fixed needs a step: add --step H > 0");
+  if (m.control == "fixed" && m.step <= 0.0) throw RequestError("--control fixed needs a step: add --step H > 0");
   if (m.max_steps < 1 || m.max_steps > 100'000'000) throw RequestError("--max-steps must be in 1 .. 1e8");
 }
 
@@ -143,8 +141,8 @@ void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& 
     return std::tuple{m.radius(x), (1.0 + s.horizon_epsilon) * rh, ok};
   });
   if (!(camera_radius > guard))
-    throw RequestError("--camera-r " + shortest(radius_asked) + " is at or inside the horizon (guard r = " +
-                       exact_number(guard) + "); move the camera out");
+    throw RequestError("--camera-r " + shortest(radius_asked) +
+                       " is at or inside the horizon (guard r = " + exact_number(guard) + "); move the camera out");
   if (!(camera_radius < s.escape_radius)) throw RequestError("--camera-r must be inside --sky-radius");
   if (!sky_ok)
     throw RequestError("--sky-radius " + shortest(s.escape_radius) +
@@ -154,16 +152,19 @@ void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& 
 /// Which tracer can draw what (a request the tracers cannot draw is refused here, before any work).
 void check_tracer(const RenderRequest& q) {
   if (q.tracer == "symmetric")
-    throw RequestError("--tracer symmetric is retired: the planar tracer draws every frame it drew, with a "
-                       "smaller error; use --tracer planar (or auto, which picks it)");
+    throw RequestError(
+        "--tracer symmetric is retired: the planar tracer draws every frame it drew, with a "
+        "smaller error; use --tracer planar (or auto, which picks it)");
   if (std::find(kTracerNames.begin(), kTracerNames.end(), q.tracer) == kTracerNames.end())
     throw RequestError("unknown --tracer '" + q.tracer + "'; choose auto, general or planar");
   if (q.tracer == "planar" && !planar_tracer_metric(q.metric))
-    throw RequestError("--tracer planar needs a static spherically symmetric metric with a horizon "
-                       "(--metric schwarzschild or rn); use general");
+    throw RequestError(
+        "--tracer planar needs a static spherically symmetric metric with a horizon "
+        "(--metric schwarzschild or rn); use general");
   if (q.tracer == "planar" && q.method.control == "fixed")
-    throw RequestError("--tracer planar integrates its table in swept angle, where a fixed --step would mean "
-                       "something else; use --control i, pi or doubling, or --tracer general");
+    throw RequestError(
+        "--tracer planar integrates its table in swept angle, where a fixed --step would mean "
+        "something else; use --control i, pi or doubling, or --tracer general");
 }
 
 }  // namespace
@@ -230,15 +231,16 @@ CheckedRequest check_request(const RenderRequest& in) {
     throw RequestError("--sky-radius must lie in (0, 1e100] (r^2 must not overflow), got " + shortest(q.sky_radius));
   // A step longer than the sky's diameter crosses the whole scene in one go: meaningless, not just coarse.
   if (q.method.step > 2.0 * q.sky_radius)
-    throw RequestError("--step " + shortest(q.method.step) + " is longer than the sky's diameter (2 x --sky-radius = " +
-                       exact_number(2.0 * q.sky_radius) + "); use a step in (0, " + exact_number(2.0 * q.sky_radius) +
-                       "]");
+    throw RequestError("--step " + shortest(q.method.step) +
+                       " is longer than the sky's diameter (2 x --sky-radius = " + exact_number(2.0 * q.sky_radius) +
+                       "); use a step in (0, " + exact_number(2.0 * q.sky_radius) + "]");
   const AngleCorrection correction = correction_of(q.angle_correction);
 
   // The camera: the event (r, theta, phi) in Boyer-Lindquist-like coordinates for every chart.
   const CameraRequest& c = q.camera;
   if (!(c.theta_degrees > 0.0 && c.theta_degrees < 180.0))
-    throw RequestError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+    throw RequestError(
+        "--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
   if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
     throw RequestError("--fov must lie in (0, 180) degrees, got " + shortest(c.fov_degrees));
   if (!std::isfinite(c.r) || !std::isfinite(c.phi_degrees))
@@ -364,7 +366,8 @@ namespace {
 /// The "error" channel (radians; NaN where the ray did not escape; pi where the escaped/captured verdict disagrees
 /// with the exact one) from the frame's double-precision directions, and its summary: every pixel against the
 /// exact elliptic-integral direction from the camera (Schwarzschild and flat space).
-ErrorSummary add_error_channel(const CheckedRequest& checked, Image& image, const std::vector<SkyDirection>& directions) {
+ErrorSummary add_error_channel(const CheckedRequest& checked, Image& image,
+                               const std::vector<SkyDirection>& directions) {
   const Camera& cam = checked.camera;
   const auto& status = image.channel("status");
   std::vector<float>& error = image.add_channel("error", std::numeric_limits<float>::quiet_NaN());
@@ -446,9 +449,8 @@ RenderResult finish_render(const CheckedRequest& checked, Frame&& frame, const F
   r.table_steps = facts.tracer.table_steps;
   r.fallback_rays = facts.tracer.fallback_rays;
   const bool tabulated = r.tracer == "planar";
-  r.mean_steps = tabulated && r.stats.rays > 0
-                     ? static_cast<double>(r.table_steps) / static_cast<double>(r.stats.rays)
-                     : r.stats.mean_steps;
+  r.mean_steps = tabulated && r.stats.rays > 0 ? static_cast<double>(r.table_steps) / static_cast<double>(r.stats.rays)
+                                               : r.stats.mean_steps;
   r.device = device_name(facts.device);
   r.gpu_trace_seconds = facts.gpu_trace_seconds;
   r.gpu_seconds = facts.gpu_seconds;
@@ -499,7 +501,8 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
   add("rays_per_second", r.rays_per_second);
   add("mean_steps", r.mean_steps);
   ReportEntry::Counts counts;
-  for (std::size_t i = 0; i < kRayStatusCount; ++i) counts.emplace_back(std::string(kRayStatusNames[i]), r.stats.status_counts[i]);
+  for (std::size_t i = 0; i < kRayStatusCount; ++i)
+    counts.emplace_back(std::string(kRayStatusNames[i]), r.stats.status_counts[i]);
   add("status_counts", counts);
   add("tracer", r.tracer);
   add("tableau", q.method.tableau);

@@ -44,7 +44,7 @@ inline constexpr bool gpu_scene = std::is_same_v<S, BackgroundScene> || std::is_
 template <class Tracer>
 inline constexpr bool gpu_traces = false;
 template <class M, class S>
-inline constexpr bool gpu_traces<GeneralSceneTracer<M, GpuTableau, GpuController, S>> = gpu_metric<M> && gpu_scene<S>;
+inline constexpr bool gpu_traces<GeneralSceneTracer<M, GpuTableau, GpuController, S>> = gpu_metric<M>&& gpu_scene<S>;
 template <class S>
 inline constexpr bool gpu_traces<KerrMinoSceneTracer<GpuTableau, GpuController, S>> = gpu_scene<S>;
 

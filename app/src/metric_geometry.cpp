@@ -2,7 +2,6 @@
 // cameras: compiled once for every named metric, in one unit (the paths' integrations, sample_worldline and the
 // proper-time searches of observer/flight_path.hpp, with their integrator steps), instead of once per tool.
 #include "grtrace/app/front_door.hpp"
-
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/trace/traced_path.hpp"
 

@@ -2,7 +2,6 @@
 // grtrace-render's --help lists and the Python module's keywords follow, and the reading of their texts, so that a
 // command line, a scene file, a frame's header and Python keywords are read by one piece of code.
 #include "grtrace/app/front_door.hpp"
-
 #include "grtrace/core/number_text.hpp"
 #include "grtrace/trace/critical_angle_grid.hpp"
 
@@ -72,7 +71,8 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"table-rays", keep(std::to_string(grtrace::default_table_rays)),
                "planar tracer: table rays on each side of the critical angle"});
   o.push_back({"sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes"});
-  o.push_back({"checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)"});
+  o.push_back(
+      {"checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)"});
   o.push_back({"disk-inner", "6",
                "disk inner radius (disk scene); kerr: default and lower bound the ISCO of the disk's sense (BPT "
                "1972), e.g. 2.32 for a = 0.9 prograde"});
@@ -176,7 +176,8 @@ CameraRequest read_camera(const OptionSource& s) {
   c.theta_degrees = option_number(s, "camera-theta");
   c.phi_degrees = option_number(s, "camera-phi");
   if (!(c.theta_degrees > 0.0 && c.theta_degrees < 180.0))
-    throw RequestError("--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+    throw RequestError(
+        "--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
   c.fov_degrees = option_number(s, "fov");
   if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
     throw RequestError("--fov must lie in (0, 180) degrees, got " + text_of(s, "fov"));

@@ -4,15 +4,14 @@
 #pragma once
 
 #include "frame_tracers.hpp"
-
 #include "grtrace/app/tool_methods.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/straight_line.hpp"
 #include "grtrace/trace/traced_path.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -49,9 +48,9 @@ class RayTracerOf final : public RayTracer {
  public:
   RayTracerOf(const M& metric, const CheckedRequest& checked, const Scene& scene)
       : with_objects_(make_general_tracer<T, C>(metric, checked.settings, checked.correction, scene)),
-        bare_(make_general_tracer<T, C>(metric, checked.settings, checked.correction,
-                                        BackgroundScene{scene.sky, scene.horizon, {}, scene.colour_by_redshift,
-                                                        scene.failure})) {}
+        bare_(make_general_tracer<T, C>(
+            metric, checked.settings, checked.correction,
+            BackgroundScene{scene.sky, scene.horizon, {}, scene.colour_by_redshift, scene.failure})) {}
 
   TracedRay trace(const GeodesicState& y0, const PathOptions& o) const override {
     if (o.samples_per_step < 1 || o.samples_per_step > 1000)
@@ -116,7 +115,8 @@ class StraightRayTracerOf final : public RayTracer {
     TracedRay ray;
     const bool objects = o.scene_objects || std::is_same_v<Scene, BackgroundScene>;
     ray.outcome = objects ? with_objects_.trace(y0) : bare_.trace(y0);
-    const std::vector<std::string> names = objects ? with_objects_.scene().object_names() : bare_.scene().object_names();
+    const std::vector<std::string> names =
+        objects ? with_objects_.scene().object_names() : bare_.scene().object_names();
     // The line in Cartesian coordinates: X(lambda) = X0 + K lambda, t(lambda) = t0 + k^t lambda.
     const Vec4 x0 = y0.head<4>(), k0 = y0.tail<4>();
     const double r0 = x0[1], st = std::sin(x0[2]), ct = std::cos(x0[2]), sp = std::sin(x0[3]), cp = std::cos(x0[3]);
@@ -139,7 +139,8 @@ class StraightRayTracerOf final : public RayTracer {
       const double kr = X.dot(K) / r;
       GeodesicState y;
       y << x0[0] + k0[0] * lambda, r, std::atan2(rho, X[2]), phi, k0[0], kr,
-          rho > 0.0 ? (X[2] * kr - K[2] * r) / (r * rho) : 0.0, rho > 0.0 ? (X[0] * K[1] - X[1] * K[0]) / (rho * rho) : 0.0;
+          rho > 0.0 ? (X[2] * kr - K[2] * r) / (r * rho) : 0.0,
+          rho > 0.0 ? (X[0] * K[1] - X[1] * K[0]) / (rho * rho) : 0.0;
       PathSample p;
       p.state = i == 0 ? y0 : y;
       p.position = X;
@@ -149,9 +150,9 @@ class StraightRayTracerOf final : public RayTracer {
       if (o.observer_velocity) p.redshift = energy / k0[0];  // a static observer's energy is k^t all along
       ray.path.samples.push_back(p);
       if (i == 0 || i == n)
-        ray.path.steps.push_back({lambda, i == 0 ? 0.0 : lambda_end, p.state, X,
-                                  inner_product(metric_, Vec4(p.state.head<4>()), Vec4(p.state.tail<4>()),
-                                                Vec4(p.state.tail<4>()))});
+        ray.path.steps.push_back(
+            {lambda, i == 0 ? 0.0 : lambda_end, p.state, X,
+             inner_product(metric_, Vec4(p.state.head<4>()), Vec4(p.state.tail<4>()), Vec4(p.state.tail<4>()))});
     }
     ray.path.status = ray.outcome.status;
     if (!is_failure(ray.outcome.status)) {

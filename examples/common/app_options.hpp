@@ -6,7 +6,6 @@
 #pragma once
 
 #include "command_line.hpp"
-
 #include "grtrace/app/front_door.hpp"
 
 #include <map>

@@ -10,13 +10,12 @@
 #include "app_options.hpp"
 #include "command_line.hpp"
 #include "flight_options.hpp"
-#include "json_writer.hpp"
-
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/flight_files.hpp"
 #include "grtrace/render/frame_files.hpp"
 #include "grtrace/render/png_preview.hpp"
+#include "json_writer.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -36,14 +35,15 @@ using tools::JsonObject;
 using tools::UsageError;
 
 CommandLine make_command_line() {
-  CommandLine cli("grtrace-render",
-                  "Render a camera's view of a black hole (Schwarzschild, Kerr, charged, with a cosmological constant),\n"
-                  "a wormhole or flat space to OpenEXR + PNG preview;\n"
-                  "prints one line of JSON. Defaults: the seed report's main frame (static camera at r = 200 M,\n"
-                  "fov 90, 1024x1024, sky sphere at 400 M). The default method (rkf78, I control, rtol 1e-9) is\n"
-                  "the cheapest whose largest error stays below 1e-6 both on that frame (angle, general tracer) and\n"
-                  "on the Kerr disk frame (hit radius, redshift); the planar tracer's table costs the same with it\n"
-                  "as with tsit5 (docs/benchmarks.md). The options are those of the Python module's grtrace.render.");
+  CommandLine cli(
+      "grtrace-render",
+      "Render a camera's view of a black hole (Schwarzschild, Kerr, charged, with a cosmological constant),\n"
+      "a wormhole or flat space to OpenEXR + PNG preview;\n"
+      "prints one line of JSON. Defaults: the seed report's main frame (static camera at r = 200 M,\n"
+      "fov 90, 1024x1024, sky sphere at 400 M). The default method (rkf78, I control, rtol 1e-9) is\n"
+      "the cheapest whose largest error stays below 1e-6 both on that frame (angle, general tracer) and\n"
+      "on the Kerr disk frame (hit radius, redshift); the planar tracer's table costs the same with it\n"
+      "as with tsit5 (docs/benchmarks.md). The options are those of the Python module's grtrace.render.");
   tools::declare_render_options(cli);
   cli.option("out", "render.exr", "output EXR path; the PNG preview goes beside it with .png")
       .option("exr-compression", "zips",
@@ -56,9 +56,10 @@ CommandLine make_command_line() {
                                 "Doppler from the camera's u): <out stem>-NNNN.exr and .png; a re-run skips the "
                                 "frames already written whole by the same flight",
                                 "");
-  cli.option("frame-range", "", "flight: render only frames A .. B-1 (A:B, 0-based, B one past the last): one part "
-                                "of a flight split over a cluster (a Slurm job array, see the README); any order, "
-                                "resumable; the frames are those of one whole run")
+  cli.option("frame-range", "",
+             "flight: render only frames A .. B-1 (A:B, 0-based, B one past the last): one part "
+             "of a flight split over a cluster (a Slurm job array, see the README); any order, "
+             "resumable; the frames are those of one whole run")
       .option("fps", "30", "flight --mp4: frames per second")
       .flag("mp4", "flight: also write <out stem>.mp4 from the PNG previews (ffmpeg, H.264)");
   return cli;
@@ -66,7 +67,7 @@ CommandLine make_command_line() {
 
 /// --flight: one frame per camera along a path (render/flight.hpp); empty cameras: a single frame.
 struct FlightRequest {
-  std::string name;                       ///< --flight: seed | circular | orbit | infall | csv ("" = one frame)
+  std::string name;  ///< --flight: seed | circular | orbit | infall | csv ("" = one frame)
   std::vector<Camera> cameras;
   std::vector<double> tau;                ///< each frame's proper time on the path
   double dtau = 0.0;                      ///< proper time between frames (csv: as given)
@@ -121,15 +122,17 @@ void read_flight(const CommandLine& cli, const std::optional<FlightPathSpec>& sp
   f.name = spec->kind;
   for (const char* name : {"velocity", "observer"})
     if (cli.given(name))
-      throw UsageError(std::string("--") + name + " sets a single frame's camera; a flight's camera moves with its "
+      throw UsageError(std::string("--") + name +
+                       " sets a single frame's camera; a flight's camera moves with its "
                        "path (its 4-velocity): leave it out");
   if (cli.flag_set("status-map") || q.checked.request.error_map)
     throw UsageError("--status-map and --error-map are for single frames; leave them out with --flight");
   if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
   // The video's tool, before the first ray (not after the frames).
   if (cli.flag_set("mp4") && !program_on_path("ffmpeg"))
-    throw UsageError("--mp4 needs ffmpeg, which is not on PATH; install it (apt-get install ffmpeg, or bash "
-                     "cmake/install-deps.sh) or leave --mp4 out");
+    throw UsageError(
+        "--mp4 needs ffmpeg, which is not on PATH; install it (apt-get install ffmpeg, or bash "
+        "cmake/install-deps.sh) or leave --mp4 out");
   const app::CameraRequest& c = q.checked.request.camera;
   const CameraView view{c.look, c.up, c.width, c.height, c.fov_degrees};
   const MetricSpec& metric = q.checked.request.metric;
@@ -141,9 +144,10 @@ void read_flight(const CommandLine& cli, const std::optional<FlightPathSpec>& sp
     f.range = tools::as_usage_error(
         [&] { return parse_flight_frame_range(cli.text("frame-range"), static_cast<int>(f.cameras.size())); });
     if (cli.flag_set("mp4"))
-      throw UsageError("--mp4 assembles every frame of the flight, not --frame-range's part: once every part is "
-                       "done, run the same command without --frame-range, with --mp4 (the frames on disk are "
-                       "skipped)");
+      throw UsageError(
+          "--mp4 assembles every frame of the flight, not --frame-range's part: once every part is "
+          "done, run the same command without --frame-range, with --mp4 (the frames on disk are "
+          "skipped)");
   }
   q.checked = app::with_camera(std::move(q.checked), f.cameras.front());
 }
@@ -151,8 +155,8 @@ void read_flight(const CommandLine& cli, const std::optional<FlightPathSpec>& sp
 Request read_request(const CommandLine& cli) {
   const tools::CommandLineOptions options(cli);
   app::RenderRequest r = tools::as_usage_error([&] { return app::read_render_request(options); });
-  const std::optional<FlightPathSpec> spec =
-      tools::read_flight_spec(cli, r.metric.mass, r.sky_radius, {"fps", "mp4", "orbit-dr", "orbit-dphi", "frame-range"});
+  const std::optional<FlightPathSpec> spec = tools::read_flight_spec(
+      cli, r.metric.mass, r.sky_radius, {"fps", "mp4", "orbit-dr", "orbit-dphi", "frame-range"});
   // Kerr-Schild flights are flown in the ingoing slicing, regular where the falling camera crosses the horizon.
   if (spec && r.metric.chart == "ks") r.metric.slicing = KerrSchildSlicing::ingoing;
   Request q{tools::as_usage_error([&] { return app::check_request(r); }), cli.text("out"), {}};
@@ -175,7 +179,8 @@ void write_status_map(OutputSet& set, const std::string& path, const Image& imag
   const auto& status = image.channel("status");
   std::vector<std::uint8_t> rgb(status.size() * 3);
   for (std::size_t i = 0; i < status.size(); ++i) {
-    const auto s = static_cast<std::size_t>(std::clamp(static_cast<int>(status[i]), 0, static_cast<int>(kRayStatusCount) - 1));
+    const auto s =
+        static_cast<std::size_t>(std::clamp(static_cast<int>(status[i]), 0, static_cast<int>(kRayStatusCount) - 1));
     for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = kStatusColours[s][c];
   }
   write_png_rgb8(set, path, image.width(), image.height(), rgb);

@@ -26,18 +26,18 @@ namespace grtrace::view {
 
 /// --flight: the camera's path and the frame the viewer looks through (its camera is Request::checked's).
 struct FlightView {
-  std::string kind;     ///< --flight: seed, circular, orbit, infall or csv
-  int frame = 0;        ///< --flight-frame: index of the frame in use
-  int frames = 0;       ///< frames on the path
-  double tau = 0.0;     ///< the proper time of the frame in use
-  viz::TracedPath path; ///< the whole path, one sample per frame
+  std::string kind;      ///< --flight: seed, circular, orbit, infall or csv
+  int frame = 0;         ///< --flight-frame: index of the frame in use
+  int frames = 0;        ///< frames on the path
+  double tau = 0.0;      ///< the proper time of the frame in use
+  viz::TracedPath path;  ///< the whole path, one sample per frame
 };
 
 struct Request {
   std::string screenshot;
   std::string export_dir;  ///< --export: write the scene as VTK XML files here (viz/vtk_export.hpp)
   std::array<int, 2> size{};
-  std::string plot;  ///< --plot (or its older spelling --chart): orbit, norm or step; empty: the 3D view
+  std::string plot;            ///< --plot (or its older spelling --chart): orbit, norm or step; empty: the 3D view
   std::string scene = "disk";  ///< a preset of scene/standard_scenes.hpp
   /// The metric (schwarzschild, or kerr in the coordinates of metric.chart; a Kerr-Schild flight flies in the
   /// ingoing slicing), and these of it for the pictures: mass, whether it is Kerr, the spin.

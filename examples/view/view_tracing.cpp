@@ -1,9 +1,8 @@
 // grtrace-view's tracing (see view_request.hpp), all through the application library: the frame
 // (app::FrameRenderer, as grtrace-render draws it), the bundle's and the picked rays (app::RayTracer), the orbit.
-#include "view_request.hpp"
-
 #include "grtrace/viz/bundles.hpp"
 #include "grtrace/viz/pick.hpp"
+#include "view_request.hpp"
 
 #include <cmath>
 #include <numbers>

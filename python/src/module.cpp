@@ -17,10 +17,10 @@
 
 #include <atomic>
 #include <charconv>
-#include <filesystem>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -108,7 +108,8 @@ class KeywordOptions : public app::OptionSource {
       bool known = false;
       for (const app::OptionInfo& o : app::render_options()) known = known || o.name == name;
       if (!known)
-        throw InputError("unknown option '" + keyword + "' (grtrace.options() lists them, e.g. camera_r for "
+        throw InputError("unknown option '" + keyword +
+                         "' (grtrace.options() lists them, e.g. camera_r for "
                          "grtrace-render's --camera-r)");
       if (value.is_none()) continue;  // None: the default
       if (is_flag(name)) {
@@ -159,8 +160,9 @@ py::array channel_array(py::object frame_object, const std::string& name) {
   }
   std::vector<float>& data = frame.image.channel(name);
   const auto w = static_cast<py::ssize_t>(frame.image.width()), h = static_cast<py::ssize_t>(frame.image.height());
-  return py::array(py::dtype::of<float>(), {h, w}, {w * static_cast<py::ssize_t>(sizeof(float)), static_cast<py::ssize_t>(sizeof(float))},
-                   data.data(), frame_object);
+  return py::array(py::dtype::of<float>(), {h, w},
+                   {w * static_cast<py::ssize_t>(sizeof(float)), static_cast<py::ssize_t>(sizeof(float))}, data.data(),
+                   frame_object);
 }
 
 py::dict report_dict(const PyFrame& frame) {
@@ -311,8 +313,8 @@ PyFrame render(const py::object& progress, const py::dict& kwargs) {
   control.cancel = &cancel;
   control.pixels_done = &done;
   const long total = static_cast<long>(checked.camera.width()) * checked.camera.height();
-  app::RenderResult result = run_interruptibly(
-      [&] { return app::FrameRenderer::create(checked)->render(control); }, cancel, done, total, progress);
+  app::RenderResult result = run_interruptibly([&] { return app::FrameRenderer::create(checked)->render(control); },
+                                               cancel, done, total, progress);
   return PyFrame{std::move(result.image), std::move(result.report), checked};
 }
 
@@ -337,8 +339,9 @@ py::dict trace_ray(const py::object& pixel, const py::object& position, const py
     observer = camera.tetrad().e[0];
   } else {
     if (position.is_none() || momentum.is_none())
-      throw InputError("give pixel=(column, row) of the camera, or position=(x0..x3) and momentum=(k0..k3) in the "
-                       "metric's chart");
+      throw InputError(
+          "give pixel=(column, row) of the camera, or position=(x0..x3) and momentum=(k0..k3) in the "
+          "metric's chart");
     const auto x = position.cast<std::vector<double>>(), k = momentum.cast<std::vector<double>>();
     if (x.size() != 4 || k.size() != 4) throw InputError("position and momentum expect 4 numbers each");
     y0 << x[0], x[1], x[2], x[3], k[0], k[1], k[2], k[3];

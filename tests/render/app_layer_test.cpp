@@ -117,7 +117,8 @@ TEST(AppLayer, KerrAndFlatFramesAreTheCoresBitForBit) {
 
 TEST(AppLayer, FlightFramesAreItsSingleFrames) {
   const app::CheckedRequest c = app::check_request(request("schwarzschild", "disk", "tsit5", "i", "auto"));
-  const app::CheckedRequest other = app::check_request(request("schwarzschild", "disk", "tsit5", "i", "auto", 20.0, 60.0));
+  const app::CheckedRequest other =
+      app::check_request(request("schwarzschild", "disk", "tsit5", "i", "auto", 20.0, 60.0));
   const std::vector<Camera> cameras = {c.camera, other.camera};
   std::vector<std::optional<app::RenderResult>> frames(cameras.size());
   const FlightStats stats = app::render_flight(
@@ -129,8 +130,7 @@ TEST(AppLayer, FlightFramesAreItsSingleFrames) {
   EXPECT_EQ(stats.rendered, 2);
   for (std::size_t i = 0; i < cameras.size(); ++i) {
     ASSERT_TRUE(frames[i].has_value());
-    expect_same_channels(frames[i]->image,
-                         app::FrameRenderer::create(app::with_camera(c, cameras[i]))->render().image);
+    expect_same_channels(frames[i]->image, app::FrameRenderer::create(app::with_camera(c, cameras[i]))->render().image);
   }
 }
 
@@ -175,8 +175,9 @@ TEST(AppLayer, ReadsTheRequestByOptionNamesAsTheToolsSpellThem) {
       {{{"disk-outer", "30"}}, "--disk-outer applies only with --scene disk"},
       {{{"fov", "abc"}}, "--fov expects a number, got 'abc'"},
       {{{"look", "1,2"}}, "--look expects 3 comma-separated numbers"},
-      {{{"metric", "teapot"}}, "--metric must be schwarzschild, minkowski, kerr, rn, sds, wormhole or "
-                               "schwarzschild-ef, got 'teapot'"},
+      {{{"metric", "teapot"}},
+       "--metric must be schwarzschild, minkowski, kerr, rn, sds, wormhole or "
+       "schwarzschild-ef, got 'teapot'"},
   };
   for (const auto& [given, says] : refused) {
     SCOPED_TRACE(says);
@@ -194,8 +195,8 @@ TEST(AppLayer, RayPathsEndWhereTheSceneTracersRaysEnd) {
   const app::CheckedRequest c = app::check_request(request("kerr", "disk", "dopri5", "pi", "auto", 40.0, 75.0));
   const auto rays = app::RayTracer::create(c);
   EXPECT_EQ(rays->object_names(), (std::vector<std::string>{"sky", "horizon", "disk"}));
-  const auto general = make_general_tracer<DormandPrince54, PIController>(metric, c.settings, c.correction,
-                                                                          disk_scene(c.scene));
+  const auto general =
+      make_general_tracer<DormandPrince54, PIController>(metric, c.settings, c.correction, disk_scene(c.scene));
   int hits = 0;
   for (const auto& [col, row] : std::vector<std::array<int, 2>>{{16, 10}, {16, 2}, {0, 0}, {20, 12}}) {
     const GeodesicState y0 = c.camera.pixel_state(col, row);

@@ -9,12 +9,14 @@
 //   minkowski         MinkowskiSpherical (flat: straight lines)               -
 //   kerr              KerrMetric, Boyer-Lindquist (chart "bl")                mass, spin |a| < M
 //                     KerrSchildMetric, Cartesian Kerr-Schild (chart "ks"),   (cameras are placed in BL coordinates;
-//                     outgoing slicing: camera rays cross the horizon)        the outgoing chart takes past-directed rays;
-//                     (ingoing with MetricSpec::slicing: flights fall in)     a flight's camera crosses in the ingoing one)
+//                     outgoing slicing: camera rays cross the horizon)        the outgoing chart takes past-directed
+//                     rays; (ingoing with MetricSpec::slicing: flights fall in)     a flight's camera crosses in the
+//                     ingoing one)
 //   rn                Reissner-Nordstrom, automatic Christoffels             mass, charge |Q| < M
 //   sds               Schwarzschild-de Sitter, automatic Christoffels        mass, lambda in (0, 1/(9 M^2))
 //   wormhole          Ellis wormhole (t, l, theta, phi), no horizon          throat b0 > 0
-//   schwarzschild-ef  Schwarzschild, outgoing Eddington-Finkelstein           mass (horizon-penetrating for camera rays)
+//   schwarzschild-ef  Schwarzschild, outgoing Eddington-Finkelstein           mass (horizon-penetrating for camera
+//   rays)
 // Each is refused (std::invalid_argument, naming the option and the range) before any work when its parameters
 // make no black hole or no spacetime: |a| >= M, |Q| >= M, Lambda outside the range with two horizons, b0 <= 0.
 //
@@ -54,9 +56,9 @@ struct MetricSpec {
   /// kerr, chart ks: outgoing (single frames: camera rays, traced into the past, cross the past horizon and are
   /// captured inside it) or ingoing (flights: the falling camera crosses the future horizon, kerr_schild_for_flights).
   KerrSchildSlicing slicing = KerrSchildSlicing::outgoing;
-  double charge = 0.5;                 ///< rn: Q, |Q| < M
-  double lambda = 1e-5;                ///< sds: cosmological constant, 0 < Lambda < 1 / (9 M^2) (r_c ~ 547 M)
-  double throat = 1.0;                 ///< wormhole: throat radius b0
+  double charge = 0.5;   ///< rn: Q, |Q| < M
+  double lambda = 1e-5;  ///< sds: cosmological constant, 0 < Lambda < 1 / (9 M^2) (r_c ~ 547 M)
+  double throat = 1.0;   ///< wormhole: throat radius b0
 };
 
 /// A named metric's own parameter (beyond the mass): the option that sets it (grtrace-render --spin, Python
@@ -221,7 +223,8 @@ template <class F>
 constexpr void for_each_named_metric(F&& f) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     (f.template operator()<std::tuple_element_t<I, NamedMetricEntries>>(), ...);
-  }(std::make_index_sequence<std::tuple_size_v<NamedMetricEntries>>{});
+  }
+  (std::make_index_sequence<std::tuple_size_v<NamedMetricEntries>>{});
 }
 
 inline constexpr std::array<std::string_view, std::tuple_size_v<NamedMetricEntries>> kMetricNames = [] {

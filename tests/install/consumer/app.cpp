@@ -7,7 +7,7 @@
 
 int main() {
   using namespace grtrace;
-  app::RenderRequest q;  // the seed's main camera (r = 200 M), narrowed to the shadow
+  app::RenderRequest q;         // the seed's main camera (r = 200 M), narrowed to the shadow
   q.camera.fov_degrees = 10.0;  // the shadow (angular radius 3 sqrt(3) M / r, 1.5 degrees) fills the middle
   q.camera.width = 16;
   q.camera.height = 12;

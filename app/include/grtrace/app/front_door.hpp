@@ -70,11 +70,11 @@ struct CameraRequest {
   double r = 200.0;
   double theta_degrees = 90.0;  ///< strictly inside (0, 180): the chart is singular on the axis
   double phi_degrees = 0.0;
-  std::string observer;         ///< static | zamo; "": zamo for kerr (valid in the ergosphere), static otherwise
-  Vec3 velocity = Vec3::Zero(); ///< 3-velocity (fraction of c) in the observer's frame
-  Vec3 look{-1.0, 0.0, 0.0};    ///< in the observer's (r, theta, phi) frame: at the hole
-  Vec3 up{0.0, -1.0, 0.0};      ///< towards the north pole
-  double fov_degrees = 90.0;    ///< horizontal field of view, in (0, 180)
+  std::string observer;          ///< static | zamo; "": zamo for kerr (valid in the ergosphere), static otherwise
+  Vec3 velocity = Vec3::Zero();  ///< 3-velocity (fraction of c) in the observer's frame
+  Vec3 look{-1.0, 0.0, 0.0};     ///< in the observer's (r, theta, phi) frame: at the hole
+  Vec3 up{0.0, -1.0, 0.0};       ///< towards the north pole
+  double fov_degrees = 90.0;     ///< horizontal field of view, in (0, 180)
   int width = 1024, height = 1024;
 };
 
@@ -82,39 +82,39 @@ struct CameraRequest {
 struct MethodRequest {
   std::string tableau = "rkf78", control = "i";
   double rtol = 1e-9, atol = 1e-11;
-  double step = 0.0;      ///< initial step (0: automatic), or the step of control fixed
-  int max_steps = 100000; ///< accepted steps before a ray ends as max_steps
+  double step = 0.0;       ///< initial step (0: automatic), or the step of control fixed
+  int max_steps = 100000;  ///< accepted steps before a ray ends as max_steps
 };
 
 /// Everything a frame is drawn with, by name and number (grtrace-render's options; defaults are its defaults: the
 /// seed report's main frame).
 struct RenderRequest {
-  MetricSpec metric;                   ///< metric/named_metrics.hpp
-  std::string scene = "checker";       ///< checker | sky | redshift | disk (scene/standard_scenes.hpp)
-  int checker_squares = 18;            ///< checker: squares along theta on sky and horizon
-  std::string sky_texture;             ///< sky and disk: an equirectangular EXR (R, G, B) replacing the stars
-  std::optional<double> disk_inner;    ///< disk: inner edge; nothing: 6 M, or for kerr the ISCO of the disk's sense
+  MetricSpec metric;                 ///< metric/named_metrics.hpp
+  std::string scene = "checker";     ///< checker | sky | redshift | disk (scene/standard_scenes.hpp)
+  int checker_squares = 18;          ///< checker: squares along theta on sky and horizon
+  std::string sky_texture;           ///< sky and disk: an equirectangular EXR (R, G, B) replacing the stars
+  std::optional<double> disk_inner;  ///< disk: inner edge; nothing: 6 M, or for kerr the ISCO of the disk's sense
   double disk_outer = 20.0;
-  bool disk_retrograde = false;        ///< disk: the gas turns against the hole (default: with it)
+  bool disk_retrograde = false;  ///< disk: the gas turns against the hole (default: with it)
   CameraRequest camera;
   MethodRequest method;
-  double sky_radius = 400.0;           ///< rays beyond it have escaped; the camera must be inside it
+  double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
   std::string angle_correction = "exact";  ///< escaped rays' continuation: none | flat | exact
-  std::string tracer = "auto";         ///< auto | general | planar (kTracerNames)
-  int table_rays = 0;                  ///< planar tracer: table rays per side of the critical angle (0: default)
-  std::string device = "auto";         ///< auto | cpu | cuda (choose_device)
-  int threads = 0;                     ///< OpenMP threads (0: all cores)
-  bool mirrors = true;                 ///< trace half or a quarter of a mirror-symmetric frame and reflect the rest
-  bool error_map = false;              ///< add the "error" channel against the exact directions (schwarzschild, minkowski)
+  std::string tracer = "auto";             ///< auto | general | planar (kTracerNames)
+  int table_rays = 0;                      ///< planar tracer: table rays per side of the critical angle (0: default)
+  std::string device = "auto";             ///< auto | cpu | cuda (choose_device)
+  int threads = 0;                         ///< OpenMP threads (0: all cores)
+  bool mirrors = true;                     ///< trace half or a quarter of a mirror-symmetric frame and reflect the rest
+  bool error_map = false;  ///< add the "error" channel against the exact directions (schwarzschild, minkowski)
 };
 
 /// A request as checked: the device chosen (cpu or cuda), the observer and the disk's edge filled in, the scene
 /// built (texture read), the settings the tracer takes, and the camera. What FrameRenderer and RayTracer are made
 /// from; check_request makes it.
 struct CheckedRequest {
-  RenderRequest request;               ///< as given, with device, observer and disk_inner filled in
+  RenderRequest request;  ///< as given, with device, observer and disk_inner filled in
   StandardSceneSpec scene;
-  TraceSettings settings;              ///< tolerances, steps, escape radius
+  TraceSettings settings;  ///< tolerances, steps, escape radius
   AngleCorrection correction = AngleCorrection::exact;
   Camera camera;
 };
@@ -130,17 +130,17 @@ CheckedRequest with_camera(CheckedRequest checked, const Camera& camera);
 
 /// How a render runs, beyond the request: progress and cancelling.
 struct RenderControl {
-  ProgressMode bar = ProgressMode::automatic;   ///< the progress bar on stderr (automatic: when it is a terminal)
-  std::string label = "render";                 ///< the first word of the bar
-  ProgressBar* shared_bar = nullptr;            ///< a caller's bar to advance instead (flights)
-  const std::atomic<bool>* cancel = nullptr;    ///< set: the render stops between tiles (RenderCancelled)
-  std::atomic<long>* pixels_done = nullptr;     ///< advanced by the pixels finished, as they finish
+  ProgressMode bar = ProgressMode::automatic;  ///< the progress bar on stderr (automatic: when it is a terminal)
+  std::string label = "render";                ///< the first word of the bar
+  ProgressBar* shared_bar = nullptr;           ///< a caller's bar to advance instead (flights)
+  const std::atomic<bool>* cancel = nullptr;   ///< set: the render stops between tiles (RenderCancelled)
+  std::atomic<long>* pixels_done = nullptr;    ///< advanced by the pixels finished, as they finish
 };
 
 /// The flat continuation's estimated error over a frame's escaped rays (trace/sky_continuation.hpp).
 struct ContinuationEstimate {
-  double error = 0.0;             ///< radians
-  double impact = 0.0;            ///< the largest impact parameter among the escaped rays
+  double error = 0.0;                ///< radians
+  double impact = 0.0;               ///< the largest impact parameter among the escaped rays
   double sky_radius_for_rtol = 0.0;  ///< the sky radius that would bring the error down to rtol
 };
 
@@ -153,19 +153,19 @@ struct ErrorSummary {
 
 /// What a render reports, typed: the loop's statistics, where the time went, which tracer and device ran.
 struct RenderReport {
-  RenderStats stats;                 ///< size, threads, status counts, steps, rays traced (render/parallel_render.hpp)
-  double seconds = 0.0;              ///< the frame's whole time: building the tracer (setup) and tracing
-  double setup_seconds = 0.0;        ///< building the tracer (the planar tracer's table)
-  double rays_per_second = 0.0;      ///< stats.rays / seconds
-  double mean_steps = 0.0;           ///< accepted steps a pixel (the planar tracer: its table's steps over the pixels)
-  std::string tracer;                ///< the tracer that ran: planar, kerr-mino, general, straight-line
-  std::string device;                ///< "cpu", or the GPU's model
+  RenderStats stats;             ///< size, threads, status counts, steps, rays traced (render/parallel_render.hpp)
+  double seconds = 0.0;          ///< the frame's whole time: building the tracer (setup) and tracing
+  double setup_seconds = 0.0;    ///< building the tracer (the planar tracer's table)
+  double rays_per_second = 0.0;  ///< stats.rays / seconds
+  double mean_steps = 0.0;       ///< accepted steps a pixel (the planar tracer: its table's steps over the pixels)
+  std::string tracer;            ///< the tracer that ran: planar, kerr-mino, general, straight-line
+  std::string device;            ///< "cpu", or the GPU's model
   std::optional<double> gpu_trace_seconds, gpu_seconds;  ///< the GPU kernel's time, and the GPU's whole share
-  std::string mirrors;               ///< the reflections used ("" none; render/mirror_symmetry.hpp)
-  std::string sky_continuation;      ///< how escaped rays were continued to infinity
-  std::optional<ContinuationEstimate> continuation_error;  ///< a flat continuation's estimated error
+  std::string mirrors;                                   ///< the reflections used ("" none; render/mirror_symmetry.hpp)
+  std::string sky_continuation;                          ///< how escaped rays were continued to infinity
+  std::optional<ContinuationEstimate> continuation_error;   ///< a flat continuation's estimated error
   long table_rays = 0, table_steps = 0, fallback_rays = 0;  ///< the planar tracer's table and fallback
-  std::optional<ErrorSummary> error;  ///< with RenderRequest::error_map
+  std::optional<ErrorSummary> error;                        ///< with RenderRequest::error_map
 };
 
 /// One entry of a report as the JSON line and the Python dict give it.
@@ -181,7 +181,7 @@ struct ReportEntry {
 std::vector<ReportEntry> report_entries(const RenderReport& report, const CheckedRequest& request);
 
 struct RenderResult {
-  Image image;          ///< channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps (+ error)
+  Image image;  ///< channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps (+ error)
   RenderReport report;
 };
 
@@ -239,7 +239,7 @@ struct PathOptions {
 struct TracedRay {
   TracedPath path;
   RayOutcome outcome;
-  std::string object;  ///< the scene's name of outcome.object ("sky", "horizon", "disk", ...); "" for a failed ray
+  std::string object;      ///< the scene's name of outcome.object ("sky", "horizon", "disk", ...); "" for a failed ray
   bool cartesian = false;  ///< the metric's chart is Cartesian (t, x, y, z), else spherical (t, r, theta, phi)
 };
 
@@ -332,7 +332,8 @@ RenderRequest read_render_request(const OptionSource& options);
 
 /// The groups read_render_request reads, for a tool that reads only some (grtrace-view): the metric (one of
 /// `offered`, its mass and chart, the parameter of that metric; another metric's parameter given is refused), the
-/// camera (event, observer, velocity, look, up, fov; not the size) and the method (--<prefix>tableau, --<prefix>control,
+/// camera (event, observer, velocity, look, up, fov; not the size) and the method (--<prefix>tableau,
+/// --<prefix>control,
 /// --<prefix>step, --<prefix>rtol, --<prefix>atol: a second integration's options carry a prefix, "orbit-").
 MetricSpec read_metric(const OptionSource& options, const std::vector<std::string>& offered);
 CameraRequest read_camera(const OptionSource& options);

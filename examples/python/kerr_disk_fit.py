@@ -63,26 +63,29 @@ if AS_SCRIPT:
     fig.savefig("kerr_disk_frame.png", dpi=100)
 
 # %% [markdown]
-# ## A few rays of the middle row, traced one by one
+# ## A few rays of the middle column, traced one by one
 #
 # `grtrace.trace_ray(pixel=(column, row), ...)` integrates one pixel's ray with the general tracer and returns its
-# path: coordinates, momenta and affine parameter as arrays, and where it ended.
+# path: coordinates, momenta and affine parameter as arrays, and where it ended. Seen from the side (the camera's
+# x, z plane), the rays above the shadow bend over the hole onto the far side of the disk.
 
 # %%
-row = SIZE // 2
-rays = [grtrace.trace_ray(pixel=(col, row), metric="kerr", spin=0.9, camera_theta=80, width=SIZE, height=SIZE,
-                          **CAMERA) for col in np.linspace(0, SIZE - 1, 9).astype(int)]
-fig, ax = plt.subplots(figsize=(6, 6))
+column = SIZE // 2
+rays = [grtrace.trace_ray(pixel=(column, row), metric="kerr", spin=0.9, camera_theta=80, width=SIZE, height=SIZE,
+                          **CAMERA) for row in np.linspace(0, SIZE - 1, 11).astype(int)]
+fig, ax = plt.subplots(figsize=(8, 5))
 r_plus = 1 + np.sqrt(1 - 0.9**2)
 ax.add_patch(plt.Circle((0, 0), r_plus, color="black"))
+isco = float(frame.header["disk_inner"])
+for sign in (-1, 1):
+    ax.plot([sign * isco, sign * 20], [0, 0], color="orange", lw=4, solid_capstyle="butt")
+colours = {"disk": "tab:blue", "horizon": "black", "sky": "tab:gray"}
 for ray in rays:
-    ax.plot(ray.cartesian[:, 0], ray.cartesian[:, 1], lw=1, label=ray.outcome["object"])
-ax.set_xlim(-25, 65)
-ax.set_ylim(-45, 45)
+    ax.plot(ray.cartesian[:, 0], ray.cartesian[:, 2], lw=1, color=colours.get(ray.outcome["object"], "red"))
+ax.set_xlim(-25, 62)
+ax.set_ylim(-16, 24)
 ax.set_aspect("equal")
-ax.set_title("rays of the middle row, seen from above (x, y in M)")
-handles, labels = ax.get_legend_handles_labels()
-ax.legend(dict(zip(labels, handles)).values(), dict(zip(labels, handles)).keys())
+ax.set_title("rays of the middle column, from the side (x, z in M): disk orange, horizon black")
 if AS_SCRIPT:
     fig.savefig("kerr_disk_rays.png", dpi=100)
 for ray in rays:
@@ -129,13 +132,17 @@ print(f"fit: spin {spin_fit:.4f} (true {TRUTH[0]}), inclination {theta_fit:.3f} 
 assert abs(spin_fit - TRUTH[0]) < 0.02 and abs(theta_fit - TRUTH[1]) < 0.5, "the fit did not recover the parameters"
 
 # %%
-fig, axes = plt.subplots(1, 2, figsize=(9, 4))
-axes[0].imshow(observed, cmap="coolwarm_r")
-axes[0].set_title(f"observed (a = {TRUTH[0]}, {TRUTH[1]} deg)")
-axes[1].imshow(redshift_map(spin_fit, theta_fit) - observed, cmap="RdBu")
-axes[1].set_title(f"fit - observed (a = {spin_fit:.3f}, {theta_fit:.2f} deg)")
-for ax in axes:
-    ax.set_axis_off()
+fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+axes[0].imshow(np.ma.masked_equal(observed, 0.0), cmap="coolwarm_r")
+axes[0].set_title(f"observed: blurred redshift map (a = {TRUTH[0]}, {TRUTH[1]} deg)")
+axes[0].set_axis_off()
+trials = np.array(calls)
+axes[1].plot(trials[:, 0], trials[:, 1], ".-", color="tab:gray", lw=0.5, ms=3, label="Nelder-Mead's trials")
+axes[1].plot(*TRUTH, "r*", ms=14, label="truth")
+axes[1].plot(spin_fit, theta_fit, "kx", ms=10, label=f"fit ({spin_fit:.4f}, {theta_fit:.3f} deg)")
+axes[1].set_xlabel("spin a / M")
+axes[1].set_ylabel("inclination (camera theta, degrees)")
+axes[1].legend()
 fig.tight_layout()
 if AS_SCRIPT:
     fig.savefig("kerr_disk_fit.png", dpi=100)

@@ -74,3 +74,18 @@ def test_the_package_is_the_installed_one():
     assert source not in where.parents
     assert (where.parent / "__init__.pyi").exists()
     assert any(p.name.startswith("_grtrace") for p in where.parent.iterdir())
+
+
+def test_the_readmes_example_runs_and_says_what_it_shows(tmp_path, monkeypatch):
+    readme = (pathlib.Path(os.environ.get("GRTRACE_SOURCE_DIR", pathlib.Path(__file__).parents[2])) / "README.md")
+    text = readme.read_text()
+    section = text[text.index("## From Python"):text.index("## Command-line tools")]
+    code = section[section.index("```python") + len("```python"):]
+    code = code[:code.index("```")]
+    monkeypatch.chdir(tmp_path)
+    scope = {}
+    exec(compile(code.replace("progress=True", "progress=None"), "README.md", "exec"), scope)
+    assert scope["frame"].report["tracer"] == "kerr-mino"
+    assert scope["g"].shape == (256, 256)
+    assert scope["ray"].outcome["status"] == "hit" and scope["ray"].outcome["object"] == "disk"
+    assert (tmp_path / "disk.exr").exists() and (tmp_path / "disk.png").exists()

@@ -20,6 +20,12 @@
 
 namespace grtrace::app {
 
+/// Refuses a path with fewer than one or more than 1000 samples a step.
+inline void check_samples_per_step(const PathOptions& o) {
+  if (o.samples_per_step < 1 || o.samples_per_step > 1000)
+    throw RequestError("samples_per_step must be 1 .. 1000, got " + std::to_string(o.samples_per_step));
+}
+
 /// Ends a path once phi (x^3 of a spherical chart) has passed `end`, in the sense `sign`; positive before. With no
 /// advance asked for it never ends one (always +1: the same instantiation serves every path).
 struct PhiAdvanceEvent {
@@ -53,8 +59,7 @@ class RayTracerOf final : public RayTracer {
             BackgroundScene{scene.sky, scene.horizon, {}, scene.colour_by_redshift, scene.failure})) {}
 
   TracedRay trace(const GeodesicState& y0, const PathOptions& o) const override {
-    if (o.samples_per_step < 1 || o.samples_per_step > 1000)
-      throw RequestError("samples_per_step must be 1 .. 1000, got " + std::to_string(o.samples_per_step));
+    check_samples_per_step(o);
     PhiAdvanceEvent stop;
     if (o.phi_advance) {
       if constexpr (M::chart != Chart::spherical) {
@@ -80,11 +85,7 @@ class RayTracerOf final : public RayTracer {
     }
     finish_path(ray.path, metric, y0, ray.outcome.status);
     end_on_the_crossing(ray, metric);
-    if (!is_failure(ray.outcome.status)) {
-      const auto index = static_cast<std::size_t>(ray.outcome.object);
-      ray.object = ray.outcome.object >= 0 && index < names.size() ? names[index]
-                                                                   : "object " + std::to_string(ray.outcome.object);
-    }
+    ray.object = outcome_object_name(ray.outcome, names);
     return ray;
   }
 
@@ -109,8 +110,7 @@ class StraightRayTracerOf final : public RayTracer {
               BackgroundScene{scene.sky, scene.horizon, {}, scene.colour_by_redshift, scene.failure}) {}
 
   TracedRay trace(const GeodesicState& y0, const PathOptions& o) const override {
-    if (o.samples_per_step < 1 || o.samples_per_step > 1000)
-      throw RequestError("samples_per_step must be 1 .. 1000, got " + std::to_string(o.samples_per_step));
+    check_samples_per_step(o);
     if (o.phi_advance) throw RequestError("phi_advance ends integrated paths; flat space draws straight lines");
     TracedRay ray;
     const bool objects = o.scene_objects || std::is_same_v<Scene, BackgroundScene>;
@@ -155,11 +155,7 @@ class StraightRayTracerOf final : public RayTracer {
              inner_product(metric_, Vec4(p.state.head<4>()), Vec4(p.state.tail<4>()), Vec4(p.state.tail<4>()))});
     }
     ray.path.status = ray.outcome.status;
-    if (!is_failure(ray.outcome.status)) {
-      const auto index = static_cast<std::size_t>(ray.outcome.object);
-      ray.object = ray.outcome.object >= 0 && index < names.size() ? names[index]
-                                                                   : "object " + std::to_string(ray.outcome.object);
-    }
+    ray.object = outcome_object_name(ray.outcome, names);
     return ray;
   }
 

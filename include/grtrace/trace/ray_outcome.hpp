@@ -13,6 +13,8 @@
 #include "grtrace/scene/object_ids.hpp"
 
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace grtrace {
 
@@ -29,5 +31,13 @@ struct RayOutcome {
   GeodesicState state = GeodesicState::Constant(quiet_nan());  ///< (x, k) at the end, in the metric's chart; NaN where
                                                                ///< a tracer does not follow the ray itself (tables)
 };
+
+/// The name of the object a ray ended on, from its scene's names by position (Scene::object_names: "sky",
+/// "horizon", "disk", ...; "object N" past them); "" for a failed ray, which ended on none.
+inline std::string outcome_object_name(const RayOutcome& outcome, const std::vector<std::string>& names) {
+  if (is_failure(outcome.status)) return "";
+  const auto index = static_cast<std::size_t>(outcome.object);
+  return outcome.object >= 0 && index < names.size() ? names[index] : "object " + std::to_string(outcome.object);
+}
 
 }  // namespace grtrace

@@ -76,15 +76,6 @@ struct RayPick {
   std::string object_name;     ///< the scene's name of outcome.object ("sky", "horizon", "disk", ...); "" if failed
 };
 
-/// Takes a ray's outcome and the scene's object names; returns the name of the object it ended on ("sky",
-/// "horizon", "disk", ...; "object N" beyond the names), "" for a failed ray.
-inline std::string object_name(const RayOutcome& outcome, const std::vector<std::string>& names) {
-  if (is_failure(outcome.status)) return "";
-  const auto index = static_cast<std::size_t>(outcome.object);
-  const bool named = outcome.object >= 0 && index < names.size();
-  return named ? names[index] : "object " + std::to_string(outcome.object);
-}
-
 /// Takes a scene tracer with tracer() (its GeodesicTracer), scene() (objects tuple, object_names()) and trace(y0)
 /// (trace/scene_tracer.hpp's GeneralSceneTracer), pixel_state(x, y) -> the camera's initial state of a pixel, the
 /// pixel, samples per accepted step, the observer's 4-velocity (the redshift along the path; nothing: none) and
@@ -105,7 +96,7 @@ RayPick pick_ray(const SceneTracer& scene_tracer, const PixelState& pixel_state,
       scene_tracer.scene().objects);
   pick.path = std::move(paths.front());
   pick.outcome = scene_tracer.trace(pixel_state(pixel[0], pixel[1]));
-  pick.object_name = object_name(pick.outcome, scene_tracer.scene().object_names());
+  pick.object_name = outcome_object_name(pick.outcome, scene_tracer.scene().object_names());
   return pick;
 }
 

@@ -305,8 +305,12 @@ CheckedRequest check_request(const RenderRequest& in) {
       throw RequestError("--sky-texture: " + std::string(e.what()));
     }
   }
+  // The disk's sense and edge for every scene (a viewer draws the ISCO ring of that sense around any scene); its
+  // orbits are checked where it is drawn.
+  RenderRequest edge = q;
+  if (!disk) edge.disk_inner.reset();  // an edge asked for where no disk is drawn is not judged
+  scene.disk = disk_of(edge);
   if (disk) {
-    scene.disk = disk_of(q);
     if (!q.disk_inner) q.disk_inner = scene.disk.r_in;
     refusal_as_request_error("", [&] {
       try {

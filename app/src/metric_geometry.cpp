@@ -38,22 +38,7 @@ class GeometryOf final : public MetricGeometry {
     return grtrace::make_moving_camera(metric_, x, u, view);
   }
   Worldline flight(const FlightPathSpec& spec) const override { return flight_path(metric_, spec); }
-  TracedPath worldline_path(const Worldline& w) const override {
-    TracedPath path;
-    for (std::size_t i = 0; i < w.samples.size(); ++i) {
-      const WorldlineSample& s = w.samples[i];
-      PathSample p;
-      p.state = make_state(s.x, s.u);
-      p.position = metric_.to_cartesian(s.x);
-      p.lambda = s.tau;
-      p.h = i + 1 < w.samples.size() ? w.samples[i + 1].tau - s.tau : i > 0 ? s.tau - w.samples[i - 1].tau : 0.0;
-      p.step = static_cast<int>(i);
-      path.samples.push_back(p);
-      path.steps.push_back({p.lambda, p.h, p.state, p.position, inner_product(metric_, s.x, s.u, s.u)});
-    }
-    path.status = w.stopped.value_or(RayStatus::max_steps);
-    return path;
-  }
+  TracedPath worldline_path(const Worldline& w) const override { return grtrace::worldline_path(metric_, w); }
 
  private:
   M metric_;

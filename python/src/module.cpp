@@ -320,6 +320,16 @@ PyFrame render(const py::object& progress, const py::dict& kwargs) {
 
 // ---- rays -------------------------------------------------------------------------------------------------
 
+/// A sequence of numbers, or InputError(`what`) for anything else.
+template <class T>
+std::vector<T> numbers_of(const py::object& value, const std::string& what) {
+  try {
+    return value.cast<std::vector<T>>();
+  } catch (const py::cast_error&) {
+    throw InputError(what + ", got " + py::repr(value).cast<std::string>());
+  }
+}
+
 py::dict trace_ray(const py::object& pixel, const py::object& position, const py::object& momentum,
                    int samples_per_step, bool scene_objects, const py::dict& kwargs) {
   const app::CheckedRequest checked = checked_request(kwargs);
@@ -328,7 +338,7 @@ py::dict trace_ray(const py::object& pixel, const py::object& position, const py
   if (!pixel.is_none()) {
     if (!position.is_none() || !momentum.is_none())
       throw InputError("give pixel=(column, row), or position= and momentum=, not both");
-    const auto p = pixel.cast<std::vector<long>>();
+    const auto p = numbers_of<long>(pixel, "pixel expects (column, row): two whole numbers");
     if (p.size() != 2) throw InputError("pixel expects (column, row)");
     const Camera& camera = checked.camera;
     if (p[0] < 0 || p[1] < 0 || p[0] >= camera.width() || p[1] >= camera.height())
@@ -342,7 +352,8 @@ py::dict trace_ray(const py::object& pixel, const py::object& position, const py
       throw InputError(
           "give pixel=(column, row) of the camera, or position=(x0..x3) and momentum=(k0..k3) in the "
           "metric's chart");
-    const auto x = position.cast<std::vector<double>>(), k = momentum.cast<std::vector<double>>();
+    const auto x = numbers_of<double>(position, "position expects 4 numbers"),
+               k = numbers_of<double>(momentum, "momentum expects 4 numbers");
     if (x.size() != 4 || k.size() != 4) throw InputError("position and momentum expect 4 numbers each");
     y0 << x[0], x[1], x[2], x[3], k[0], k[1], k[2], k[3];
     if (!y0.allFinite()) throw InputError("position and momentum must be finite numbers");

@@ -124,6 +124,12 @@ def test_python_only_mistakes_raise_value_error_too():
         grtrace.render(progress="yes", **MAIN_FRAME)
     with pytest.raises(ValueError, match="pixel .* is outside"):
         grtrace.trace_ray(pixel=(80, 0), **MAIN_FRAME)
+    with pytest.raises(ValueError, match="pixel expects"):
+        grtrace.trace_ray(pixel=(1.5, "x"), **MAIN_FRAME)
+    with pytest.raises(ValueError, match="position expects 4 numbers"):
+        grtrace.trace_ray(position="abc", momentum=(1, 2, 3, 4))
+    with pytest.raises(ValueError, match="samples_per_step must be"):
+        grtrace.trace_ray(pixel=(1, 1), samples_per_step=0, **MAIN_FRAME)
 
 
 def test_lambda_is_spelt_lambda_underscore():

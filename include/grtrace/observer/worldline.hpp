@@ -26,6 +26,7 @@
 #include "grtrace/observer/timelike_start.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/traced_path.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -165,6 +166,29 @@ std::optional<double> proper_time_until(const M& metric, const TimelikeStart& st
   const TraceResult r = tracer.trace(start.state(), event);
   if (r.status != RayStatus::hit) return std::nullopt;
   return r.lambda;
+}
+
+/// Takes a metric and a sampled worldline (a camera flight: one sample per frame); returns it as a TracedPath with
+/// one sample per worldline sample, in order: position = the metric's Cartesian embedding of x, state = (x, u),
+/// lambda = tau, h = the proper time to the next sample (the last one repeats its predecessor's), step = the
+/// sample's (frame's) index; one step record per sample with g(u, u). Status: why the worldline stopped, or
+/// max_steps when it took every sample asked for (its count ran out, nothing ended it).
+template <MetricPolicy M>
+TracedPath worldline_path(const M& metric, const Worldline& worldline) {
+  TracedPath path;
+  const auto& w = worldline.samples;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    PathSample s;
+    s.state = make_state(w[i].x, w[i].u);
+    s.position = metric.to_cartesian(w[i].x);
+    s.lambda = w[i].tau;
+    s.h = i + 1 < w.size() ? w[i + 1].tau - w[i].tau : i > 0 ? w[i].tau - w[i - 1].tau : 0.0;
+    s.step = static_cast<int>(i);
+    path.samples.push_back(s);
+    path.steps.push_back({s.lambda, s.h, s.state, s.position, inner_product(metric, w[i].x, w[i].u, w[i].u)});
+  }
+  path.status = worldline.stopped.value_or(RayStatus::max_steps);
+  return path;
 }
 
 }  // namespace grtrace

@@ -7,7 +7,8 @@
 // the circular one (v^2/r ~ 0.56 M/r^2), so it falls in to periapsis ~ 39 M and back: a precessing ellipse.
 // It is traced for `revolutions` turns in phi (an event phi = 2 pi revolutions ends it) with lambda = proper time.
 //
-// A camera flight's path (observer/flight_path.hpp, a Worldline) is drawn as an orbit too: worldline_path.
+// A camera flight's path (observer/flight_path.hpp, a Worldline) is drawn as an orbit too: worldline_path
+// (observer/worldline.hpp).
 #pragma once
 
 #include "grtrace/metric/schwarzschild.hpp"
@@ -63,27 +64,7 @@ TracedPath trace_orbit(const Tracer& tracer, const OrbitSpec& spec, int samples_
   return trace_path(tracer, y0, samples_per_step, std::nullopt, end);
 }
 
-/// Takes a metric and a sampled worldline (a camera flight: one sample per frame); returns it as a TracedPath with
-/// one sample per worldline sample, in order: position = the metric's Cartesian embedding of x, state = (x, u),
-/// lambda = tau, h = the proper time to the next sample (the last one repeats its predecessor's), step = the
-/// sample's (frame's) index; one step record per sample with g(u, u). Status: why the worldline stopped, or
-/// max_steps when it took every sample asked for (its count ran out, nothing ended it).
-template <MetricPolicy M>
-TracedPath worldline_path(const M& metric, const Worldline& worldline) {
-  TracedPath path;
-  const auto& w = worldline.samples;
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    PathSample s;
-    s.state = make_state(w[i].x, w[i].u);
-    s.position = metric.to_cartesian(w[i].x);
-    s.lambda = w[i].tau;
-    s.h = i + 1 < w.size() ? w[i + 1].tau - w[i].tau : i > 0 ? w[i].tau - w[i - 1].tau : 0.0;
-    s.step = static_cast<int>(i);
-    path.samples.push_back(s);
-    path.steps.push_back({s.lambda, s.h, s.state, s.position, inner_product(metric, w[i].x, w[i].u, w[i].u)});
-  }
-  path.status = worldline.stopped.value_or(RayStatus::max_steps);
-  return path;
-}
+/// A camera flight's path as the 3D view draws it (observer/worldline.hpp).
+using grtrace::worldline_path;
 
 }  // namespace grtrace::viz

@@ -28,7 +28,7 @@
 // same name (R, G, B linear radiance, object, status, redshift, sky_theta, sky_phi, steps). The image lives in
 // pixel units: show it in its own (2D) render view in ParaView.
 //
-// Flight (flight_to_export_polydata): a camera flight's path (orbits.hpp worldline_path: one sample per frame) as
+// Flight (flight_to_export_polydata): a camera flight's path (observer/worldline.hpp worldline_path: one sample per frame) as
 // the rays are written (coordinates = x, momentum = the 4-velocity u, affine_parameter = tau) plus
 //   point data  "tau" (the frame's proper time, double), "frame" (the frame's index, int)
 //   field data  "flight" (the kind, string), "flight_frame" (the frame whose camera the viewer used, int),
@@ -119,7 +119,7 @@ void prepare_export_directory(const std::filesystem::path& dir);
 
 /// A camera flight for export_scene: the arguments of flight_to_export_polydata.
 struct FlightExport {
-  const TracedPath* path = nullptr;        ///< one sample per frame (orbits.hpp worldline_path); must not be null
+  const TracedPath* path = nullptr;        ///< one sample per frame (observer/worldline.hpp worldline_path); must not be null
   std::string kind;                        ///< --flight
   int frame = 0;                           ///< the frame in use
   std::optional<CameraRecord> camera;      ///< its camera

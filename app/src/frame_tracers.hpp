@@ -24,6 +24,23 @@
 
 namespace grtrace::app {
 
+/// f(), a std::invalid_argument it throws (a library refusal) as a RequestError with `prefix` before its message.
+template <class F>
+decltype(auto) refusal_as_request_error(const std::string& prefix, F&& f) {
+  try {
+    return f();
+  } catch (const RequestError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw RequestError(prefix + e.what());
+  }
+}
+
+/// Refuses a method the tools do not offer, tolerances outside (0, 1) and [0, 1), a negative step, a fixed step
+/// without a step; `prefix` names a second integration's options (grtrace-view's "orbit-"). The step budget is
+/// check_request's.
+void check_method(const MethodRequest& m, const std::string& prefix = "");
+
 /// The frame renderer of a checked request in metric M (defined in frame_tracers_impl.hpp, instantiated per unit).
 template <MetricPolicy M>
 std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked, const M& metric);

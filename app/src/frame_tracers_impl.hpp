@@ -111,6 +111,10 @@ std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked
                 checked, [&] { return make_general_tracer<T, C>(metric, checked.settings, checked.correction, scene); },
                 on_gpu);
           } else {
+            // check_tracer refused a reduced tracer the metric or control cannot have; this is the scene's part.
+            if ((q.tracer == "kerr-mino" && !kerr_mino_tracer_applies<M, Scene, C>) ||
+                (q.tracer == "planar" && !planar_tracer_applies<M, Scene, C>))
+              throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene + "; use auto or general");
             with_auto_tracer_maker<T, C>(metric, checked.settings, checked.camera, checked.correction, scene,
                                          q.table_rays,
                                          [&](const auto& make) { out = own_tracer(checked, make, on_gpu); });

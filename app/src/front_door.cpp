@@ -4,6 +4,7 @@
 #include "frame_tracers.hpp"
 #include "gpu_tracers.hpp"
 #include "grtrace/core/memory_limit.hpp"
+#include "grtrace/core/number_text.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/metric/metric_traits.hpp"
@@ -13,7 +14,6 @@
 #include "grtrace/scene/thin_disk.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -31,25 +31,6 @@
 namespace grtrace::app {
 
 namespace {
-
-/// The shortest text that reads back as v (what a refusal prints of a number).
-std::string shortest(double v) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return ec == std::errc() ? std::string(buffer, end) : exact_number(v);
-}
-
-/// f(), a std::invalid_argument it throws (a library refusal) as a RequestError with `prefix` before its message.
-template <class F>
-decltype(auto) refusal_as_request_error(const std::string& prefix, F&& f) {
-  try {
-    return f();
-  } catch (const RequestError&) {
-    throw;
-  } catch (const std::invalid_argument& e) {
-    throw RequestError(prefix + e.what());
-  }
-}
 
 /// The named metrics the planar table tracer draws (trace/auto_tracer.hpp): static and spherically symmetric
 /// (StaticSphericalMetric), with a horizon (Reissner-Nordstrom's |Q| < M, check_metric_spec, always gives it one).
@@ -93,8 +74,8 @@ ThinDisk disk_of(const RenderRequest& q) {
   } else if (!(disk.r_in >= isco * (1.0 - 1e-12))) {  // the printed ISCO itself is accepted
     std::ostringstream msg;
     msg.precision(10);
-    msg << "--disk-inner " << shortest(disk.r_in) << " is inside the ISCO r_isco = " << isco << " M of this "
-        << (retrograde ? "retrograde" : "prograde") << " disk (a = " << ms.spin
+    msg << "--disk-inner " << shortest_number_text(disk.r_in) << " is inside the ISCO r_isco = " << isco
+        << " M of this " << (retrograde ? "retrograde" : "prograde") << " disk (a = " << ms.spin
         << "): no stable circular orbit exists there; raise --disk-inner to at least the ISCO or leave it out";
     throw RequestError(msg.str());
   }
@@ -109,17 +90,6 @@ TraceSettings settings_of(const RenderRequest& q) {
   s.max_steps = q.method.max_steps;
   s.escape_radius = q.sky_radius;
   return s;
-}
-
-void check_method(const MethodRequest& m) {
-  refusal_as_request_error("--tableau / --control: ", [&] { check_tool_method(m.tableau, m.control); });
-  if (!(m.rtol > 0.0 && m.rtol < 1.0))
-    throw RequestError("--rtol must lie in (0, 1) (a relative error; e.g. 1e-9), got " + shortest(m.rtol));
-  if (!(m.atol >= 0.0 && m.atol < 1.0))
-    throw RequestError("--atol must lie in [0, 1) (e.g. 1e-11), got " + shortest(m.atol));
-  if (!(m.step >= 0.0)) throw RequestError("--step must be >= 0");
-  if (m.control == "fixed" && m.step <= 0.0) throw RequestError("--control fixed needs a step: add --step H > 0");
-  if (m.max_steps < 1 || m.max_steps > 100'000'000) throw RequestError("--max-steps must be in 1 .. 1e8");
 }
 
 AngleCorrection correction_of(const std::string& name) {
@@ -141,33 +111,68 @@ void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& 
     return std::tuple{m.radius(x), (1.0 + s.horizon_epsilon) * rh, ok};
   });
   if (!(camera_radius > guard))
-    throw RequestError("--camera-r " + shortest(radius_asked) +
+    throw RequestError("--camera-r " + shortest_number_text(radius_asked) +
                        " is at or inside the horizon (guard r = " + exact_number(guard) + "); move the camera out");
   if (!(camera_radius < s.escape_radius)) throw RequestError("--camera-r must be inside --sky-radius");
   if (!sky_ok)
-    throw RequestError("--sky-radius " + shortest(s.escape_radius) +
+    throw RequestError("--sky-radius " + shortest_number_text(s.escape_radius) +
                        " lies beyond a horizon of this metric (no emitter can be at rest there); lower it");
 }
 
-/// Which tracer can draw what (a request the tracers cannot draw is refused here, before any work).
+/// The reduced Kerr tracer's metric (trace/auto_tracer.hpp kerr_mino_tracer_applies): KerrMetric, the
+/// Boyer-Lindquist chart. Asked of the metric's type.
+bool kerr_mino_tracer_metric(const MetricSpec& metric) {
+  if (!is_named_metric(metric.name)) return false;
+  return with_named_metric(metric,
+                           [](const auto& m) { return std::is_same_v<std::remove_cvref_t<decltype(m)>, KerrMetric>; });
+}
+
+/// Which tracer can draw what: a tracer named (kTracerNames) that cannot draw the request is refused here, before
+/// any work, saying why and what to ask for instead. Every standard scene is one both reduced tracers draw (its
+/// objects equatorial and stationary: planar_supports_scene, kerr_mino_supports_scene; the frame units check it at
+/// compile time), so what decides is the metric and the step control.
 void check_tracer(const RenderRequest& q) {
   if (q.tracer == "symmetric")
     throw RequestError(
         "--tracer symmetric is retired: the planar tracer draws every frame it drew, with a "
         "smaller error; use --tracer planar (or auto, which picks it)");
   if (std::find(kTracerNames.begin(), kTracerNames.end(), q.tracer) == kTracerNames.end())
-    throw RequestError("unknown --tracer '" + q.tracer + "'; choose auto, general or planar");
+    throw RequestError("unknown --tracer '" + q.tracer + "'; choose " + choice_list(kTracerNames));
+  const bool flat = flat_metric(q.metric);
+  if (q.tracer == "straight-line" && !flat)
+    throw RequestError(
+        "--tracer straight-line draws flat space only (--metric minkowski); this metric is curved: "
+        "use auto or general");
   if (q.tracer == "planar" && !planar_tracer_metric(q.metric))
     throw RequestError(
         "--tracer planar needs a static spherically symmetric metric with a horizon "
-        "(--metric schwarzschild or rn); use general");
-  if (q.tracer == "planar" && q.method.control == "fixed")
+        "(--metric schwarzschild, rn or sds); use general");
+  if (q.tracer == "kerr-mino" && !kerr_mino_tracer_metric(q.metric))
     throw RequestError(
-        "--tracer planar integrates its table in swept angle, where a fixed --step would mean "
-        "something else; use --control i, pi or doubling, or --tracer general");
+        "--tracer kerr-mino needs --metric kerr --chart bl (Kerr's separated equations in "
+        "Boyer-Lindquist coordinates); use general");
+  for (const char* reduced : {"planar", "kerr-mino"})
+    if (q.tracer == reduced && q.method.control == "fixed")
+      throw RequestError("--tracer " + q.tracer + " integrates in " +
+                         (q.tracer == "planar" ? "swept angle" : "Mino time") +
+                         ", where a fixed --step would mean something else; use --control i, pi or doubling, or "
+                         "--tracer general");
 }
 
 }  // namespace
+
+void check_method(const MethodRequest& m, const std::string& prefix) {
+  const std::string o = "--" + prefix;
+  refusal_as_request_error(o + "tableau / " + o + "control: ", [&] { check_tool_method(m.tableau, m.control); });
+  if (!(m.rtol > 0.0 && m.rtol < 1.0))
+    throw RequestError(o + "rtol must lie in (0, 1) (a relative error; e.g. 1e-9), got " +
+                       shortest_number_text(m.rtol));
+  if (!(m.atol >= 0.0 && m.atol < 1.0))
+    throw RequestError(o + "atol must lie in [0, 1) (e.g. 1e-11), got " + shortest_number_text(m.atol));
+  if (!(m.step >= 0.0)) throw RequestError(o + "step must be >= 0");
+  if (m.control == "fixed" && m.step <= 0.0)
+    throw RequestError(o + "control fixed needs a step: add " + o + "step H > 0");
+}
 
 // ---- devices ------------------------------------------------------------------------------------------------
 
@@ -226,12 +231,14 @@ CheckedRequest check_request(const RenderRequest& in) {
     throw RequestError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
 
   check_method(q.method);
+  if (q.method.max_steps < 1 || q.method.max_steps > 100'000'000) throw RequestError("--max-steps must be in 1 .. 1e8");
   const TraceSettings settings = settings_of(q);
   if (!(q.sky_radius > 0.0 && q.sky_radius <= 1e100))
-    throw RequestError("--sky-radius must lie in (0, 1e100] (r^2 must not overflow), got " + shortest(q.sky_radius));
+    throw RequestError("--sky-radius must lie in (0, 1e100] (r^2 must not overflow), got " +
+                       shortest_number_text(q.sky_radius));
   // A step longer than the sky's diameter crosses the whole scene in one go: meaningless, not just coarse.
   if (q.method.step > 2.0 * q.sky_radius)
-    throw RequestError("--step " + shortest(q.method.step) +
+    throw RequestError("--step " + shortest_number_text(q.method.step) +
                        " is longer than the sky's diameter (2 x --sky-radius = " + exact_number(2.0 * q.sky_radius) +
                        "); use a step in (0, " + exact_number(2.0 * q.sky_radius) + "]");
   const AngleCorrection correction = correction_of(q.angle_correction);
@@ -242,14 +249,15 @@ CheckedRequest check_request(const RenderRequest& in) {
     throw RequestError(
         "--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
   if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
-    throw RequestError("--fov must lie in (0, 180) degrees, got " + shortest(c.fov_degrees));
+    throw RequestError("--fov must lie in (0, 180) degrees, got " + shortest_number_text(c.fov_degrees));
   if (!std::isfinite(c.r) || !std::isfinite(c.phi_degrees))
     throw RequestError("--camera-r and --camera-phi must be finite numbers");
   q.camera.observer = observer_or_default(q);
   const auto observer = observer_kind_from_string(q.camera.observer);
   if (!observer) throw RequestError("unknown --observer '" + q.camera.observer + "'; choose static or zamo");
   constexpr double deg = std::numbers::pi / 180.0;
-  const Vec4 x_spherical(0.0, c.r, c.theta_degrees * deg, c.phi_degrees * deg);
+  // phi modulo a turn, exactly (fmod), before radians: 1e308 degrees is an angle, but not once multiplied by pi.
+  const Vec4 x_spherical(0.0, c.r, c.theta_degrees * deg, std::fmod(c.phi_degrees, 360.0) * deg);
   check_camera_radius(ms, c.r, x_spherical, settings);
   if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
     throw RequestError("--width and --height must be between 1 and 16384 pixels");
@@ -292,10 +300,14 @@ CheckedRequest check_request(const RenderRequest& in) {
   scene.checker_squares = q.checker_squares;
   if (!q.sky_texture.empty()) {
     try {
-      const Image img = read_exr(q.sky_texture);
-      if (!img.has_channel("R") || !img.has_channel("G") || !img.has_channel("B"))
+      // Judged by its header before its pixels are decoded; then its R, G, B planes are moved into the sky, so the
+      // texels are held once (the memory limit, which the reader applies to the file's channels, bounds them).
+      const ExrInfo info = read_exr_info(q.sky_texture);
+      if (!info.has_channel("R") || !info.has_channel("G") || !info.has_channel("B"))
         throw RequestError("--sky-texture '" + q.sky_texture + "' has no R, G, B channels");
-      scene.texture = TextureSky{img.width(), img.height(), img.channel("R"), img.channel("G"), img.channel("B")};
+      Image img = read_exr(q.sky_texture);
+      scene.texture = TextureSky(img.width(), img.height(), std::move(img.channel("R")), std::move(img.channel("G")),
+                                 std::move(img.channel("B")));
       check_texture(*scene.texture);  // a NaN texel would make every ray that sees it non_finite
     } catch (const RequestError&) {
       throw;

@@ -1,6 +1,7 @@
 // A render request by option names (grtrace/app/front_door.hpp): the options' table (names, defaults, help) that
 // grtrace-render's --help lists and the Python module's keywords follow, and the reading of their texts, so that a
 // command line, a scene file, a frame's header and Python keywords are read by one piece of code.
+#include "frame_tracers.hpp"
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/core/number_text.hpp"
 #include "grtrace/trace/critical_angle_grid.hpp"
@@ -9,6 +10,7 @@
 #include <deque>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace grtrace::app {
 
@@ -57,10 +59,12 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"angle-correction", "exact", "escaped rays: none | flat (seed eq. 7-8) | exact (bending to infinity)"});
   o.push_back({"max-steps", "100000", "step budget per ray"});
   o.push_back({"tracer", "auto",
-               "auto | general | planar. planar: one table of rays for the frame, every scene of a Schwarzschild "
-               "hole, disk included (auto's choice there with an adaptive --control); general: every pixel "
-               "integrated (any metric). auto picks kerr-mino for --metric kerr --chart bl with an adaptive "
-               "--control: every pixel on Kerr's separated equations in Mino time, 3x cheaper per ray than general"});
+               "auto | general | planar | kerr-mino | straight-line. planar: one table of rays for the frame, "
+               "every scene of a static spherical hole, disk included (Schwarzschild, Reissner-Nordstrom, "
+               "Schwarzschild-de Sitter; auto's choice there with an adaptive --control); kerr-mino: every pixel "
+               "on Kerr's separated equations in Mino time, 3x cheaper per ray than general (auto's choice for "
+               "--metric kerr --chart bl with an adaptive --control); straight-line: flat space (auto's choice "
+               "for --metric minkowski); general: every pixel integrated (any curved metric)"});
   o.push_back({"device", "auto",
                "auto | cpu | cuda. cuda: rays traced on the GPU (a build with the CUDA backend and a CUDA device; "
                "--tableau rkf78 --control i; every pixel integrated: --tracer general, or auto = kerr-mino for "
@@ -103,14 +107,8 @@ std::string text_of(const OptionSource& s, const std::string& name) {
 }
 
 template <class F>
-auto as_request_error(F&& f) {
-  try {
-    return f();
-  } catch (const RequestError&) {
-    throw;
-  } catch (const std::invalid_argument& e) {
-    throw RequestError(e.what());
-  }
+decltype(auto) as_request_error(F&& f) {
+  return refusal_as_request_error("", std::forward<F>(f));
 }
 
 /// An option given where it means nothing (a spin without Kerr, a disk's radius without the disk) is refused
@@ -194,24 +192,10 @@ MethodRequest read_method(const OptionSource& s, const std::string& prefix) {
   MethodRequest m;
   m.tableau = text_of(s, prefix + "tableau");
   m.control = text_of(s, prefix + "control");
-  as_request_error([&] {
-    try {
-      check_tool_method(m.tableau, m.control);
-    } catch (const std::invalid_argument& e) {
-      throw RequestError("--" + prefix + "tableau / --" + prefix + "control: " + e.what());
-    }
-  });
   m.rtol = option_number(s, prefix + "rtol");
   m.atol = option_number(s, prefix + "atol");
-  if (!(m.rtol > 0.0 && m.rtol < 1.0))
-    throw RequestError("--" + prefix + "rtol must lie in (0, 1) (a relative error; e.g. 1e-9), got " +
-                       text_of(s, prefix + "rtol"));
-  if (!(m.atol >= 0.0 && m.atol < 1.0))
-    throw RequestError("--" + prefix + "atol must lie in [0, 1) (e.g. 1e-11), got " + text_of(s, prefix + "atol"));
   m.step = option_number(s, prefix + "step");
-  if (m.step < 0.0) throw RequestError("--" + prefix + "step must be >= 0");
-  if (m.control == "fixed" && m.step <= 0.0)
-    throw RequestError("--" + prefix + "control fixed needs a step: add --" + prefix + "step H > 0");
+  check_method(m, prefix);
   return m;
 }
 

@@ -65,8 +65,10 @@ inline std::string version_line(std::string_view program) {
   return std::string(program) + " " + std::string(grtrace::kVersion) + "\n";
 }
 
+namespace detail {
 /// Refuses (UsageError naming --option) an output path that cannot be written: empty, in a missing or
-/// unwritable directory, or a directory itself (check_output_path). Creates nothing.
+/// unwritable directory, or a directory itself (check_output_path). Creates nothing. Tools call
+/// check_command_output, which adds the inputs: a writable path can still be the file the command reads.
 inline void check_output_option(const std::string& option, const std::filesystem::path& path) {
   if (path.empty()) throw UsageError("--" + option + " needs a file name, got ''");
   try {
@@ -75,6 +77,7 @@ inline void check_output_option(const std::string& option, const std::filesystem
     throw UsageError("--" + option + ": " + e.what());
   }
 }
+}  // namespace detail
 
 /// Refuses an output that would replace one of the inputs (the same file, or the same path before it exists).
 inline void check_not_input(const std::string& option, const std::filesystem::path& output,
@@ -82,6 +85,29 @@ inline void check_not_input(const std::string& option, const std::filesystem::pa
   if (!input.empty() && same_file(output, input))
     throw UsageError("--" + option + " '" + output.string() + "' is the input given as --" + input_option +
                      "; choose another output file");
+}
+
+/// The environment a tool runs in, checked with its options (before any work), UsageError saying what to change:
+/// GRTRACE_MEMORY_LIMIT a memory size (core/memory_limit.hpp; a tool that never sizes an image would otherwise
+/// ignore a mistyped limit), OMP_NUM_THREADS whole numbers of threads from 1 to kMaxThreads (the OpenMP runtime
+/// takes the variable as it is and crashes creating a million threads).
+inline constexpr long kMaxThreads = 1024;
+inline void check_environment() {
+  try {
+    (void)memory_limit_bytes();
+  } catch (const MemoryLimitError& e) {
+    throw UsageError(e.what());
+  }
+  const char* omp = std::getenv("OMP_NUM_THREADS");
+  if (omp == nullptr || *omp == '\0') return;
+  std::stringstream list{std::string(omp)};
+  for (std::string item; std::getline(list, item, ',');) {  // one count per nesting level
+    const ParsedWholeNumber n = parse_whole_number(item);
+    if (n.result != NumberText::ok || n.value < 1 || n.value > kMaxThreads)
+      throw UsageError("OMP_NUM_THREADS='" + std::string(omp) + "' is not a thread count from 1 to " +
+                       std::to_string(kMaxThreads) + "; unset it (all cores) or give the count with --threads N "
+                       "where the tool has it");
+  }
 }
 
 class CommandLine;
@@ -157,6 +183,7 @@ class CommandLine {
     for (const auto& [spec, value] : assignments) assign(*spec, value);
     write_config_path_ = write_path;
     write_config_done_ = false;
+    check_environment();
     return true;
   }
 
@@ -299,6 +326,9 @@ class CommandLine {
         if (e.kind == ConfigValueKind::boolean)
           throw UsageError(where + ": key '" + e.key + "'" + at + " takes a value, not true/false; write " + e.key +
                            " = \"...\" or a number (see --help)");
+        // A NUL would cut the value short wherever it becomes a C string (a path handed to the system).
+        if (e.text.find('\0') != std::string::npos)
+          throw UsageError(where + ": key '" + e.key + "'" + at + " holds a NUL character (\\u0000); remove it");
         if (e.given) values_[e.key] = e.text;
         else defaults_[e.key] = e.text;
         continue;
@@ -386,7 +416,7 @@ class CommandLine {
 inline void check_command_output(const CommandLine& cli, const std::string& option, const std::filesystem::path& path,
                                  std::initializer_list<std::pair<const char*, std::string>> inputs) {
   if (cli.write_config_asked() && option != CommandLine::kWriteConfigOption) return;
-  check_output_option(option, path);
+  detail::check_output_option(option, path);
   check_not_input(option, path, "config", cli.config_file());
   for (const auto& [input_option, input] : inputs) check_not_input(option, path, input_option, input);
 }

@@ -62,7 +62,8 @@ struct ConfigFile {
   std::vector<ConfigEntry> entries;
 };
 
-/// The largest config file read (a scene file is a few hundred bytes; an EXR header a few kilobytes).
+/// The largest scene file read, and the most of an EXR read for its header (a scene file is a few hundred bytes, a
+/// frame's header a few kilobytes; its pixels, after the header, are never read).
 inline constexpr std::uintmax_t kMaxConfigBytes = 1u << 20;
 
 namespace config_detail {
@@ -195,17 +196,18 @@ inline ConfigFile read_config_file(const std::string& path) {
   if (fs::is_character_file(st) || fs::is_block_file(st) || fs::is_socket(st))
     throw ConfigError("--config '" + path + "' is " + grtrace::entry_kind_name(st) +
                       ", not a file; give a TOML scene file (or an EXR written by grtrace-render)");
-  const auto size = fs::file_size(path, ec);
-  if (!ec && size > kMaxConfigBytes)
-    throw ConfigError("--config '" + path + "' is larger than 1 MiB; a scene file is a few lines of TOML");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError("--config '" + path + "' cannot be read (" + std::strerror(errno) + "); check its permissions");
-  std::string bytes;
-  bytes.resize(static_cast<std::size_t>(ec ? kMaxConfigBytes : size));
+  // At most the limit and one byte more: a frame's header lies at the start of its EXR (a few kilobytes, its
+  // pixels after it, of any size), and a TOML file over the limit is refused whole. A pipe is read the same way.
+  std::string bytes(static_cast<std::size_t>(kMaxConfigBytes) + 1, '\0');
   in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   bytes.resize(static_cast<std::size_t>(in.gcount()));
   if (in.bad()) throw ConfigError("--config '" + path + "' cannot be read; check the file");
-  if (config_detail::is_exr(bytes)) return config_detail::config_from_exr(bytes, path);
+  if (config_detail::is_exr(bytes))
+    return config_detail::config_from_exr(std::string_view(bytes).substr(0, kMaxConfigBytes), path);
+  if (bytes.size() > kMaxConfigBytes)
+    throw ConfigError("--config '" + path + "' is larger than 1 MiB; a scene file is a few lines of TOML");
 
   ConfigFile file{path, false, {}};
   try {

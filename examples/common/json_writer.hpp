@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace grtrace::tools {
 
@@ -22,6 +23,7 @@ class JsonObject {
   JsonObject& add(std::string_view key, std::string_view v) { return set(key, Json(std::string(v))); }
   JsonObject& add(std::string_view key, const char* v) { return set(key, Json(std::string(v))); }
   JsonObject& add(std::string_view key, const JsonObject& v) { return set(key, v.json_); }
+  JsonObject& add(std::string_view key, const std::vector<int>& v) { return set(key, Json(v)); }
   JsonObject& add_null(std::string_view key) { return set(key, Json(nullptr)); }
 
   /// The object on one line ("{}" when empty).

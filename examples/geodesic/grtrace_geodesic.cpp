@@ -31,12 +31,12 @@ int main(int argc, char** argv) {
     if (error != DispatchError::none) throw UsageError(describe(error, tableau, control));
     if (cli.write_config_if_asked()) return 0;  // checked as for a run (output paths: at the run)
     const Outputs files{cli.text("path"), cli.text("vtp")};
-    if (cli.given("path")) tools::check_output_option("path", files.path);  // --path "" is refused
+    if (cli.given("path")) tools::check_command_output(cli, "path", files.path, {});  // --path "" is refused
     if (cli.given("vtp")) {
 #if !GRTRACE_GEODESIC_VTP
       throw UsageError("--vtp: this grtrace-geodesic was built without VTK (grtrace::viz)");
 #endif
-      tools::check_output_option("vtp", files.vtp);
+      tools::check_command_output(cli, "vtp", files.vtp, {});
       if (!files.path.empty() && same_file(files.vtp, files.path))
         throw UsageError("--vtp and --path name the same file '" + files.vtp + "'");
     }

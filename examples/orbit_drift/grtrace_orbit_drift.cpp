@@ -473,9 +473,9 @@ int main(int argc, char** argv) {
     if (cli.write_config_if_asked()) return 0;  // checked as for a run (output paths and display: at the run)
     const std::filesystem::path csv = cli.text("csv"), png = cli.text("png");
     const bool draw = !cli.flag_set("no-png");
-    tools::check_output_option("csv", csv);
+    tools::check_command_output(cli, "csv", csv, {});
     if (draw) {
-      tools::check_output_option("png", png);
+      tools::check_command_output(cli, "png", png, {});
       if (same_file(csv, png)) throw UsageError("--csv and --png name the same file '" + csv.string() + "'");
       try {
         viz::require_display("grtrace-orbit-drift", "pass --no-png");

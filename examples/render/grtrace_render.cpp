@@ -50,7 +50,9 @@ CommandLine make_command_line() {
               "EXR compression, all lossless (channels read back bit for bit): zips | zip "
               "(deflate level 1; zips: one scanline per chunk) | piz (smallest, slower) | "
               "rle | none (fastest, largest)")
-      .flag("status-map", "also write <out>-status.png: each pixel coloured by how its ray ended (legend in --help)");
+      .flag("status-map",
+            "also write <out>-status.png (with --flight: <stem>-NNNN-status.png for each frame): each pixel coloured "
+            "by how its ray ended (legend in --help)");
   tools::declare_flight_options(cli,
                                 "grtrace-render renders a sequence along it instead of one frame (aberration and "
                                 "Doppler from the camera's u): <out stem>-NNNN.exr and .png; a re-run skips the "
@@ -91,13 +93,15 @@ std::string flight_exr_path(const Request& q, int i) {
 std::string mp4_path(const std::string& exr) { return exr.substr(0, exr.size() - 4) + ".mp4"; }
 
 /// Every file a run writes: the EXR, its PNG preview, and the maps asked for; for a flight every frame's EXR and
-/// PNG and the MP4 if asked for.
+/// PNG (and status map if asked for) and the MP4 if asked for.
 std::vector<std::string> output_paths(const Request& q, bool status_map, bool mp4) {
   if (!q.flight.cameras.empty()) {
     std::vector<std::string> out;
     for (int i = 0; i < static_cast<int>(q.flight.cameras.size()); ++i) {
-      out.push_back(flight_exr_path(q, i));
-      out.push_back(png_path(out.back()));
+      const std::string exr = flight_exr_path(q, i);
+      out.push_back(exr);
+      out.push_back(png_path(exr));
+      if (status_map) out.push_back(status_map_path(exr));
     }
     if (mp4) out.push_back(mp4_path(q.out));
     return out;
@@ -125,8 +129,7 @@ void read_flight(const CommandLine& cli, const std::optional<FlightPathSpec>& sp
       throw UsageError(std::string("--") + name +
                        " sets a single frame's camera; a flight's camera moves with its "
                        "path (its 4-velocity): leave it out");
-  if (cli.flag_set("status-map") || q.checked.request.error_map)
-    throw UsageError("--status-map and --error-map are for single frames; leave them out with --flight");
+  if (q.checked.request.error_map) throw UsageError("--error-map is for single frames; leave it out with --flight");
   if (!(cli.number("fps") > 0.0 && cli.number("fps") <= 1000.0)) throw UsageError("--fps must lie in (0, 1000]");
   // The video's tool, before the first ray (not after the frames).
   if (cli.flag_set("mp4") && !program_on_path("ffmpeg"))
@@ -273,21 +276,37 @@ void add_report(JsonObject& json, const app::RenderReport& report, const app::Ch
   }
 }
 
-/// --flight: every frame as <stem>-NNNN.exr + .png (skipping those a previous run of the same flight wrote whole:
-/// same flight_signature), then the MP4 if asked for; one line of JSON for the whole sequence.
+/// A frame's status map from the frame on disk (read by the checked reader, read_exr): a frame a previous run of
+/// the flight wrote whole is not traced again to inspect it.
+void write_status_map_of(const std::string& exr) {
+  OutputSet outputs;
+  write_status_map(outputs, status_map_path(exr), read_exr(exr));
+  outputs.commit();
+}
+
+/// --flight: every frame as <stem>-NNNN.exr + .png, and <stem>-NNNN-status.png with --status-map (skipping the
+/// frames a previous run of the same flight wrote whole: same flight_signature; their status maps are drawn from
+/// the frames on disk), then the MP4 if asked for; one line of JSON for the whole sequence, naming the frames that
+/// have failed rays (max_steps, step_underflow, non_finite) so that one of them is one command to inspect.
 int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const ExrWriteOptions& exr) {
   std::map<std::string, std::string> content;  // the options that decide what the frames show
   for (const auto& [name, value] : cli.values())
-    if (name != "threads" && name != "mp4" && name != "fps" && name != "exr-compression" && name != "frame-range")
+    if (name != "threads" && name != "mp4" && name != "fps" && name != "exr-compression" && name != "frame-range" &&
+        name != "status-map")
       content[name] = value;  // a part's frames are the whole run's: --frame-range is not in the signature
   const std::string signature = flight_signature(content);
   const int frames = static_cast<int>(q.flight.cameras.size());
+  const bool status_map = cli.flag_set("status-map");
   const auto skip = [&](int i) {
     if (q.flight.range && !q.flight.range->contains(i)) return true;  // another part's frame
-    return flight_frame_done(flight_exr_path(q, i), png_path(flight_exr_path(q, i)), signature);
+    const std::string path = flight_exr_path(q, i);
+    if (!flight_frame_done(path, png_path(path), signature)) return false;
+    if (status_map && !whole_png_size(status_map_path(path))) write_status_map_of(path);
+    return true;
   };
   std::string tracer = "none";  // the tracer that ran, and the frames' table statistics summed
   long table_rays = 0, table_steps = 0, fallback_rays = 0;
+  std::vector<int> failed_frames;  // frames traced here with a ray that failed
   const auto sink = [&](int i, app::RenderResult&& result) {
     Image& image = result.image;
     describe_command(image, cli, argc, argv);
@@ -301,9 +320,16 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
     table_rays += result.report.table_rays;
     table_steps += result.report.table_steps;
     fallback_rays += result.report.fallback_rays;
+    const auto& counts = result.report.stats.status_counts;
+    if (counts[static_cast<std::size_t>(RayStatus::max_steps)] +
+            counts[static_cast<std::size_t>(RayStatus::step_underflow)] +
+            counts[static_cast<std::size_t>(RayStatus::non_finite)] >
+        0)
+      failed_frames.push_back(i);
     OutputSet outputs;
     const std::string path = flight_exr_path(q, i);
     write_exr_and_preview(outputs, path, png_path(path), image, exr);
+    if (status_map) write_status_map(outputs, status_map_path(path), image);
     outputs.commit();
   };
   const FlightStats stats = app::render_flight(q.checked, q.flight.cameras, skip, sink);
@@ -327,7 +353,11 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   json.add("tracer", tracer).add("tableau", r.method.tableau).add("control", r.method.control);
   json.add("device", app::device_name(r.device));
   json.add("rtol", r.method.rtol).add("atol", r.method.atol);
+  json.add("frames_with_failed_rays", failed_frames);
   json.add("first_frame", flight_exr_path(q, 0)).add("last_frame", flight_exr_path(q, frames - 1));
+  if (status_map)
+    json.add("first_status_map", status_map_path(flight_exr_path(q, 0)))
+        .add("last_status_map", status_map_path(flight_exr_path(q, frames - 1)));
   if (!mp4.empty()) json.add("mp4", mp4);
   if (tracer == "planar") {
     json.add("table_rays", table_rays).add("table_steps", table_steps).add("fallback_rays", fallback_rays);

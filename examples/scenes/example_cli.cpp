@@ -28,13 +28,9 @@ ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
   if (!(size >= 8 && size <= 4096)) throw std::invalid_argument("--size must be 8 .. 4096 pixels, got " + cli.text("size"));
   a.size = static_cast<int>(size);
   for (auto& [name, value] : a.numbers) value = cli.number(name);
-  for (const std::string& path : {a.out, a.out.substr(0, a.out.size() - 4) + ".png"}) {
-    try {  // before any work: a missing or unwritable directory, a directory in the way
-      grtrace::check_output_path(path);
-    } catch (const std::runtime_error& e) {
-      throw std::invalid_argument(e.what());
-    }
-  }
+  // Before any work: a missing or unwritable directory, a directory in the way, the --config file read.
+  for (const std::string& path : {a.out, a.out.substr(0, a.out.size() - 4) + ".png"})
+    grtrace::tools::check_command_output(cli, "out", path, {});
   if (cli.write_config_if_asked()) throw NothingMoreToDo{};  // checked as for a run: saved, nothing rendered
   return a;
 }

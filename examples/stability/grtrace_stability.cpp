@@ -322,9 +322,9 @@ int main(int argc, char** argv) {
         if (ec) throw UsageError("--out-dir: cannot create '" + dir.string() + "': " + ec.message());
       }
       for_each_tableau([&](auto tag) {
-        tools::check_output_option("out-dir", dir / (std::string(decltype(tag)::type::name) + ".png"));
+        tools::check_command_output(cli, "out-dir", dir / (std::string(decltype(tag)::type::name) + ".png"), {});
       });
-      tools::check_output_option("out-dir", dir / "overview.png");
+      tools::check_command_output(cli, "out-dir", dir / "overview.png", {});
     }
 
     std::vector<MethodStability> methods;

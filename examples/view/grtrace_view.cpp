@@ -407,19 +407,27 @@ Request read_request(const CommandLine& cli) {
   q.frame_file = cli.text("frame");
   if (!q.frame_file.empty()) {
     if (!std::filesystem::is_regular_file(q.frame_file)) throw UsageError("--frame: no such file '" + q.frame_file + "'");
+    // Judged by its header before its pixels are decoded (an 8192 x 8192 file that is no frame costs nothing).
+    const ExrInfo info = [&] {
+      try {
+        return read_exr_info(q.frame_file);
+      } catch (const std::exception& e) {
+        throw UsageError(std::string("--frame: ") + e.what());
+      }
+    }();
+    for (const char* c : {"R", "G", "B"})
+      if (!info.has_channel(c)) throw UsageError("--frame: '" + q.frame_file + "' has no '" + c + "' channel");
+    std::string missing;  // a grtrace-render frame records its camera; anything else would be drawn wrongly
+    for (const char* key : {"camera_position", "tetrad_e0", "tetrad_e1", "tetrad_e2", "tetrad_e3", "fov_degrees"})
+      if (!info.metadata.count(key)) missing += (missing.empty() ? "" : ", ") + std::string(key);
+    if (!missing.empty())
+      throw UsageError("--frame: '" + q.frame_file + "' is not a grtrace-render frame: its header has no " + missing +
+                       " (render the frame with grtrace-render)");
     try {
       q.frame = read_exr(q.frame_file);
     } catch (const std::exception& e) {
       throw UsageError(std::string("--frame: ") + e.what());
     }
-    for (const char* c : {"R", "G", "B"})
-      if (!q.frame->has_channel(c)) throw UsageError("--frame: '" + q.frame_file + "' has no '" + c + "' channel");
-    std::string missing;  // a grtrace-render frame records its camera; anything else would be drawn wrongly
-    for (const char* key : {"camera_position", "tetrad_e0", "tetrad_e1", "tetrad_e2", "tetrad_e3", "fov_degrees"})
-      if (!q.frame->metadata.count(key)) missing += (missing.empty() ? "" : ", ") + std::string(key);
-    if (!missing.empty())
-      throw UsageError("--frame: '" + q.frame_file + "' is not a grtrace-render frame: its header has no " + missing +
-                       " (render the frame with grtrace-render)");
   }
   const Params p(cli, q.frame ? &q.frame->metadata : nullptr);
   if (q.frame && q.frame->metadata.count("metric") && q.frame->metadata.at("metric") != "schwarzschild" &&
@@ -438,6 +446,12 @@ Request read_request(const CommandLine& cli) {
     throw UsageError("--chart " + chart + " conflicts with --frame: the frame was rendered with --chart " +
                      q.frame->metadata.at("chart") + " (its camera is recorded in that chart's coordinates)");
 
+  // The frame's camera and pixels belong to the spacetime it was rendered in: the bundle is traced in that one.
+  if (q.frame)
+    for (const char* o : {"metric", "mass", "spin"})
+      if (cli.given(o))
+        throw UsageError(std::string("--") + o + " conflicts with --frame: the bundle is traced in the frame's own "
+                         "spacetime (its --metric, --mass and --spin, read from its header); leave it out");
   q.scene = p.text("scene");
   if (!is_standard_scene(q.scene))
     throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");

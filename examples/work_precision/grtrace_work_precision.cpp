@@ -236,7 +236,7 @@ Plan read_plan(const CommandLine& cli) {
   p.chart_cpu = chart_time == "cpu";
   p.out_csv = cli.text("out-csv");
   p.out_png = cli.text("out-png");
-  if (cli.given("out-csv")) tools::check_output_option("out-csv", p.out_csv);
+  if (cli.given("out-csv")) tools::check_command_output(cli, "out-csv", p.out_csv, {});
   if (cli.given("out-png")) {
     if (p.out_png.empty()) throw UsageError("--out-png needs a file name prefix, got ''");
     if (!charts_available()) throw UsageError("--out-png: this build has no VTK, so it cannot draw charts");
@@ -245,8 +245,8 @@ Plan read_plan(const CommandLine& cli) {
     } catch (const std::runtime_error& e) {
       throw UsageError(std::string("--out-png: ") + e.what());
     }
-    tools::check_output_option("out-png", p.out_png + "-time.png");
-    tools::check_output_option("out-png", p.out_png + "-evals.png");
+    tools::check_command_output(cli, "out-png", p.out_png + "-time.png", {});
+    tools::check_command_output(cli, "out-png", p.out_png + "-evals.png", {});
     if (!p.out_csv.empty())
       for (const char* suffix : {"-time.png", "-evals.png"})
         if (same_file(p.out_csv, p.out_png + suffix))

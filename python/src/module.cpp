@@ -7,6 +7,7 @@
 // tiles and raises KeyboardInterrupt) and calling the progress callback.
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/core/memory_limit.hpp"
+#include "grtrace/core/number_text.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/render/frame_files.hpp"
 #include "grtrace/version.hpp"
@@ -16,7 +17,6 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
-#include <charconv>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
@@ -45,13 +45,6 @@ struct InputError : std::invalid_argument {
 
 // ---- keywords -> option texts ---------------------------------------------------------------------------
 
-/// The shortest text that reads back as v.
-std::string shortest(double v) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return ec == std::errc() ? std::string(buffer, end) : std::to_string(v);
-}
-
 /// The text the library reads for one keyword's value: numbers as Python writes them (repr: the same double back),
 /// sequences as comma-separated numbers, strings as they are. Flags are given when true.
 std::string option_text(const std::string& keyword, const py::handle& value) {
@@ -59,14 +52,14 @@ std::string option_text(const std::string& keyword, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "1" : "0";
   if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) return py::repr(value).cast<std::string>();
   if (py::hasattr(value, "__float__") && !py::isinstance<py::sequence>(value))  // numpy scalars
-    return shortest(value.cast<double>());
+    return shortest_number_text(value.cast<double>());
   if (py::isinstance<py::sequence>(value) || py::hasattr(value, "__iter__")) {
     std::string out;
     for (const py::handle item : value) {
       if (!out.empty()) out += ",";
       if (!py::isinstance<py::int_>(item) && !py::isinstance<py::float_>(item) && !py::hasattr(item, "__float__"))
         throw InputError(keyword + " expects numbers, got " + py::repr(value).cast<std::string>());
-      out += shortest(item.cast<double>());
+      out += shortest_number_text(item.cast<double>());
     }
     return out;
   }

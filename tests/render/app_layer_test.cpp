@@ -7,6 +7,7 @@
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/app/tool_methods.hpp"
 #include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/render/exr_io.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <numbers>
@@ -264,7 +266,10 @@ TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
       {request("schwarzschild", "checker", "rk4", "pi", "auto"), "embedded error estimate"},
       {request("kerr", "checker", "rkf78", "i", "planar"), "--tracer planar needs"},
       {request("schwarzschild", "checker", "rkf78", "i", "symmetric"), "use --tracer planar"},
-      {request("schwarzschild", "checker", "rkf78", "i", "teapot"), "choose auto, general or planar"},
+      {request("schwarzschild", "checker", "rkf78", "i", "teapot"),
+       "choose auto, general, planar, kerr-mino or straight-line"},
+      {request("schwarzschild", "checker", "rkf78", "i", "kerr-mino"), "--tracer kerr-mino needs --metric kerr"},
+      {request("kerr", "checker", "rkf78", "i", "straight-line"), "--tracer straight-line draws flat space only"},
       {request("minkowski", "disk", "rkf78", "i", "auto"), "--scene disk needs a metric with a mass"},
       {inside, "--camera-r 2 is at or inside the horizon"},
       {fixed_without_step, "--control fixed needs a step"},
@@ -279,8 +284,27 @@ TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
     }
   }
   EXPECT_NO_THROW((void)app::check_request(request("rn", "disk", "vern6", "i", "planar")));
+  EXPECT_NO_THROW((void)app::check_request(request("sds", "disk", "vern6", "i", "planar")));
+  EXPECT_NO_THROW((void)app::check_request(request("kerr", "disk", "rkf78", "i", "kerr-mino")));
+  EXPECT_NO_THROW((void)app::check_request(request("minkowski", "checker", "rkf78", "i", "straight-line")));
   for (const app::ToolMethod& m : app::kToolMethods) EXPECT_TRUE(app::is_tool_method(m.tableau, m.control));
   EXPECT_FALSE(app::is_tool_method("rkf45", "i"));
+}
+
+TEST(AppLayer, ASkyTextureIsHeldOnceHoweverOftenTheRequestIsCopied) {
+  // A texture can be most of a process's memory: the request, its copies (a flight's cameras, the tracer's scene)
+  // and the sky share its texels instead of holding a copy each.
+  const std::string file = ::testing::TempDir() + "grtrace_app_texture.exr";
+  grtrace::write_exr(file, Image::with_channels(16, 8, {"R", "G", "B", "A"}, 0.25f));
+  app::RenderRequest q = request("schwarzschild", "sky", "rkf78", "i", "auto");
+  q.sky_texture = file;
+  const app::CheckedRequest checked = app::check_request(q);
+  ASSERT_TRUE(checked.scene.texture.has_value());
+  const app::CheckedRequest copy = app::with_camera(checked, checked.camera);
+  EXPECT_EQ(copy.scene.texture->r.get(), checked.scene.texture->r.get());
+  EXPECT_EQ(checked.scene.texture->r.use_count(), 2);
+  EXPECT_EQ(checked.scene.texture->r->size(), 16u * 8u);
+  std::remove(file.c_str());
 }
 
 TEST(AppLayer, ChoosesTheDeviceAndSaysWhyTheGpuCannotDrawARequest) {

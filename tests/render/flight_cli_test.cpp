@@ -15,6 +15,8 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #ifndef GRTRACE_RENDER_BINARY
@@ -227,7 +229,7 @@ TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
       {"--flight circular --camera-r 2.5", "no timelike circular orbit at r = 2.5"},
       {"--flight circular --metric kerr --spin 0.5 --chart ks", "a circular flight is stated in the spherical chart"},
       {"--flight seed --metric kerr --spin 0.5 --chart ks", "the automatic step of a seed flight counts a revolution"},
-      {"--flight seed --status-map", "are for single frames"},
+      {"--flight seed --error-map", "--error-map is for single frames"},
       {"--flight seed --tracer symmetric", "--tracer symmetric is retired"},
       {"--frame-range 0:2", "--frame-range needs --flight"},
       {"--flight seed --frames 4 --frame-range 3:1", "--frame-range 3:1 must satisfy 0 <= A < B <= 4"},
@@ -248,6 +250,71 @@ TEST(FlightCli, BadInputIsRefusedBeforeAnyWork) {
   EXPECT_EQ(no_ffmpeg.status, 2) << no_ffmpeg.output;
   EXPECT_NE(no_ffmpeg.output.find("--mp4 needs ffmpeg, which is not on PATH"), std::string::npos) << no_ffmpeg.output;
   EXPECT_EQ(dir.files(), 0u);
+}
+
+// --status-map with a flight: one status map per frame, and a frame a previous run wrote is not traced again to
+// inspect it (its map is drawn from the frame on disk, the same bytes). The JSON names the frames with failed rays.
+TEST(FlightCli, StatusMapsOfAFlightComeFromItsFramesOnDisk) {
+  TempDir dir;
+  const std::string out = (dir.path / "f.exr").string();
+  const std::string args = kSmall + "--flight circular --camera-r 30 --frames 2 --out " + out;
+  const ToolRun first = render(args + " --status-map");
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_NE(first.output.find("\"frames_with_failed_rays\":[]"), std::string::npos) << first.output;
+  EXPECT_NE(first.output.find("\"first_status_map\":\"" + (dir.path / "f-0000-status.png").string()),
+            std::string::npos)
+      << first.output;
+  for (const char* name : {"f-0000-status.png", "f-0001-status.png"})
+    ASSERT_TRUE(fs::is_regular_file(dir.path / name)) << name;
+  EXPECT_EQ(dir.files(), 6u);
+  const std::string map = grtrace::tool_tests::file_contents(dir.path / "f-0001-status.png");
+  fs::remove(dir.path / "f-0001-status.png");
+  const ToolRun again = render(args + " --status-map");
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(json_number(again.output, "frames_rendered"), 0.0) << again.output;
+  EXPECT_EQ(grtrace::tool_tests::file_contents(dir.path / "f-0001-status.png"), map);
+  // Without --status-map the frames are the same frames (the maps are not part of what they show): skipped too.
+  const ToolRun plain = render(args);
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  EXPECT_EQ(json_number(plain.output, "frames_skipped"), 2.0) << plain.output;
+  // A flight whose rays run out of steps names its frames.
+  const ToolRun failing = render(kSmall + "--flight circular --camera-r 30 --frames 2 --max-steps 3 --out " +
+                                 (dir.path / "g.exr").string());
+  ASSERT_EQ(failing.status, 0) << failing.output;
+  EXPECT_NE(failing.output.find("\"frames_with_failed_rays\":[0,1]"), std::string::npos) << failing.output;
+}
+
+// SIGTERM while ffmpeg writes the video: the program is killed and reaped before the temporary is removed, so it
+// cannot create the file again afterwards (ffmpeg reopens its output by name for +faststart's second pass).
+TEST(FlightCli, SigtermWhileFfmpegRunsLeavesNoTemporary) {
+  TempDir dir;
+  const fs::path bin = dir.path / "bin", started = dir.path / "ffmpeg-started";
+  fs::create_directory(bin);
+  std::ofstream(bin / "ffmpeg") << "#!/bin/sh\nfor last; do :; done\n"  // $last: the output file
+                                << "touch '" << started.string() << "'\nsleep 2\necho video > \"$last\"\n";
+  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+  const std::string out = (dir.path / "v.exr").string();
+  const std::string command = "PATH=" + bin.string() + ":$PATH exec " + std::string(GRTRACE_RENDER_BINARY) + " " +
+                              kSmall + "--flight circular --camera-r 30 --frames 2 --mp4 --out " + out +
+                              " >/dev/null 2>&1";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  for (int i = 0; i < 6000 && !fs::exists(started); ++i) ::usleep(10000);
+  ASSERT_TRUE(fs::exists(started)) << "ffmpeg never started";
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  ::sleep(3);  // an ffmpeg left running would have written its file by now
+  for (const auto& e : fs::directory_iterator(dir.path)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << "left behind: " << name;
+    EXPECT_NE(name, "v.mp4");
+  }
 }
 
 }  // namespace

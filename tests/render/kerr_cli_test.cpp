@@ -143,4 +143,47 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
   EXPECT_EQ(grtrace::read_exr(path).metadata.at("disk_inner"), "6");
 }
 
+// Every tracer the report names can be asked for by that name: the same frame as auto's where auto picks it, and a
+// refusal that says why (and what to ask for) where it cannot draw the request.
+TEST_F(KerrCli, EveryTracerTheReportNamesCanBeAskedForByName) {
+  const std::vector<std::string> disk = {"--scene", "disk", "--spin", "0.9", "--camera-r", "40", "--camera-theta",
+                                         "80", "--fov", "50"};
+  std::vector<std::string> named = disk;
+  named.insert(named.end(), {"--tracer", "kerr-mino"});
+  const ToolRun picked = run(kerr(disk, out("auto.exr").string()));
+  const ToolRun asked = run(kerr(named, out("mino.exr").string()));
+  ASSERT_EQ(picked.status, 0) << picked.err;
+  ASSERT_EQ(asked.status, 0) << asked.err;
+  EXPECT_NE(asked.out.find("\"tracer\":\"kerr-mino\""), std::string::npos) << asked.out;
+  const grtrace::Image a = grtrace::read_exr(out("auto.exr")), b = grtrace::read_exr(out("mino.exr"));
+  EXPECT_EQ(a.metadata.at("tracer"), "kerr-mino");
+  for (const std::string& channel : a.channel_names()) EXPECT_EQ(a.channel(channel), b.channel(channel)) << channel;
+  // Flat space by its name.
+  const ToolRun flat = run({"--metric", "minkowski", "--tracer", "straight-line", "--width", "8", "--height", "8",
+                            "--out", out("flat.exr").string()});
+  ASSERT_EQ(flat.status, 0) << flat.err;
+  EXPECT_NE(flat.out.find("\"tracer\":\"straight-line\""), std::string::npos) << flat.out;
+  for (const char* name : {"auto.exr", "auto.png", "mino.exr", "mino.png", "flat.exr", "flat.png"}) fs::remove(out(name));
+
+  const BadCase refused[] = {
+      {{"--metric", "schwarzschild", "--tracer", "kerr-mino"}, "--tracer kerr-mino needs --metric kerr --chart bl"},
+      {{"--metric", "kerr", "--spin", "0.5", "--chart", "ks", "--tracer", "kerr-mino"},
+       "--tracer kerr-mino needs --metric kerr --chart bl"},
+      {{"--metric", "kerr", "--tracer", "kerr-mino", "--control", "fixed", "--step", "0.5"},
+       "--tracer kerr-mino integrates in Mino time, where a fixed --step would mean something else"},
+      {{"--metric", "kerr", "--tracer", "planar"}, "--tracer planar needs a static spherically symmetric metric"},
+      {{"--metric", "schwarzschild", "--tracer", "straight-line"}, "--tracer straight-line draws flat space only"},
+      {{"--tracer", "mino"}, "unknown --tracer 'mino'; choose auto, general, planar, kerr-mino or straight-line"},
+  };
+  for (const BadCase& c : refused) {
+    std::vector<std::string> args = c.args;
+    for (const char* a : {"--width", "8", "--height", "8", "--out"}) args.emplace_back(a);
+    args.push_back(out("refused.exr").string());
+    const ToolRun r = run(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.says << "\n" << r.err;
+    EXPECT_TRUE(out_empty());
+  }
+}
+
 }  // namespace

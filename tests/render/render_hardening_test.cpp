@@ -7,6 +7,7 @@
 // else found next to this test's build directory.
 #include "grtrace/core/memory_limit.hpp"
 #include "grtrace/render/exr_io.hpp"
+#include "grtrace/render/flight_files.hpp"
 #include "grtrace/render/image.hpp"
 #include "grtrace/render/output_file.hpp"
 #include "grtrace/render/png_preview.hpp"
@@ -428,6 +429,64 @@ TEST_F(Hardening, HeaderAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocate
   }
 }
 
+TEST_F(Hardening, AFramePlantedAmongAFlightsFramesIsCheckedBeforeOpenExrReadsIt) {
+  // 53 bytes claiming a 2 GiB string attribute, named as a flight's frame: the resume check reads headers and chunk
+  // tables itself, and used to hand this one to OpenEXR, which allocated the 2 GiB. In a child whose address space
+  // is 1 GiB: judged not done (nothing), never an allocation that fails.
+  std::string bytes("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+  bytes += std::string("owner\0string\0", 13);
+  bytes += std::string("\xff\xff\xff\x7f", 4);
+  bytes.resize(53, 'x');
+  const fs::path frame = dir_ / "f-0000.exr";
+  std::ofstream(frame, std::ios::binary) << bytes;
+  EXPECT_EXIT(
+      {
+        const rlimit limit{rlim_t{1} << 30, rlim_t{1} << 30};
+        ::setrlimit(RLIMIT_AS, &limit);
+        try {
+          ::_exit(grtrace::whole_scanline_exr_header(frame) ? 1 : 0);
+        } catch (const std::bad_alloc&) {
+          ::_exit(3);
+        } catch (...) {
+          ::_exit(4);
+        }
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
+TEST_F(Hardening, ExrInfoIsTheHeaderAloneCheckedAsEveryReadIs) {
+  Image tex = Image::with_channels(64, 32, {"R", "G", "B"}, 0.5f);
+  tex.metadata["note"] = "not a frame";
+  const fs::path file = dir_ / "t.exr";
+  grtrace::write_exr(file, tex, {Imf::NO_COMPRESSION});
+  const grtrace::ExrInfo info = grtrace::read_exr_info(file);
+  EXPECT_EQ(info.width, 64);
+  EXPECT_EQ(info.height, 32);
+  EXPECT_TRUE(info.has_channel("R") && info.has_channel("G") && info.has_channel("B"));
+  EXPECT_FALSE(info.has_channel("status"));
+  EXPECT_EQ(info.metadata.at("note"), "not a frame");
+  // No pixel is decoded: with its last chunks cut off the file no longer reads, but its header does.
+  fs::resize_file(file, fs::file_size(file) - 4096);
+  EXPECT_THROW((void)grtrace::read_exr(file), std::runtime_error);
+  EXPECT_EQ(grtrace::read_exr_info(file).metadata.at("note"), "not a frame");
+  // The same checks as read_exr: an attribute larger than the file, the memory limit.
+  ::setenv("GRTRACE_MEMORY_LIMIT", "1K", 1);
+  EXPECT_THROW((void)grtrace::read_exr_info(file), grtrace::MemoryLimitError);
+  ::unsetenv("GRTRACE_MEMORY_LIMIT");
+}
+
+TEST_F(Hardening, AnOutputPathLongerThanTheSystemAllowsIsNamedSo) {
+  std::string path = dir_.string();
+  while (path.size() < 4200) path += "/" + std::string(100, 'd');
+  try {
+    grtrace::check_output_path(path + "/x.exr");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("bytes long, more than the"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(Hardening, MemoryLimitComesFromTheEnvironment) {
   ::setenv("GRTRACE_MEMORY_LIMIT", "1K", 1);
   EXPECT_EQ(grtrace::memory_limit_bytes(), 1024u);
@@ -549,6 +608,27 @@ TEST_F(HardeningCli, InputsThatAreNotFilesAreNamedForWhatTheyAre) {
                  "--config '/dev/zero' is a character device, not a file");
   expect_refused(run(render_, small({"--config", dir_.string(), "--out", out.string()})), "is a directory");
   EXPECT_TRUE(listing(dir_ / "shared").empty());
+}
+
+TEST_F(HardeningCli, TheFileSizeLimitLeavesNoTemporary) {
+  // SIGXFSZ: a write beyond RLIMIT_FSIZE (ulimit -f, 512-byte blocks) ends the tool; its temporaries go with it.
+  const fs::path dir = dir_ / "shared";
+  const ToolRun r = run(render_, {"--width", "96", "--height", "96", "--exr-compression", "none", "--out",
+                                  (dir / "big.exr").string()},
+                        "ulimit -f 64; exec");
+  EXPECT_EQ(r.status, -SIGXFSZ) << r.err;
+  EXPECT_TRUE(listing(dir).empty()) << listing(dir).front();
+}
+
+TEST_F(HardeningCli, AnAngleIsAnAngleHoweverLarge) {
+  // 1e308 degrees is a finite angle (fmod(1e308, 360) = 296, exactly); in radians first it was not finite.
+  const fs::path dir = dir_ / "shared";
+  const ToolRun big = run(render_, small({"--camera-phi", "1e308", "--out", (dir / "a.exr").string()}));
+  ASSERT_EQ(big.status, 0) << big.err;
+  const ToolRun reduced = run(render_, small({"--camera-phi", "296", "--out", (dir / "b.exr").string()}));
+  ASSERT_EQ(reduced.status, 0) << reduced.err;
+  const Image a = grtrace::read_exr(dir / "a.exr"), b = grtrace::read_exr(dir / "b.exr");
+  for (const std::string& c : a.channel_names()) EXPECT_EQ(a.channel(c), b.channel(c)) << c;
 }
 
 TEST_F(HardeningCli, RenderRefusesAnOutputThatIsItsInputOrInTheWay) {

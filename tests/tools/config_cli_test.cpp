@@ -322,6 +322,77 @@ TEST_F(ConfigCli, EveryToolWritesAndReadsItsConfig) {
   }
 }
 
+TEST_F(ConfigCli, NoToolWritesOverTheConfigItReads) {
+  // Each tool's output option named as the --config file it reads: refused (exit 2), the file unchanged. The
+  // examples' --out must end in .exr; a TOML scene file may be called anything.
+  const std::map<std::string, std::pair<std::string, std::string>> outputs = {
+      {"grtrace-geodesic", {"--impact 7 ", "--path"}},
+      {"grtrace-work-precision", {"", "--out-csv"}},
+      {"grtrace-orbit-drift", {"--no-png ", "--csv"}},
+      {"star_beside_hole", {"", "--out"}},
+      {"reissner_nordstrom", {"", "--out"}},
+      {"terrell_rotation", {"", "--out"}},
+  };
+  for (const auto& [name, use] : outputs) {
+    if (!tools().count(name)) continue;
+    SCOPED_TRACE(name);
+    const fs::path config = at(name + ".exr");
+    ASSERT_EQ(tool(name, use.first + "--write-config " + config.string()).status, 0);
+    const std::string before = slurp(config);
+    const ToolRun r = tool(name, use.first + "--config " + config.string() + " " + use.second + " " + config.string());
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("is the input given as --config"), std::string::npos) << r.output;
+    EXPECT_EQ(slurp(config), before);
+  }
+}
+
+TEST_F(ConfigCli, AFrameOfAnySizeIsAConfig) {
+  // Its header is at the start of the file: a frame far above the 1 MiB a TOML scene file may have reads back.
+  const fs::path frame = at("big.exr");
+  ASSERT_EQ(render("--width 400 --height 300 --exr-compression none --out " + frame.string()).status, 0);
+  ASSERT_GT(fs::file_size(frame), 2u << 20);
+  const ToolRun r = render("--config " + frame.string() + " --write-config -");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("width = 400"), std::string::npos) << r.output;
+  write_text(at("big.toml"), "# " + std::string((1u << 20) + 10, 'x') + "\n");
+  const ToolRun big = render("--config " + at("big.toml").string());
+  EXPECT_EQ(big.status, 2) << big.output;
+  EXPECT_NE(big.output.find("is larger than 1 MiB"), std::string::npos) << big.output;
+}
+
+TEST_F(ConfigCli, ValuesANulOrATrailingCommaWouldCutShortAreRefused) {
+  write_text(at("nul.toml"), "scene = \"disk\\u0000checker\"\n");
+  const ToolRun nul = render("--config " + at("nul.toml").string());
+  EXPECT_EQ(nul.status, 2) << nul.output;
+  EXPECT_NE(nul.output.find("key 'scene' (line 1) holds a NUL character"), std::string::npos) << nul.output;
+  const ToolRun comma = render("--look -1,0,0, --out " + at("c.exr").string());
+  EXPECT_EQ(comma.status, 2) << comma.output;
+  EXPECT_NE(comma.output.find("--look '-1,0,0,' ends with a comma"), std::string::npos) << comma.output;
+  EXPECT_TRUE(listing().size() == 1u) << "only nul.toml";
+}
+
+TEST_F(ConfigCli, EveryToolChecksItsEnvironmentBeforeAnyWork) {
+  // A mistyped memory limit is refused by every tool, not only by those that size an image; an OpenMP thread count
+  // the runtime would crash on (it creates the threads it is told to) is refused before any parallel region.
+  for (const auto& [name, path] : tools()) {
+    SCOPED_TRACE(name);
+    const std::string needs = name == "grtrace-geodesic" ? "--impact 7 " : "";
+    const std::string out = at(name + ".toml").string();
+    const ToolRun limit = run_command("env -u DISPLAY GRTRACE_MEMORY_LIMIT=16Q " + path + " " + needs +
+                                      "--write-config " + out);
+    EXPECT_EQ(limit.status, 2) << limit.output;
+    EXPECT_NE(limit.output.find("GRTRACE_MEMORY_LIMIT='16Q' is not a memory size"), std::string::npos)
+        << limit.output;
+    const ToolRun threads = run_command("env -u DISPLAY OMP_NUM_THREADS=100000000 " + path + " " + needs +
+                                        "--write-config " + out);
+    EXPECT_EQ(threads.status, 2) << threads.output;
+    EXPECT_NE(threads.output.find("OMP_NUM_THREADS='100000000' is not a thread count from 1 to 1024"),
+              std::string::npos)
+        << threads.output;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
 TEST_F(ConfigCli, ViewTakesItsOptionsFromAConfig) {
   if (!tools().count("grtrace-view")) GTEST_SKIP() << "grtrace-view not built";
   write_text(at("view.toml"), "width = 24\nheight = 16\nbundle-size = \"3x2\"\nthreads = 2\ncamera-r = 25\n");

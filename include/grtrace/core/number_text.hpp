@@ -15,6 +15,7 @@
 
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -90,6 +91,14 @@ inline std::string number_text_problem(NumberText result) {
   return "is not a number";
 }
 
+/// The shortest text that reads back as the same double (what a refusal prints of a number, and what the Python
+/// module hands the option reader for a Python number).
+inline std::string shortest_number_text(double v) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return ec == std::errc() ? std::string(buffer, end) : std::to_string(v);
+}
+
 /// An option's number, whole number or comma-separated numbers, read by the rules above with the refusal every grtrace
 /// tool and the Python module give (std::invalid_argument naming --name; `from` is added to the message, e.g. " (from
 /// the frame's header)").
@@ -113,6 +122,10 @@ inline long option_integer(std::string_view name, const std::string& text, const
 
 /// Exactly `count` numbers (0: any number of them), each read as option_number reads one.
 inline std::vector<double> option_numbers(std::string_view name, const std::string& text, std::size_t count) {
+  // getline drops an empty last item: "1,2,3," would read as three numbers.
+  if (!text.empty() && text.back() == ',')
+    throw std::invalid_argument("--" + std::string(name) + " '" + text +
+                                "' ends with a comma; give the numbers separated by commas, without one at the end");
   std::vector<double> out;
   std::stringstream list(text);
   for (std::string item; std::getline(list, item, ',');) out.push_back(option_number(name, item));

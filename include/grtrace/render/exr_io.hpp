@@ -70,6 +70,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -521,26 +522,80 @@ inline void write_exr(OutputSet& set, const std::filesystem::path& path, const I
   detail::write_exr_into(set.add(path), image, options);
 }
 
+namespace detail {
+/// The one way in for every EXR grtrace reads (frames, textures, a flight's frames on disk, the viewer's --frame):
+/// a regular file, its header's attributes no larger than the file (check_exr_attribute_sizes), then the header
+/// read alone and its sizes checked (check_exr_header), before OpenEXR reads (or trips over) anything else.
+/// Throws std::runtime_error or MemoryLimitError saying what is wrong with the file.
+inline Imf::Header checked_exr_header(const std::filesystem::path& path) {
+  {
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(st)) throw std::runtime_error("no such file");
+    if (!std::filesystem::is_regular_file(st))
+      throw std::runtime_error(std::string("it is ") + entry_kind_name(st) + ", not an EXR file");
+  }
+  // Protects OpenEXR's own allocations (offset tables) from absurd data windows: refused by the header check.
+  static const bool limited = [] {
+    Imf::Header::setMaxImageSize(1 << 20, 1 << 20);
+    Imf::Header::setMaxTileSize(1 << 16, 1 << 16);
+    return true;
+  }();
+  (void)limited;
+  check_exr_attribute_sizes(path);
+  Imf::Header header = read_exr_header(path);
+  check_exr_header(path, header);
+  return header;
+}
+
+/// The message of a failed read of `path`, as read_exr and read_exr_info throw it.
+template <class F>
+decltype(auto) exr_reading(const std::filesystem::path& path, F&& f) {
+  try {
+    return f();
+  } catch (const MemoryLimitError& e) {
+    throw MemoryLimitError("cannot read EXR '" + path.string() + "': " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw MemoryLimitError("cannot read EXR '" + path.string() + "': out of memory");
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot read EXR '" + path.string() + "': " + e.what());
+  }
+}
+}  // namespace detail
+
+/// What an EXR file holds, from its header alone (checked as read_exr checks it; no pixel is decoded): its size,
+/// its channels' names and its string attributes. For a caller that must judge a file before paying for its
+/// pixels (is it a frame? has it R, G, B? does it fit in memory with the copies the caller will make?).
+struct ExrInfo {
+  int width = 0, height = 0;
+  std::vector<std::string> channels;
+  std::map<std::string, std::string> metadata;
+  bool has_channel(std::string_view name) const {
+    return std::find(channels.begin(), channels.end(), name) != channels.end();
+  }
+};
+
+/// The ExrInfo of `path`. Throws std::runtime_error (MemoryLimitError for a header whose pixels would not fit).
+inline ExrInfo read_exr_info(const std::filesystem::path& path) {
+  return detail::exr_reading(path, [&] {
+    const Imf::Header header = detail::checked_exr_header(path);
+    const Imath::Box2i window = header.dataWindow();
+    ExrInfo info;
+    info.width = window.max.x - window.min.x + 1;
+    info.height = window.max.y - window.min.y + 1;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+      info.channels.emplace_back(it.name());
+    for (auto it = header.begin(); it != header.end(); ++it)
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        info.metadata[it.name()] = s->value();
+    return info;
+  });
+}
+
 /// Reads every channel (as float) and every string attribute of an EXR file. Throws std::runtime_error.
 inline Image read_exr(const std::filesystem::path& path) {
-  try {
-    {
-      std::error_code ec;
-      const std::filesystem::file_status st = std::filesystem::status(path, ec);
-      if (!std::filesystem::exists(st)) throw std::runtime_error("no such file");
-      if (!std::filesystem::is_regular_file(st))
-        throw std::runtime_error(std::string("it is ") + entry_kind_name(st) + ", not an EXR file");
-    }
-    // Protects OpenEXR's own allocations (offset tables) from absurd data windows: refused by the header check.
-    static const bool limited = [] {
-      Imf::Header::setMaxImageSize(1 << 20, 1 << 20);
-      Imf::Header::setMaxTileSize(1 << 16, 1 << 16);
-      return true;
-    }();
-    (void)limited;
-    // The header alone first: the size checks below run before OpenEXR reads (or trips over) anything else.
-    detail::check_exr_attribute_sizes(path);
-    detail::check_exr_header(path, detail::read_exr_header(path));
+  return detail::exr_reading(path, [&] {
+    (void)detail::checked_exr_header(path);  // before OpenEXR reads anything else
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
     const Imath::Box2i window = header.dataWindow();
@@ -592,13 +647,7 @@ inline Image read_exr(const std::filesystem::path& path) {
       if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
         image.metadata[it.name()] = s->value();
     return image;
-  } catch (const MemoryLimitError& e) {
-    throw MemoryLimitError("cannot read EXR '" + path.string() + "': " + e.what());
-  } catch (const std::bad_alloc&) {
-    throw MemoryLimitError("cannot read EXR '" + path.string() + "': out of memory");
-  } catch (const std::exception& e) {
-    throw std::runtime_error("cannot read EXR '" + path.string() + "': " + e.what());
-  }
+  });
 }
 
 }  // namespace grtrace

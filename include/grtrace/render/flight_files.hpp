@@ -21,6 +21,8 @@
 #include "grtrace/render/png_preview.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -105,11 +107,19 @@ inline std::string flight_signature(const std::map<std::string, std::string>& op
 }
 
 /// The header of the scanline EXR at `path` when the file holds every chunk that header promises, else nothing;
-/// read without decompressing a pixel, in one pass: the magic number and version, the header, then the offsets
+/// read without decompressing a pixel, after the checks every EXR read gets (nothing for a file they refuse): the
+/// magic number and version, the header, then the offsets
 /// of its ceil(height / lines per chunk) chunks; each chunk starts with its first line's y and its byte count, and
 /// every chunk must lie inside the file. A tiled or multi-part file is not one grtrace writes: nothing.
 /// Throws what OpenEXR throws for a header it cannot parse.
 inline std::optional<Imf::Header> whole_scanline_exr_header(const std::filesystem::path& path) {
+  // Checked as every EXR grtrace reads is (exr_io.hpp checked_exr_header) before OpenEXR parses it here: a file
+  // planted among the frames that claims a 2 GiB attribute is refused, not allocated.
+  try {
+    (void)detail::checked_exr_header(path);
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  }
   std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) return std::nullopt;
   const auto size = static_cast<std::uint64_t>(file.tellg());
@@ -200,9 +210,27 @@ inline int run_program(const std::vector<std::string>& argv, std::string* error_
     }
     ::posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], 2);  // dup2 clears close-on-exec on fd 2
   }
+  // The child is registered (detail::g_writing_child) with the cleanup signals blocked, so that a signal ending this
+  // process kills and reaps it before removing the temporary it writes; it starts with no signal blocked.
+  sigset_t block, old;
+  ::sigemptyset(&block);
+  for (const int sig : detail::kCleanupSignals) ::sigaddset(&block, sig);
+  posix_spawnattr_t attributes;
+  ::posix_spawnattr_init(&attributes);
+  sigset_t none;
+  ::sigemptyset(&none);
+  ::posix_spawnattr_setsigmask(&attributes, &none);
+  ::posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+  ::pthread_sigmask(SIG_BLOCK, &block, &old);
   pid_t pid = 0;
-  const int spawned = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  const int spawned = ::posix_spawnp(&pid, args[0], &actions, &attributes, args.data(), environ);
+  if (spawned == 0) detail::g_writing_child.store(pid);
+  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  ::posix_spawnattr_destroy(&attributes);
   ::posix_spawn_file_actions_destroy(&actions);
+  struct Unregister {  // on any way out: never killed by pid again
+    ~Unregister() { detail::g_writing_child.store(0); }
+  } unregister;
   if (error_output) {
     ::close(pipe_fds[1]);
     if (spawned == 0) {
@@ -218,6 +246,13 @@ inline int run_program(const std::vector<std::string>& argv, std::string* error_
     ::close(pipe_fds[0]);
   }
   if (spawned != 0) return 127;
+  // Waited for without reaping it first (WNOWAIT): unregistered while it is a zombie, whose pid is not reused, so a
+  // signal in between cannot kill another process that got the pid.
+  siginfo_t info{};
+  while (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) < 0) {
+    if (errno != EINTR) return 127;
+  }
+  detail::g_writing_child.store(0);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) return 127;

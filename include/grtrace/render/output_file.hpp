@@ -22,18 +22,20 @@
 // - check_output_path() refuses, before anything is created: a missing or unwritable directory, a target that
 //   is a directory, a device, a FIFO or a socket, an empty name or one longer than the directory allows.
 // - A set is committed by writing every temporary first and then renaming them one after the other with
-//   SIGINT, SIGTERM, SIGHUP and SIGQUIT blocked in the committing thread and deferred by the handler in any
+//   the cleanup signals (below) blocked in the committing thread and deferred by the handler in any
 //   other thread, so those signals see either the old set or the new one.
 //   What POSIX does not allow us to close: SIGKILL, a crash or a power loss between two renames leaves the
 //   first files new and the others old (the window is a few rename() calls, microseconds); and if one rename
 //   fails (it should not: the targets were checked), the ones before it are already new (the error says which).
-// - Temporaries are removed on SIGINT, SIGTERM, SIGHUP and SIGQUIT: while any exists, a handler (installed
+// - Temporaries are removed on SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXFSZ and SIGXCPU (the file-size and CPU-time
+//   limits): while any exists, a handler (installed
 //   only where the signal's disposition is the default) unlinks every registered temporary and re-raises the
 //   signal with its default action, so the exit status still says "killed by signal". Temporaries other threads
 //   are creating at that moment are waited for and removed too, and none is created after it (the creator throws).
 //   Programs with their own handlers can call remove_registered_temporaries() (async-signal-safe) from them. At most
 //   kMaxRegisteredTemporaries temporaries at a time are registered (more still work, but are not removed on a
-//   signal). SIGKILL cannot be caught: after one, "*.tmp-*" siblings may remain.
+//   signal). A program writing a temporary by name (ffmpeg, run_program) is killed and reaped first, so that it cannot
+//   create its file again. SIGKILL cannot be caught: after one, "*.tmp-*" siblings may remain.
 #pragma once
 
 #include <fcntl.h>
@@ -41,11 +43,13 @@
 #include <sys/random.h>
 #include <time.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <cstddef>
 #include <cstring>
 #include <filesystem>
@@ -86,6 +90,12 @@ inline void check_output_path(const std::filesystem::path& target) {
   namespace fs = std::filesystem;
   if (target.empty() || !target.has_filename() || target.filename() == "." || target.filename() == "..")
     throw std::runtime_error("cannot write '" + target.string() + "': not a file name");
+  // The system refuses longer paths whole (ENAMETOOLONG), which the checks below would misreport as a missing
+  // directory; the temporary beside the target is 21 bytes longer (".tmp-" and 16 characters).
+  if (const std::size_t n = target.native().size(); n + 21 >= PATH_MAX)
+    throw std::runtime_error("cannot write '" + target.string().substr(0, 60) + "...': its path is " +
+                             std::to_string(n) + " bytes long, more than the " + std::to_string(PATH_MAX - 22) +
+                             " this system allows for an output; choose a shorter path");
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::exists(dir, ec))
@@ -145,7 +155,12 @@ struct TemporarySlot {
   std::array<char, kTemporaryPathMax> path{};
 };
 inline std::array<TemporarySlot, kMaxRegisteredTemporaries> g_temporary_slots{};
-inline constexpr std::array<int, 4> kCleanupSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+// The signals that end a process by default and can be caught: the user's (INT, TERM, HUP, QUIT) and the system's
+// limits (XFSZ: a write beyond RLIMIT_FSIZE; XCPU: the soft CPU-time limit).
+inline constexpr std::array<int, 6> kCleanupSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGXFSZ, SIGXCPU};
+// A program this process runs that writes a temporary by name (ffmpeg writing the MP4): ended and reaped before the
+// temporaries are removed, or it would create its file again after the removal (run_program, flight_files.hpp).
+inline std::atomic<pid_t> g_writing_child{0};
 // While an OutputSet renames its files: a cleanup signal delivered to any thread is only noted here, and acted on
 // (removal, re-raise) once the whole set is in place.
 inline std::atomic<int> g_committing{0};
@@ -177,6 +192,11 @@ inline void wait_for_temporary_creations() noexcept {
 inline void remove_registered_temporaries() noexcept {
   const int saved = errno;
   detail::g_ending.store(1);
+  if (const pid_t child = detail::g_writing_child.exchange(0); child > 0) {
+    ::kill(child, SIGKILL);
+    while (::waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+    }
+  }
   detail::wait_for_temporary_creations();
   for (auto& slot : detail::g_temporary_slots)
     if (slot.state.load() == 2) ::unlink(slot.path.data());
@@ -468,7 +488,7 @@ class OutputSet {
   }
 
   /// Finishes every temporary (any write error: all are removed, nothing changed, the error propagates), then
-  /// renames them in the order added with SIGINT/SIGTERM/SIGHUP/SIGQUIT blocked.
+  /// renames them in the order added with the cleanup signals blocked.
   void commit() {
     try {
       for (auto& o : outputs_) o->finish();

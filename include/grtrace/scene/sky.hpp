@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <variant>
@@ -62,9 +63,19 @@ struct StarFieldSky {
 };
 
 /// Equirectangular RGB texture (row 0 = theta 0, column 0 = phi -pi), bilinear, wrapping in phi.
+/// The planes are shared, not copied, when the sky is: a scene is copied into every request and tracer that draws it,
+/// and a texture can be most of a process's memory (an 8k x 4k texture is 400 MB of floats).
 struct TextureSky {
   int width = 0, height = 0;
-  std::vector<float> r, g, b;  ///< row-major planes
+  std::shared_ptr<const std::vector<float>> r, g, b;  ///< row-major planes, width x height each
+
+  TextureSky() = default;
+  /// Takes the planes (moved in: pass std::move of an image's channels to hold the texels once).
+  TextureSky(int w, int h, std::vector<float> red, std::vector<float> green, std::vector<float> blue)
+      : width(w), height(h), r(std::make_shared<const std::vector<float>>(std::move(red))),
+        g(std::make_shared<const std::vector<float>>(std::move(green))),
+        b(std::make_shared<const std::vector<float>>(std::move(blue))) {}
+
   Rgb operator()(double theta, double phi) const {
     const double x = (phi + std::numbers::pi) / (2 * std::numbers::pi) * width - 0.5;
     const double y = std::clamp(theta / std::numbers::pi * height - 0.5, 0.0, height - 1.0);
@@ -79,7 +90,7 @@ struct TextureSky {
       return static_cast<float>((1 - fy) * ((1 - fx) * at(p, x0, y0) + fx * at(p, x0 + 1, y0)) +
                                 fy * ((1 - fx) * at(p, x0, y0 + 1) + fx * at(p, x0 + 1, y0 + 1)));
     };
-    return {sample(r), sample(g), sample(b)};
+    return {sample(*r), sample(*g), sample(*b)};
   }
 };
 
@@ -87,9 +98,9 @@ struct TextureSky {
 /// or hold a non-finite value: a NaN texel would make every ray that sees it non_finite.
 inline void check_texture(const TextureSky& t) {
   const auto n = static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
-  if (t.width < 1 || t.height < 1 || t.r.size() != n || t.g.size() != n || t.b.size() != n)
+  if (t.width < 1 || t.height < 1 || !t.r || !t.g || !t.b || t.r->size() != n || t.g->size() != n || t.b->size() != n)
     throw std::invalid_argument("sky texture: the R, G, B planes do not match its size");
-  const std::array<const std::vector<float>*, 3> planes{&t.r, &t.g, &t.b};
+  const std::array<const std::vector<float>*, 3> planes{t.r.get(), t.g.get(), t.b.get()};
   for (std::size_t c = 0; c < 3; ++c)
     for (std::size_t i = 0; i < n; ++i)
       if (!std::isfinite((*planes[c])[i]))

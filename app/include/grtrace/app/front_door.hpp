@@ -100,7 +100,7 @@ struct RenderRequest {
   MethodRequest method;
   double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
   std::string angle_correction = "exact";  ///< escaped rays' continuation: none | flat | exact
-  std::string tracer = "auto";             ///< auto | general | planar (kTracerNames)
+  std::string tracer = "auto";             ///< auto | general | planar | kerr-mino | straight-line (kTracerNames)
   int table_rays = 0;                      ///< planar tracer: table rays per side of the critical angle (0: default)
   std::string device = "auto";             ///< auto | cpu | cuda (choose_device)
   int threads = 0;                         ///< OpenMP threads (0: all cores)
@@ -347,7 +347,10 @@ std::vector<double> option_numbers(const OptionSource& options, const std::strin
 
 // ---- what there is ----------------------------------------------------------------------------------------------
 
-inline constexpr std::array<std::string_view, 3> kTracerNames = {"auto", "general", "planar"};
+/// The tracers a request can name: auto (the fastest whose assumptions hold) and each one a report names
+/// (trace/auto_tracer.hpp); check_request refuses one that cannot draw the request, saying why.
+inline constexpr std::array<std::string_view, 5> kTracerNames = {"auto", "general", "planar", "kerr-mino",
+                                                                 "straight-line"};
 inline constexpr std::array<std::string_view, 3> kDeviceNames = {"auto", "cpu", "cuda"};
 
 /// The GPU this build can trace on: whether the CUDA backend was compiled in, and the first CUDA device's name or

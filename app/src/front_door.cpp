@@ -102,6 +102,8 @@ AngleCorrection correction_of(const std::string& name) {
 /// The camera's radius against the horizon guard and the sky sphere, in the metric's own radius (Boyer-Lindquist
 /// r for Kerr in both charts, the areal radius r(l) of the wormhole), and whether emitters at rest exist at the sky
 /// sphere (not beyond Schwarzschild-de Sitter's cosmological horizon).
+constexpr double kKerrSchildCameraRadius = 2e5;
+
 void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& x_spherical, const TraceSettings& s) {
   const auto [camera_radius, guard, sky_ok] = with_named_metric(ms, [&](const auto& m) {
     const Vec4 x = event_from_spherical(m, x_spherical);
@@ -114,6 +116,12 @@ void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& 
     throw RequestError("--camera-r " + shortest_number_text(radius_asked) +
                        " is at or inside the horizon (guard r = " + exact_number(guard) + "); move the camera out");
   if (!(camera_radius < s.escape_radius)) throw RequestError("--camera-r must be inside --sky-radius");
+  // Measured: the general tracer in Kerr-Schild's Cartesian chart draws the shadow of a camera at 2e5 M and none at
+  // 5e5 M (the bending is lost in coordinates of that size); the Boyer-Lindquist chart draws it at 5e10 M.
+  if (ms.name == "kerr" && ms.chart == "ks" && camera_radius > kKerrSchildCameraRadius)
+    throw RequestError("--camera-r " + shortest_number_text(radius_asked) +
+                       ": the Kerr-Schild chart draws cameras out to r = 2e5 M; use --chart bl for a camera farther "
+                       "out (it draws the shadow of a camera where a telescope is, 5e10 M)");
   if (!sky_ok)
     throw RequestError("--sky-radius " + shortest_number_text(s.escape_radius) +
                        " lies beyond a horizon of this metric (no emitter can be at rest there); lower it");
@@ -146,7 +154,7 @@ void check_tracer(const RenderRequest& q) {
   if (q.tracer == "planar" && !planar_tracer_metric(q.metric))
     throw RequestError(
         "--tracer planar needs a static spherically symmetric metric with a horizon "
-        "(--metric schwarzschild, rn or sds); use general");
+        "(--metric schwarzschild or rn); use general");
   if (q.tracer == "kerr-mino" && !kerr_mino_tracer_metric(q.metric))
     throw RequestError(
         "--tracer kerr-mino needs --metric kerr --chart bl (Kerr's separated equations in "

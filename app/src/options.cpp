@@ -60,8 +60,8 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"max-steps", "100000", "step budget per ray"});
   o.push_back({"tracer", "auto",
                "auto | general | planar | kerr-mino | straight-line. planar: one table of rays for the frame, "
-               "every scene of a static spherical hole, disk included (Schwarzschild, Reissner-Nordstrom, "
-               "Schwarzschild-de Sitter; auto's choice there with an adaptive --control); kerr-mino: every pixel "
+               "every scene of a Schwarzschild or Reissner-Nordstrom hole, disk included (auto's choice there with an "
+               "adaptive --control); kerr-mino: every pixel "
                "on Kerr's separated equations in Mino time, 3x cheaper per ray than general (auto's choice for "
                "--metric kerr --chart bl with an adaptive --control); straight-line: flat space (auto's choice "
                "for --metric minkowski); general: every pixel integrated (any curved metric)"});

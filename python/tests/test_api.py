@@ -26,7 +26,7 @@ def test_lists_are_the_librarys():
     assert grtrace.scenes() == ["checker", "sky", "redshift", "disk"]
     assert {"tableau": "rkf78", "control": "i"}.items() <= grtrace.methods()[0].items()
     assert len(grtrace.methods()) == 6
-    assert grtrace.tracers() == ["auto", "general", "planar"]
+    assert grtrace.tracers() == ["auto", "general", "planar", "kerr-mino", "straight-line"]
     assert grtrace.devices() == ["auto", "cpu", "cuda"]
     gpu = grtrace.gpu()
     assert set(gpu) == {"built", "present", "name", "why_not"}

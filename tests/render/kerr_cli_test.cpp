@@ -12,7 +12,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -157,7 +163,10 @@ TEST_F(KerrCli, EveryTracerTheReportNamesCanBeAskedForByName) {
   EXPECT_NE(asked.out.find("\"tracer\":\"kerr-mino\""), std::string::npos) << asked.out;
   const grtrace::Image a = grtrace::read_exr(out("auto.exr")), b = grtrace::read_exr(out("mino.exr"));
   EXPECT_EQ(a.metadata.at("tracer"), "kerr-mino");
-  for (const std::string& channel : a.channel_names()) EXPECT_EQ(a.channel(channel), b.channel(channel)) << channel;
+  for (const std::string& channel : a.channel_names()) {  // bit for bit (NaN where a pixel has no sky direction)
+    const auto &x = a.channel(channel), &y = b.channel(channel);
+    EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << channel;
+  }
   // Flat space by its name.
   const ToolRun flat = run({"--metric", "minkowski", "--tracer", "straight-line", "--width", "8", "--height", "8",
                             "--out", out("flat.exr").string()});
@@ -169,7 +178,7 @@ TEST_F(KerrCli, EveryTracerTheReportNamesCanBeAskedForByName) {
       {{"--metric", "schwarzschild", "--tracer", "kerr-mino"}, "--tracer kerr-mino needs --metric kerr --chart bl"},
       {{"--metric", "kerr", "--spin", "0.5", "--chart", "ks", "--tracer", "kerr-mino"},
        "--tracer kerr-mino needs --metric kerr --chart bl"},
-      {{"--metric", "kerr", "--tracer", "kerr-mino", "--control", "fixed", "--step", "0.5"},
+      {{"--metric", "kerr", "--tracer", "kerr-mino", "--tableau", "rk4", "--control", "fixed", "--step", "0.5"},
        "--tracer kerr-mino integrates in Mino time, where a fixed --step would mean something else"},
       {{"--metric", "kerr", "--tracer", "planar"}, "--tracer planar needs a static spherically symmetric metric"},
       {{"--metric", "schwarzschild", "--tracer", "straight-line"}, "--tracer straight-line draws flat space only"},
@@ -177,13 +186,56 @@ TEST_F(KerrCli, EveryTracerTheReportNamesCanBeAskedForByName) {
   };
   for (const BadCase& c : refused) {
     std::vector<std::string> args = c.args;
-    for (const char* a : {"--width", "8", "--height", "8", "--out"}) args.emplace_back(a);
+    for (const char* word : {"--width", "8", "--height", "8", "--out"}) args.emplace_back(word);
     args.push_back(out("refused.exr").string());
     const ToolRun r = run(args);
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.says << "\n" << r.err;
     EXPECT_TRUE(out_empty());
   }
+}
+
+// A camera where a telescope is (Sgr A* is at 4.3e10 M from Earth, M87* at 5.4e10 M): a row of pixels across the
+// hole, 0.1 M of impact parameter apart, shows the shadow's width to within a pixel: 2 x 3 sqrt(3) M around
+// Schwarzschild (the planar table), from one equatorial critical impact parameter to the other around Kerr (the
+// reduced tracer; Bardeen's shadow seen edge-on). Kerr-Schild's chart refuses a camera beyond 2e5 M, naming it.
+TEST_F(KerrCli, CamerasWhereTelescopesAreDrawTheShadowOfItsSize) {
+  const double r = 4e10, half = 8.0;  // the row spans impact parameters -8 M .. 8 M
+  char fov[64];
+  std::snprintf(fov, sizeof fov, "%.17g", 2.0 * std::atan(half / r) * 180.0 / std::numbers::pi);
+  const auto captured_edges = [&](std::vector<std::string> args) {
+    for (const char* a : {"--scene", "sky", "--camera-r", "4e10", "--sky-radius", "1e11", "--width", "161", "--height",
+                          "1", "--out"})
+      args.emplace_back(a);
+    args.push_back(out("far.exr").string());
+    args.insert(args.end(), {"--fov", fov});
+    const ToolRun run_far = run(args);
+    EXPECT_EQ(run_far.status, 0) << run_far.err;
+    const grtrace::Image img = grtrace::read_exr(out("far.exr"));
+    std::array<double, 2> edges{1e9, -1e9};  // impact parameter of the first and last captured pixel
+    for (int col = 0; col < 161; ++col)
+      if (img.channel("status")[static_cast<std::size_t>(col)] == 1.0f) {
+        const double b = half * (2.0 * col / 160.0 - 1.0);
+        edges = {std::min(edges[0], b), std::max(edges[1], b)};
+      }
+    fs::remove(out("far.exr"));
+    fs::remove(out("far.png"));
+    return edges;
+  };
+  const double pixel = 0.1, bc = 3.0 * std::sqrt(3.0);
+  const auto schwarzschild = captured_edges({"--metric", "schwarzschild"});
+  EXPECT_NEAR(schwarzschild[0], -bc, pixel);
+  EXPECT_NEAR(schwarzschild[1], bc, pixel);
+  const auto kerr_edges = captured_edges({"--metric", "kerr", "--spin", "0.9"});
+  const double b1 = grtrace::exact::equatorial_critical_impact(0.9, 1.0),
+               b2 = grtrace::exact::equatorial_critical_impact(0.9, -1.0);
+  EXPECT_NEAR(kerr_edges[1] - kerr_edges[0], std::abs(b1 - b2), 2.0 * pixel) << b1 << " " << b2;
+  EXPECT_NEAR(std::abs(kerr_edges[1] + kerr_edges[0]), std::abs(b1 + b2), 2.0 * pixel) << b1 << " " << b2;
+  const ToolRun ks = run(kerr({"--spin", "0.5", "--chart", "ks", "--camera-r", "3e5", "--sky-radius", "1e6"},
+                              out("ks.exr").string()));
+  EXPECT_EQ(ks.status, 2) << ks.err;
+  EXPECT_NE(ks.err.find("the Kerr-Schild chart draws cameras out to r = 2e5 M"), std::string::npos) << ks.err;
+  EXPECT_TRUE(out_empty());
 }
 
 }  // namespace

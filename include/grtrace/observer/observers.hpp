@@ -118,7 +118,13 @@ ObserverFrame observer_frame(const M& metric, const Vec4& x, ObserverKind kind,
   const Mat4& J = from_defining_chart;
   const Mat4 g_def = J.transpose() * g * J;
   if (!g.allFinite()) throw std::invalid_argument("observer: the metric is not finite at the camera's position");
-  const Eigen::SelfAdjointEigenSolver<Mat4> spectrum(g, Eigen::EigenvaluesOnly);
+  // The signature of g read off the congruent D g D, D = diag(|g_ii|^(-1/2)) (Sylvester's law of inertia): its
+  // diagonal is +-1, so its eigenvalues keep their precision where g's entries span many orders of magnitude (g_tt
+  // ~ 1 beside g_phiphi ~ r^2 ~ 1e21 for a camera at 4e10 M, where g's own eigenvalues lose the positive one).
+  Vec4 d;
+  for (int i = 0; i < 4; ++i) d[i] = g(i, i) != 0.0 ? 1.0 / std::sqrt(std::abs(g(i, i))) : 1.0;
+  const Mat4 scaled = d.asDiagonal() * g * d.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Mat4> spectrum(scaled, Eigen::EigenvaluesOnly);
   const Vec4 ev = spectrum.eigenvalues();  // ascending: a Lorentzian g (+,-,-,-) has three negative, one positive
   if (!(ev[2] < 0.0 && ev[3] > 0.0))
     throw std::invalid_argument("observer: the metric at the camera's position is singular or not of signature "

@@ -3,7 +3,8 @@
 // variables in Mino time whose right-hand side is a few polynomials, in place of the eight-variable geodesic
 // equation of KerrMetric (Boyer-Lindquist).
 //
-// Takes:   a KerrMetric and a null state (x, k) in Boyer-Lindquist coordinates, outside r_+ and off the axis.
+// Takes:   a KerrMetric and a null state (x, k) in Boyer-Lindquist coordinates, outside r_+ (on the axis only with
+//          L_z = 0, which every ray from there has).
 // Returns: the system for that ray and its initial state z0 = (u, theta, phi, u', theta'); its geodesic_state(z)
 //          is the Boyer-Lindquist (x, k) again (k = dx/dlambda, affine), except t, which it does not follow (NaN:
 //          a stationary scene does not depend on it; the scene tracer that uses this system refuses other scenes).
@@ -27,7 +28,9 @@
 //          axis would be a turning point and a ray with L = 0 would miss its jump of pi in phi.
 // Assumes: null rays (g(k, k) = 0: the camera's). The constraints the second-order forms do not enforce,
 //          u'^2 = R~(u) and theta'^2 = Theta, are the tracer's guard (constraint_violation). A trial stage deep
-//          inside the polar turning point is answered with NaN, so that the step is shrunk (operator()).
+//          inside the polar turning point, or across the axis for L_z != 0, is answered with NaN, so that the step
+//          is shrunk until the pass by the axis is resolved (operator()); a pass closer than 1e-8 rad is taken as
+//          the L_z = 0 ray's, through the axis (kThroughAxis).
 #pragma once
 
 #include "grtrace/core/host_device.hpp"
@@ -54,6 +57,12 @@ struct KerrMinoSystem {
   /// The system of the ray y0 (Boyer-Lindquist, null, outside r_+).
   GRTRACE_HD KerrMinoSystem(const KerrMetric& m, const GeodesicState& y0)
       : metric(m), energy(m.energy(y0)), angular_momentum(m.angular_momentum(y0)), carter(m.carter_constant(y0)) {
+    // A ray that passes the axis closer than its turning point could be resolved (sin theta_min = |L| / sqrt(Q + L^2
+    // + a^2 E^2 cos^2) below kThroughAxis) is traced as the ray with L = 0 through the axis, which it equals to
+    // within that angle; one with L exactly 0 starts or passes on the axis.
+    const double reach = carter + angular_momentum * angular_momentum + m.spin * m.spin * energy * energy;
+    through_axis_ = angular_momentum * angular_momentum <= kThroughAxis * kThroughAxis * reach;
+    if (through_axis_) angular_momentum = 0.0;
     const double a = m.spin, e = energy, l = angular_momentum;
     a2_ = a * a;
     big_a_ = a * (a * e - l);
@@ -75,10 +84,14 @@ struct KerrMinoSystem {
   [[gnu::always_inline]] GRTRACE_HD State operator()(const State& z) const {
     const double u = z[0], u2 = u * u, m = metric.mass;
     const SinCos sc = polar_sin_cos(z[1]);
-    const double s2 = sc.sin * sc.sin, inv_s2 = 1.0 / s2;
-    // Deep beyond the polar turning point (see forbidden_): no state of the ray, a trial stage of a step too long
-    // for the pass by the axis. NaN makes the integrator shrink the step (controlled_integrator.hpp).
-    if (l2_ * inv_s2 > forbidden_) return State::Constant(std::numeric_limits<double>::quiet_NaN());
+    // L = 0 (through_axis_): no L / sin^2 terms, which would be 0 * inf on the axis itself.
+    const double s2 = sc.sin * sc.sin, inv_s2 = through_axis_ ? 0.0 : 1.0 / s2;
+    // Not a state of the ray, but a trial stage of a step too long for the ray's pass by the axis: deep beyond
+    // the polar turning point (see forbidden_), or across the axis, which a ray with L != 0 never reaches (the
+    // chart is wrapped after every accepted step, so a step starts in [0, pi]). NaN makes the integrator shrink
+    // the step (controlled_integrator.hpp) until the pass is resolved.
+    if (l2_ * inv_s2 > forbidden_ || (!through_axis_ && !(z[1] >= 0.0 && z[1] <= std::numbers::pi)))
+      return State::Constant(std::numeric_limits<double>::quiet_NaN());
     // Sums of products as mul_add (core/mul_add.hpp), in the formula's order of additions.
     const double p = mul_add(big_a_, u2, energy), delta = mul_add(a2_, u2, 1.0 - 2.0 * m * u);
     State dz;
@@ -117,12 +130,13 @@ struct KerrMinoSystem {
     const double u = z[0], r = 1.0 / z[0], u2 = u * u, a = metric.spin;
     const SinCos sc = sin_cos(z[1]);
     const double s2 = sc.sin * sc.sin, inv_sigma = 1.0 / (r * r + a2_ * sc.cos * sc.cos);
+    const double l_over_s2 = through_axis_ ? 0.0 : angular_momentum / s2;
     const double p_over_delta = (energy + big_a_ * u2) / (1.0 - 2.0 * metric.mass * u + a2_ * u2);
     GeodesicState y;
     y << std::numeric_limits<double>::quiet_NaN(), r, z[1], z[2],
         ((r * r + a2_) * p_over_delta - a * (a * energy * s2 - angular_momentum)) * inv_sigma,
         -r * r * z[3] * inv_sigma, z[4] * inv_sigma,
-        (a * (p_over_delta - energy) + angular_momentum / s2) * inv_sigma;
+        (a * (p_over_delta - energy) + l_over_s2) * inv_sigma;
     return y;
   }
 
@@ -134,7 +148,7 @@ struct KerrMinoSystem {
     const double delta = 1.0 - 2.0 * metric.mass * u + a2_ * u2;
     const double radial = std::abs(z[3] * z[3] - (p * p - k_ * u2 * delta)) / (z[3] * z[3] + p * p + std::abs(k_ * u2 * delta));
     const SinCos sc = sin_cos(z[1]);
-    const double c2 = sc.cos * sc.cos, inv_s2 = 1.0 / (sc.sin * sc.sin);
+    const double c2 = sc.cos * sc.cos, inv_s2 = through_axis_ ? 0.0 : 1.0 / (sc.sin * sc.sin);
     const double polar = std::abs(z[4] * z[4] - (carter + a2e2_ * c2 - l2_ * c2 * inv_s2)) /
                          (z[4] * z[4] + std::abs(carter) + a2e2_ + l2_ * inv_s2);
     const double v = std::max(radial, polar);
@@ -152,6 +166,11 @@ struct KerrMinoSystem {
   GRTRACE_HD bool wrap_chart(State& z) const { return wrap_polar_axis<1, 2, 4>(z); }
 
  private:
+  /// The closest pass by the axis (sin theta_min) below which a ray is traced as the L = 0 ray through it: a pass
+  /// that close needs steps near the floor of double precision in lambda (a ray with L = 1.6e-9, sin theta_min =
+  /// 7e-11, ended as step_underflow); the direction it leaves in differs from the L = 0 ray's by about that angle.
+  static constexpr double kThroughAxis = 1e-8;
+  bool through_axis_ = false;
   double a2_ = 0.0, big_a_ = 0.0, k_ = 0.0, a2e2_ = 0.0, l2_ = 0.0;
   // Theta >= 0 on the ray means L^2 / sin^2 = Q + L^2 + a^2 E^2 cos^2 - theta'^2 <= Q + L^2 + a^2 E^2: the ray never
   // comes nearer the axis than its turning point. A trial stage far inside it (a step across a close pass by the

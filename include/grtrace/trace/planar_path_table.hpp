@@ -114,6 +114,9 @@ class PlanarPathTable {
     const double a = std::asin(std::min(
         1.0, critical_impact_parameter(metric) / camera_r * std::sqrt(metric.lapse_squared(camera_r))));
     delta_c_ = camera_r >= photon_sphere_radius(metric) ? std::numbers::pi - a : a;
+    // Nodes are kept this far off an exactly radial ray, well inside the angle a between delta_c and the radial
+    // (5e-10 rad for a camera at 1e10 M: a fixed 1e-9 rad moved every captured node out to an escaping ray there).
+    radial_margin_ = std::min(1e-9, 1e-3 * a);
     delta_min = std::clamp(delta_min, 0.0, std::numbers::pi);
     delta_max = std::clamp(delta_max, 0.0, std::numbers::pi);
     // Each side covers the frame's angles on that side; the gap to delta_c is bounded below so that the logarithm
@@ -230,8 +233,7 @@ class PlanarPathTable {
     run.node.delta = delta;
     run.reach = reach;
     // The ray equation degenerates for an exactly radial ray (b = 0, psi never grows): keep nodes off it.
-    constexpr double radial_margin = 1e-9;
-    const double d = std::clamp(delta, radial_margin, std::numbers::pi - radial_margin);
+    const double d = std::clamp(delta, radial_margin_, std::numbers::pi - radial_margin_);
     const double r = camera_r_, a = metric_.lapse_squared(r), bscale = radial_scale_squared(metric_, r);
     const double b = r * std::sin(d) / std::sqrt(a);
     run.eq = PlanarRayEquation<Metric>{&metric_, 1.0 / (b * b)};
@@ -532,6 +534,7 @@ class PlanarPathTable {
   double u_sky_ = 0.0, u_guard_ = 0.0;  ///< 1 / sky_r_ and 1 / guard_r_: where table rays end
   bool keep_paths_ = true;
   double delta_c_ = 0.0;
+  double radial_margin_ = 1e-9;
   Side escaped_, captured_;
   long total_steps_ = 0;
   long retraced_ = 0;

@@ -25,6 +25,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -376,6 +377,12 @@ TEST(AppLayer, ChoosesTheDeviceAndSaysWhyTheGpuCannotDrawARequest) {
     ASSERT_TRUE(app::gpu_refusal(q).has_value());
     EXPECT_NE(app::gpu_refusal(q)->find("use --device cpu"), std::string::npos);
     EXPECT_FALSE(gpu.why_not.empty());
+    // A machine with no NVIDIA driver is told so, not that its driver's version is too old (CUDA's own words for
+    // both cases).
+    if (gpu.built && !std::filesystem::exists("/dev/nvidiactl")) {
+      EXPECT_NE(gpu.why_not.find("no NVIDIA driver is loaded on this machine"), std::string::npos) << gpu.why_not;
+    }
+    EXPECT_EQ(gpu.why_not.find("driver version is insufficient"), std::string::npos) << gpu.why_not;
     EXPECT_EQ(app::choose_device("auto", q), "cpu");
     EXPECT_THROW(app::choose_device("cuda", q), std::invalid_argument);
   }

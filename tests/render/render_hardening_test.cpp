@@ -33,6 +33,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -621,6 +622,21 @@ TEST_F(HardeningCli, TheFileSizeLimitLeavesNoTemporary) {
                         "ulimit -f 64; exec");
   EXPECT_EQ(r.status, -SIGXFSZ) << r.err;
   EXPECT_TRUE(listing(dir).empty()) << listing(dir).front();
+}
+
+TEST_F(HardeningCli, WhatTheToolWritesItReadsBack) {
+  // A sky sphere at 1e80 M makes the flat continuation's error estimate subnormal (~3e-314) in the JSON and the
+  // header: the run ends 0, and the frame is a --config that reads back (a subnormal is a number like any other).
+  const fs::path dir = dir_ / "shared";
+  const ToolRun first = run(render_, small({"--sky-radius", "1e80", "--angle-correction", "flat", "--out",
+                                            (dir / "a.exr").string()}));
+  ASSERT_EQ(first.status, 0) << first.err;
+  const std::string text = grtrace::read_exr(dir / "a.exr").metadata.at("sky_continuation_error");
+  const double estimate = std::strtod(text.c_str(), nullptr);  // std::stod throws for a subnormal
+  EXPECT_GT(estimate, 0.0);
+  EXPECT_LT(estimate, std::numeric_limits<double>::min()) << "no longer subnormal: the test tests nothing";
+  const ToolRun again = run(render_, {"--config", (dir / "a.exr").string(), "--out", (dir / "b.exr").string()});
+  EXPECT_EQ(again.status, 0) << again.err;
 }
 
 TEST_F(HardeningCli, AnAngleIsAnAngleHoweverLarge) {

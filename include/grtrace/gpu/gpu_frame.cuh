@@ -34,6 +34,7 @@
 #include <chrono>
 #include <cstddef>
 #include <exception>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -54,11 +55,29 @@ struct GpuDevice {
   std::string why_not;  ///< when not present
 };
 
+/// Why CUDA cannot count devices, in words that name the cause. CUDA answers "driver version is insufficient for
+/// CUDA runtime version" both for an old driver and for no driver at all (no libcuda, no kernel module): the latter
+/// is told apart by the driver's control device, and the former gets both versions.
+inline std::string cuda_unavailable_reason(cudaError_t e) {
+  if (e == cudaErrorNoDevice) return "CUDA finds no device";
+  if (e == cudaErrorInsufficientDriver) {
+    if (!std::filesystem::exists("/dev/nvidiactl"))
+      return "no NVIDIA driver is loaded on this machine (no /dev/nvidiactl): it has no usable NVIDIA GPU";
+    int driver = 0, runtime = 0;
+    cudaDriverGetVersion(&driver);
+    cudaRuntimeGetVersion(&runtime);
+    const auto version = [](int v) { return std::to_string(v / 1000) + "." + std::to_string(v % 1000 / 10); };
+    return "the NVIDIA driver supports CUDA " + (driver > 0 ? version(driver) : std::string("(unknown)")) +
+           ", older than this build's CUDA runtime " + version(runtime) + "; update the driver";
+  }
+  return std::string("CUDA reports: ") + cudaGetErrorString(e);
+}
+
 inline GpuDevice first_gpu() {
   GpuDevice d;
   int count = 0;
   if (const cudaError_t e = cudaGetDeviceCount(&count); e != cudaSuccess) {
-    d.why_not = std::string("CUDA reports: ") + cudaGetErrorString(e);
+    d.why_not = cuda_unavailable_reason(e);
     cudaGetLastError();  // clear it
     return d;
   }

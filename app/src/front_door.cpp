@@ -99,10 +99,12 @@ AngleCorrection correction_of(const std::string& name) {
   throw RequestError("unknown --angle-correction '" + name + "'; choose none, flat or exact");
 }
 
+/// The farthest camera the Kerr-Schild chart draws (see check_camera_radius).
+constexpr double kKerrSchildCameraRadius = 2e5;
+
 /// The camera's radius against the horizon guard and the sky sphere, in the metric's own radius (Boyer-Lindquist
 /// r for Kerr in both charts, the areal radius r(l) of the wormhole), and whether emitters at rest exist at the sky
 /// sphere (not beyond Schwarzschild-de Sitter's cosmological horizon).
-constexpr double kKerrSchildCameraRadius = 2e5;
 
 void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& x_spherical, const TraceSettings& s) {
   const auto [camera_radius, guard, sky_ok] = with_named_metric(ms, [&](const auto& m) {
@@ -146,8 +148,7 @@ void check_tracer(const RenderRequest& q) {
         "smaller error; use --tracer planar (or auto, which picks it)");
   if (std::find(kTracerNames.begin(), kTracerNames.end(), q.tracer) == kTracerNames.end())
     throw RequestError("unknown --tracer '" + q.tracer + "'; choose " + choice_list(kTracerNames));
-  const bool flat = flat_metric(q.metric);
-  if (q.tracer == "straight-line" && !flat)
+  if (q.tracer == "straight-line" && !flat_metric(q.metric))
     throw RequestError(
         "--tracer straight-line draws flat space only (--metric minkowski); this metric is curved: "
         "use auto or general");
@@ -159,12 +160,11 @@ void check_tracer(const RenderRequest& q) {
     throw RequestError(
         "--tracer kerr-mino needs --metric kerr --chart bl (Kerr's separated equations in "
         "Boyer-Lindquist coordinates); use general");
-  for (const char* reduced : {"planar", "kerr-mino"})
-    if (q.tracer == reduced && q.method.control == "fixed")
-      throw RequestError("--tracer " + q.tracer + " integrates in " +
-                         (q.tracer == "planar" ? "swept angle" : "Mino time") +
-                         ", where a fixed --step would mean something else; use --control i, pi or doubling, or "
-                         "--tracer general");
+  if ((q.tracer == "planar" || q.tracer == "kerr-mino") && q.method.control == "fixed")
+    throw RequestError("--tracer " + q.tracer + " integrates in " +
+                       (q.tracer == "planar" ? "swept angle" : "Mino time") +
+                       ", where a fixed --step would mean something else; use --control i, pi or doubling, or "
+                       "--tracer general");
 }
 
 }  // namespace

@@ -253,9 +253,9 @@ CheckedRequest check_request(const RenderRequest& in) {
 
   // The camera: the event (r, theta, phi) in Boyer-Lindquist-like coordinates for every chart.
   const CameraRequest& c = q.camera;
-  if (!(c.theta_degrees > 0.0 && c.theta_degrees < 180.0))
-    throw RequestError(
-        "--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+  if (!(c.theta_degrees >= 0.0 && c.theta_degrees <= 180.0))
+    throw RequestError("--camera-theta must lie in [0, 180] degrees (0 and 180: on the spin axis), got " +
+                       shortest_number_text(c.theta_degrees));
   if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
     throw RequestError("--fov must lie in (0, 180) degrees, got " + shortest_number_text(c.fov_degrees));
   if (!std::isfinite(c.r) || !std::isfinite(c.phi_degrees))

@@ -37,7 +37,8 @@ std::vector<OptionInfo> make_render_options() {
                "Boyer-Lindquist coordinates for both"});
   o.push_back({"camera-r", "200", "camera radius (must be outside the horizon guard and inside --sky-radius)"});
   o.push_back({"camera-theta", "90",
-               "camera polar angle theta in degrees, strictly between 0 and 180 (90: the equatorial plane)"});
+               "camera polar angle theta in degrees, 0 .. 180 (90: the equatorial plane; 0 and 180: on the spin axis, "
+               "a face-on view, the camera placed 1e-9 rad off it)"});
   o.push_back({"camera-phi", "0", "camera azimuth phi in degrees"});
   o.push_back({"observer", "static",
                "static | zamo: the observer whose frame carries the camera (same for a non-rotating hole); "
@@ -173,9 +174,9 @@ CameraRequest read_camera(const OptionSource& s) {
   c.r = option_number(s, "camera-r");
   c.theta_degrees = option_number(s, "camera-theta");
   c.phi_degrees = option_number(s, "camera-phi");
-  if (!(c.theta_degrees > 0.0 && c.theta_degrees < 180.0))
-    throw RequestError(
-        "--camera-theta must lie strictly between 0 and 180 degrees (the chart is singular on the axis)");
+  if (!(c.theta_degrees >= 0.0 && c.theta_degrees <= 180.0))
+    throw RequestError("--camera-theta must lie in [0, 180] degrees (0 and 180: on the spin axis), got " +
+                       text_of(s, "camera-theta"));
   c.fov_degrees = option_number(s, "fov");
   if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
     throw RequestError("--fov must lie in (0, 180) degrees, got " + text_of(s, "fov"));

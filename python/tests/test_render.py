@@ -67,7 +67,7 @@ BAD = [
     dict(metric="kerr", spin=1.2),
     dict(camera_r=1.5),
     dict(camera_r=500),
-    dict(camera_theta=0),
+    dict(camera_theta=-1),
     dict(fov=180),
     dict(fov="wide"),
     dict(camera_phi=float("inf")),

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -236,6 +237,71 @@ TEST_F(KerrCli, CamerasWhereTelescopesAreDrawTheShadowOfItsSize) {
   EXPECT_EQ(ks.status, 2) << ks.err;
   EXPECT_NE(ks.err.find("the Kerr-Schild chart draws cameras out to r = 2e5 M"), std::string::npos) << ks.err;
   EXPECT_TRUE(out_empty());
+}
+
+// A face-on view: --camera-theta 0 or 180 (the camera 1e-9 rad off the axis) for Kerr in both charts and for
+// Schwarzschild, as a frame and as a fall along the axis; no ray fails in any, and the face-on disk fills the frame
+// around the shadow. Angles outside [0, 180] are refused.
+TEST_F(KerrCli, ACameraOnTheAxisDrawsTheDiskFaceOn) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"--metric", "kerr", "--spin", "0.9", "--camera-theta", "0"},
+      {"--metric", "kerr", "--spin", "0.9", "--camera-theta", "180"},
+      {"--metric", "kerr", "--spin", "0.9", "--camera-theta", "0", "--chart", "ks"},
+      {"--metric", "schwarzschild", "--camera-theta", "180"},
+      {"--metric", "kerr", "--spin", "0.9", "--camera-theta", "0", "--flight", "infall", "--frames", "3"},
+  };
+  for (std::vector<std::string> args : cases) {
+    std::string shown;
+    for (const auto& a : args) shown += a + " ";
+    for (const char* a :
+         {"--scene", "disk", "--camera-r", "30", "--fov", "60", "--width", "24", "--height", "24", "--out"})
+      args.emplace_back(a);
+    args.push_back(out("axis.exr").string());
+    const ToolRun r = run(args);
+    ASSERT_EQ(r.status, 0) << shown << r.err;
+    const bool flight = shown.find("--flight") != std::string::npos;
+    if (flight) {
+      EXPECT_NE(r.out.find("\"frames_with_failed_rays\":[]"), std::string::npos) << shown << r.out;
+    } else {
+      for (const char* failure : {"\"max_steps\":0", "\"step_underflow\":0", "\"non_finite\":0"})
+        EXPECT_NE(r.out.find(failure), std::string::npos) << shown << r.out;
+    }
+    const grtrace::Image img = grtrace::read_exr(out(flight ? "axis-0000.exr" : "axis.exr"));
+    const auto& object = img.channel("object");
+    EXPECT_GT(std::count(object.begin(), object.end(), 2.0f), 300) << shown << "the disk, face-on";
+    EXPECT_GT(std::count(object.begin(), object.end(), 1.0f), 10) << shown << "the shadow";
+    for (const auto& entry : fs::directory_iterator(base_ / "out")) fs::remove(entry.path());
+  }
+  // A camera path over the north pole (a file of camera states, one frame each), 1e-4 rad from the axis at its
+  // closest, moving along the meridian through its frame: every frame's rays pass the axis closely.
+  {
+    const double r = 30.0, a = 0.9, rate = 0.005;  // dtheta/dtau
+    std::string csv = "tau,t,r,theta,phi,ut,ur,utheta,uphi\n";
+    const std::array<std::array<double, 2>, 5> rows = {{{0.1, 0.0}, {0.01, 0.0}, {1e-4, 0.0}, {1e-4, 3.141592653589793},
+                                                         {0.01, 3.141592653589793}}};
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const double theta = rows[i][0], sigma = r * r + a * a * std::cos(theta) * std::cos(theta);
+      const double u_theta = rows[i][1] == 0.0 ? -rate : rate;  // towards the pole, then away from it
+      const double u_t = std::sqrt((1.0 + sigma * u_theta * u_theta) / (1.0 - 2.0 * r / sigma));  // g(u, u) = 1
+      char row[256];
+      std::snprintf(row, sizeof row, "%zu,0,%.17g,%.17g,%.17g,%.17g,0,%.17g,0\n", i, r, theta, rows[i][1], u_t, u_theta);
+      csv += row;
+    }
+    const fs::path path = base_ / "over-the-pole.csv";
+    std::ofstream(path) << csv;
+    const ToolRun r_flight = run({"--metric", "kerr", "--spin", "0.9", "--scene", "disk", "--flight", "csv",
+                                  "--flight-csv", path.string(), "--fov", "60", "--width", "24", "--height", "24",
+                                  "--out", out("pole.exr").string()});
+    ASSERT_EQ(r_flight.status, 0) << r_flight.err;
+    EXPECT_NE(r_flight.out.find("\"frames_with_failed_rays\":[]"), std::string::npos) << r_flight.out;
+    for (const auto& entry : fs::directory_iterator(base_ / "out")) fs::remove(entry.path());
+  }
+  for (const char* theta : {"-0.5", "180.5"}) {
+    const ToolRun r = run(kerr({"--camera-theta", theta}, out("refused.exr").string()));
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("--camera-theta must lie in [0, 180] degrees"), std::string::npos) << r.err;
+    EXPECT_TRUE(out_empty());
+  }
 }
 
 }  // namespace

@@ -96,7 +96,7 @@ TEST_F(RenderCliInput, RefusesEveryBadInputBeforeTracingAndLeavesNoFile) {
       {"--mass", "0"},
       {"--camera-r", "inf"},
       {"--camera-theta", "nan"},
-      {"--camera-theta", "0"},
+      {"--camera-theta", "180.5"},
       {"--camera-phi", "inf"},
       {"--fov", "nan"},
       {"--rtol", "nan"},

@@ -156,7 +156,7 @@ TEST_F(RenderCli, RefusesBadInputBeforeAnyWork) {
   const char* bad[] = {"--camera-r 2", "--camera-r 1.5", "--camera-r 500", "--fov 0", "--fov 180", "--fov nan",
                        "--width 0", "--height -3", "--mass inf", "--velocity 0.8,0.8,0", "--look 0,-1,0",
                        "--scene nope", "--metric kerr --spin 1", "--tableau nope", "--control pi --tableau rk4",
-                       "--angle-correction sometimes", "--camera-theta 0", "--threads -1", "--rtol 0"};
+                       "--angle-correction sometimes", "--camera-theta -1", "--threads -1", "--rtol 0"};
   for (const char* args : bad) {
     const ToolRun r = run(o + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.output;

@@ -15,8 +15,10 @@
 #include "../common/tool_run.hpp"
 
 #include <fcntl.h>
+#include <linux/fs.h>
 #include <gtest/gtest.h>
 #include <spawn.h>
+#include <sys/ioctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -612,6 +614,40 @@ TEST_F(HardeningCli, InputsThatAreNotFilesAreNamedForWhatTheyAre) {
                  "--config '/dev/zero' is a character device, not a file");
   expect_refused(run(render_, small({"--config", dir_.string(), "--out", out.string()})), "is a directory");
   EXPECT_TRUE(listing(dir_ / "shared").empty());
+}
+
+/// Adds (or, with on = false, removes) inode flags (chattr) on a file or directory; false where the file system or
+/// the user cannot.
+bool change_inode_flags(const fs::path& p, bool directory, int flags, bool on) {
+  const int fd = ::open(p.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | (directory ? O_DIRECTORY : 0));
+  if (fd < 0) return false;
+  int now = 0;
+  bool ok = ::ioctl(fd, FS_IOC_GETFLAGS, &now) == 0;
+  if (ok) {
+    now = on ? (now | flags) : (now & ~flags);
+    ok = ::ioctl(fd, FS_IOC_SETFLAGS, &now) == 0;
+  }
+  ::close(fd);
+  return ok;
+}
+
+TEST_F(HardeningCli, AnImmutableTargetOrAppendOnlyDirectoryIsRefusedBeforeTheWork) {
+  // chattr +i / +a: the permission bits say writable (to root too), but the rename that finishes an output fails,
+  // which used to be found after the whole frame was traced.
+  const fs::path dir = dir_ / "shared", frame = dir / "frame.exr";
+  std::ofstream(frame) << "old";
+  if (!change_inode_flags(frame, false, FS_IMMUTABLE_FL, true))
+    GTEST_SKIP() << "this file system or user cannot set inode flags (chattr)";
+  const ToolRun immutable = run(render_, small({"--out", frame.string()}));
+  ASSERT_TRUE(change_inode_flags(frame, false, FS_IMMUTABLE_FL, false));
+  expect_refused(immutable, "it is immutable (chattr +i), so it cannot be replaced");
+  EXPECT_EQ(file_contents(frame), "old");
+  fs::remove(frame);
+  ASSERT_TRUE(change_inode_flags(dir, true, FS_APPEND_FL, true));
+  const ToolRun append_only = run(render_, small({"--out", (dir / "new.exr").string()}));
+  ASSERT_TRUE(change_inode_flags(dir, true, FS_APPEND_FL, false));
+  expect_refused(append_only, "' is append-only (chattr +a): an output is written beside its name");
+  EXPECT_TRUE(listing(dir).empty());
 }
 
 TEST_F(HardeningCli, TheFileSizeLimitLeavesNoTemporary) {

@@ -20,6 +20,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -298,6 +300,40 @@ TEST(VizBundle, PixelGridSpreadsOverTheFrame) {
   EXPECT_EQ(pixel_grid(100, 50, 1, 1).front(), (std::array<int, 2>{49, 24}));
   for (const auto& p : pixel_row(100, 50, 4)) EXPECT_EQ(p[1], 24);
   for (const auto& p : pixel_column(100, 50, 4)) EXPECT_EQ(p[0], 49);
+}
+
+TEST(VizBundle, APathsMemoryIsBoundedByTheLimit) {
+  // rays x steps x samples is unbounded by the options alone: each path, and the bundle, is held to
+  // GRTRACE_MEMORY_LIMIT as it grows, with a message that says what to lower.
+  const Camera cam = test_camera(15.0, 40, 30);
+  const SchwarzschildMetric metric{1.0};
+  TraceSettings s;
+  s.integrator.tolerance = {1e-10, 1e-12};
+  s.escape_radius = 80.0;
+  const Tracer tracer(metric, s);
+  const auto pixels = pixel_grid(40, 30, 6, 5);
+  const auto state = [&](int x, int y) { return cam.pixel_state(x, y); };
+  const auto paths = trace_pixels(tracer, state, pixels, 4, std::nullopt, nullptr);
+  double held = 0.0;
+  for (const TracedPath& p : paths) held += path_bytes(p.samples.capacity(), p.steps.capacity());
+  ::setenv("GRTRACE_MEMORY_LIMIT", std::to_string(static_cast<long>(held / 2.0)).c_str(), 1);
+  try {
+    (void)trace_pixels(tracer, state, pixels, 4, std::nullopt, nullptr);
+    ADD_FAILURE() << "the bundle went past the limit";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("rays at 4 samples a step (fewer rays or fewer samples a step)"),
+              std::string::npos) << e.what();
+  }
+  ::setenv("GRTRACE_MEMORY_LIMIT", "20K", 1);  // one path of 1000 samples a step: its own arrays
+  try {
+    (void)trace_path(tracer, cam.pixel_state(20, 15), 1000, std::nullopt);
+    ADD_FAILURE() << "the path went past the limit";
+  } catch (const MemoryLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("samples a step (fewer samples a step or a shorter ray)"), std::string::npos)
+        << e.what();
+  }
+  ::unsetenv("GRTRACE_MEMORY_LIMIT");
+  EXPECT_EQ(trace_pixels(tracer, state, pixels, 4, std::nullopt, nullptr).size(), pixels.size());
 }
 
 TEST(VizBundle, CameraRaysCarryTheirPixelAndTheTracersRedshift) {

@@ -59,7 +59,7 @@ TEST(ViewTool, BadInputExitsWithTwo) {
       {"--metric rn", "--metric must be schwarzschild or kerr, got 'rn'"},
       {"--metric kerr --spin 1", "--spin must satisfy |a| < M"},
       {"--look 1,0", "--look expects 3 comma-separated numbers"},
-      {"--camera-theta 0", "--camera-theta"},
+      {"--camera-theta 181", "--camera-theta"},
       {"--up -1,0,0", "up"},
       {"--scene disk --disk-inner 2", "disk"},
       {"--size 0x10", "--size"},

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace grtrace {
 
@@ -36,6 +37,22 @@ inline GRTRACE_HD Vec3 embedded_velocity(const GeodesicState& y, const Spherical
 inline GRTRACE_HD void direction_angles(const Vec3& d, double& theta, double& phi) {
   theta = std::acos(std::clamp(d.z() / d.norm(), -1.0, 1.0));
   phi = std::atan2(d.y(), d.x());
+}
+
+/// How far from the polar axis an observer asked for on it is placed: a spherical chart's theta and phi do not name a
+/// direction there (d_phi vanishes, d_theta depends on phi), so no frame can be written on the axis in them. At 1e-9
+/// rad the chart is regular to double precision, the frame is the continuous limit of those off the axis at the
+/// given phi (look and up keep their meaning), and the camera moves by 1e-9 r: its rays' directions change by about
+/// that angle, below every tolerance the tools offer (a test compares with a camera 1e-6 rad off the axis). Every ray
+/// of such a camera passes the axis closer than the reduced Kerr tracer's 1e-8 rad, so that tracer draws the axis
+/// camera itself (L_z = 0 for every ray).
+inline constexpr double kAxisOffset = 1e-9;
+
+/// theta moved off the polar axis by kAxisOffset where it lies on it or nearer (theta in [0, pi]).
+inline GRTRACE_HD double off_axis(double theta) {
+  // Compared by value (std::clamp takes references, which device code cannot form to a host constant).
+  const double low = kAxisOffset, high = std::numbers::pi - kAxisOffset;
+  return theta < low ? low : theta > high ? high : theta;
 }
 
 /// Euclidean embedding of (r, theta, phi): the point (r sin th cos ph, r sin th sin ph, r cos th).

@@ -8,7 +8,9 @@
 //          components along the observer's spatial axes, which are the chart's axes ((r, theta, phi) in a
 //          spherical chart, (x, y, z) in a Cartesian one), or (r, theta, phi) when spherical_position is set.
 //          With spherical_position the observer is also defined in the spherical chart (the static observer of its
-//          t, the ZAMO normal to its t = const slices), so the same spec gives the same camera in every chart.
+//          t, the ZAMO normal to its t = const slices), so the same spec gives the same camera in every chart; theta
+//          may be 0 or pi (on the axis: the camera is placed kAxisOffset = 1e-9 rad off it, where its frame is the
+//          limit of those off the axis at its phi: metric/spherical_chart.hpp off_axis).
 // Returns: the Camera (observer/camera.hpp), whose tetrad is built by Gram-Schmidt in the metric (tetrad.hpp).
 // Refuses, with std::invalid_argument saying what to change and before any work: a non-finite position, a
 //          camera on or inside the horizon, an observer that cannot exist there (static inside an ergosphere),
@@ -16,6 +18,7 @@
 #pragma once
 
 #include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/observer/observers.hpp"
 #include "grtrace/observer/tetrad.hpp"
@@ -42,14 +45,17 @@ struct CameraSpec {
 template <MetricPolicy M>
 Camera make_camera(const M& metric, const CameraSpec& spec) {
   if (!spec.position.allFinite()) throw std::invalid_argument("camera: the position must be finite numbers");
-  const Vec4 x = spec.spherical_position ? event_from_spherical(metric, spec.position) : spec.position;
+  // A camera on the polar axis (theta = 0 or pi) is placed kAxisOffset off it (metric/spherical_chart.hpp).
+  Vec4 spherical = spec.position;
+  if (spec.spherical_position) spherical[2] = off_axis(spherical[2]);
+  const Vec4 x = spec.spherical_position ? event_from_spherical(metric, spherical) : spec.position;
   if (const double rh = metric.horizon_radius(); rh > 0.0 && !(metric.radius(x) > rh))
     throw std::invalid_argument("camera: the position r = " + std::to_string(metric.radius(x)) +
                                 " is on or inside the horizon (r = " + std::to_string(rh) + "); move the camera out");
-  const ObserverFrame frame =
-      spec.spherical_position ? observer_frame(metric, x, spec.observer, spherical_axes(metric, spec.position),
-                                               jacobian_of_spherical(metric, spec.position))
-                              : observer_frame(metric, x, spec.observer);
+  const ObserverFrame frame = spec.spherical_position
+                                  ? observer_frame(metric, x, spec.observer, spherical_axes(metric, spherical),
+                                                   jacobian_of_spherical(metric, spherical))
+                                  : observer_frame(metric, x, spec.observer);
   const Tetrad tetrad =
       make_tetrad(metric.metric(x), frame.velocity(spec.velocity), frame.spatial(spec.look), frame.spatial(spec.up));
   return Camera(x, tetrad, spec.width, spec.height, spec.fov_degrees);

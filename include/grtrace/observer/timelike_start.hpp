@@ -20,6 +20,7 @@
 #include "grtrace/metric/circular_orbits.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -64,7 +65,8 @@ std::optional<Vec4> timelike_velocity(const M& metric, const Vec4& x, const Vec3
 /// metric J^T g J (J = d(chart)/d(spherical)) and pushed forward, u = J u_s.
 template <MetricPolicy M>
 TimelikeStart orbit_start(const M& metric, double r, double theta, double phi, double dr_dtau, double dphi_dtau) {
-  const Vec4 xs(0.0, r, theta, phi);
+  // On the polar axis (theta = 0 or pi) the start is placed kAxisOffset off it (metric/spherical_chart.hpp).
+  const Vec4 xs(0.0, r, std::isfinite(theta) ? off_axis(theta) : theta, phi);
   if (!xs.allFinite() || !std::isfinite(dr_dtau) || !std::isfinite(dphi_dtau))
     throw std::invalid_argument("timelike start: position and velocities must be finite numbers");
   const Vec4 x = event_from_spherical(metric, xs);

@@ -20,7 +20,8 @@
 // - rename() replaces the final name itself: a symbolic link planted at the final name is replaced, never
 //   followed, so the file it points to is left unchanged.
 // - check_output_path() refuses, before anything is created: a missing or unwritable directory, a target that
-//   is a directory, a device, a FIFO or a socket, an empty name or one longer than the directory allows.
+//   is a directory, a device, a FIFO or a socket, an empty name or one longer than the directory allows, and
+//   a target or directory whose inode flags forbid the rename (immutable or append-only, chattr +i / +a).
 // - A set is committed by writing every temporary first and then renaming them one after the other with
 //   the cleanup signals (below) blocked in the committing thread and deferred by the handler in any
 //   other thread, so those signals see either the old set or the new one.
@@ -39,7 +40,9 @@
 #pragma once
 
 #include <fcntl.h>
+#include <linux/fs.h>
 #include <signal.h>
+#include <sys/ioctl.h>
 #include <sys/random.h>
 #include <time.h>
 #include <sys/stat.h>
@@ -82,10 +85,24 @@ inline const char* entry_kind_name(const std::filesystem::file_status& s) {
   }
 }
 
+namespace detail {
+/// The inode flags (chattr: FS_IMMUTABLE_FL, FS_APPEND_FL, ...) of the file or directory at `p`, without following
+/// a link there; 0 where they cannot be read (no such entry, no permission, a file system without them).
+inline int inode_flags(const std::filesystem::path& p, bool directory) {
+  const int fd = ::open(p.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC | (directory ? O_DIRECTORY : 0));
+  if (fd < 0) return 0;
+  int flags = 0;  // the kernel reads and writes an int, whatever FS_IOC_GETFLAGS's declared size
+  const int rc = ::ioctl(fd, FS_IOC_GETFLAGS, &flags);
+  ::close(fd);
+  return rc == 0 ? flags : 0;
+}
+}  // namespace detail
+
 /// Throws std::runtime_error with a message naming the path when `target` cannot be created: an empty name, a
 /// name longer than the directory allows, its directory is missing, is not a directory, or is not writable, or
 /// `target` exists as something other than a regular file or a symbolic link (a directory, a device, a FIFO, a
-/// socket: renaming a file over it would replace, say, /dev/null for the whole system). Creates nothing.
+/// socket: renaming a file over it would replace, say, /dev/null for the whole system), or `target` or its
+/// directory is immutable or append-only (chattr +i / +a). Creates nothing.
 inline void check_output_path(const std::filesystem::path& target) {
   namespace fs = std::filesystem;
   if (target.empty() || !target.has_filename() || target.filename() == "." || target.filename() == "..")
@@ -118,6 +135,20 @@ inline void check_output_path(const std::filesystem::path& target) {
   if (fs::exists(entry) && !fs::is_regular_file(entry) && !fs::is_symlink(entry))
     throw std::runtime_error("cannot write '" + target.string() + "': it is " + entry_kind_name(entry) +
                              ", not a regular file; name a regular file (a new one, or one to replace)");
+  // The inode flags (chattr) the permission bits do not show, even to root: an immutable or append-only file cannot
+  // be replaced, and an append-only directory keeps the temporary's name, so the rename that finishes the output
+  // would fail after all the work.
+  if (fs::is_regular_file(entry)) {
+    if (const int flags = detail::inode_flags(target, false); flags & (FS_IMMUTABLE_FL | FS_APPEND_FL))
+      throw std::runtime_error("cannot write '" + target.string() + "': it is " +
+                               ((flags & FS_IMMUTABLE_FL) ? "immutable (chattr +i)" : "append-only (chattr +a)") +
+                               ", so it cannot be replaced; clear the flag (chattr -i / -a) or choose another name");
+  }
+  if (const int flags = detail::inode_flags(dir, true); flags & (FS_IMMUTABLE_FL | FS_APPEND_FL))
+    throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() + "' is " +
+                             ((flags & FS_IMMUTABLE_FL) ? "immutable (chattr +i)" : "append-only (chattr +a)") +
+                             ": an output is written beside its name and renamed into place, which it refuses; "
+                             "choose another directory");
 }
 
 namespace detail {

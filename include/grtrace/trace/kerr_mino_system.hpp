@@ -60,8 +60,20 @@ struct KerrMinoSystem {
     // A ray that passes the axis closer than its turning point could be resolved (sin theta_min = |L| / sqrt(Q + L^2
     // + a^2 E^2 cos^2) below kThroughAxis) is traced as the ray with L = 0 through the axis, which it equals to
     // within that angle; one with L exactly 0 starts or passes on the axis.
-    const double reach = carter + angular_momentum * angular_momentum + m.spin * m.spin * energy * energy;
+    // reach = theta'^2 + L^2 / sin^2 theta + a^2 E^2 sin^2 theta >= 0; it is 0 for a ray along the axis, where its
+    // round-off (of |Q| + a^2 E^2) may leave it negative and a round-off L != 0 (a camera's central pixel on the axis).
+    const double a2e2 = m.spin * m.spin * energy * energy;
+    const double reach =
+        std::max(carter + angular_momentum * angular_momentum + a2e2, 1e-15 * (std::abs(carter) + a2e2));
     through_axis_ = angular_momentum * angular_momentum <= kThroughAxis * kThroughAxis * reach;
+    // A ray that starts that close to the axis too (a camera on it) is not near its own start's meridian: its
+    // L^2 / sin^2 theta is a part of its polar speed there. It becomes the L = 0 ray parallel to it (initial_state),
+    // whose Carter constant takes in L^2 (Theta = Q + L^2 + a^2 E^2 cos^2 - L^2 / sin^2: the polar speed once off
+    // the axis).
+    if (through_axis_ && polar_sin_cos(y0[2]).sin < kNearAxisStart) {
+      axis_start_l_ = angular_momentum;
+      carter += angular_momentum * angular_momentum;
+    }
     if (through_axis_) angular_momentum = 0.0;
     const double a = m.spin, e = energy, l = angular_momentum;
     a2_ = a * a;
@@ -70,6 +82,7 @@ struct KerrMinoSystem {
     a2e2_ = a2_ * e * e;
     l2_ = l * l;
     forbidden_ = 4.0 * (carter + l2_ + a2e2_);
+    slowed_near_axis_ = !through_axis_ && l2_ < kSlowedNearAxis * kSlowedNearAxis * reach;
   }
 
   /// z0 of the ray y0 the system was built for: u = 1/r, u' = -Sigma k^r / r^2, theta' = Sigma k^theta.
@@ -77,6 +90,7 @@ struct KerrMinoSystem {
     const double r = y0[1], c = polar_sin_cos(y0[2]).cos, sigma = r * r + a2_ * c * c;  // the GPU's bits too
     State z;
     z << 1.0 / r, y0[2], y0[3], -sigma * y0[5] / (r * r), sigma * y0[6];
+    if (axis_start_l_ != 0.0) start_through_axis(z);
     return z;
   }
 
@@ -100,6 +114,7 @@ struct KerrMinoSystem {
     dz[2] = mul_add(angular_momentum, inv_s2, metric.spin * (p / delta - energy));
     dz[3] = u * mul_add(u * k_, mul_add(-2.0 * a2_, u, 3.0 * m), 2.0 * big_a_ * p - k_);
     dz[4] = sc.cos * sc.sin * (l2_ * inv_s2 * inv_s2 - a2e2_);
+    if (slowed_near_axis_) dz *= sc.sin / (sc.sin + kSlowedNearAxis);
     return dz;
   }
 
@@ -162,6 +177,13 @@ struct KerrMinoSystem {
     return inner_product(metric, y.head<4>(), y.tail<4>(), y.tail<4>());
   }
 
+  /// d(system time) / d(Mino time) at z: 1, or sin^2 theta for a ray slowed near the axis (see slowed_near_axis_).
+  GRTRACE_HD double time_scale(const State& z) const {
+    if (!slowed_near_axis_) return 1.0;
+    const double s = polar_sin_cos(z[1]).sin;
+    return s / (s + kSlowedNearAxis);
+  }
+
   /// The polar axis crossed: theta -> -theta (or 2 pi - theta), phi -> phi + pi, theta' -> -theta'.
   GRTRACE_HD bool wrap_chart(State& z) const { return wrap_polar_axis<1, 2, 4>(z); }
 
@@ -170,7 +192,51 @@ struct KerrMinoSystem {
   /// that close needs steps near the floor of double precision in lambda (a ray with L = 1.6e-9, sin theta_min =
   /// 7e-11, ended as step_underflow); the direction it leaves in differs from the L = 0 ray's by about that angle.
   static constexpr double kThroughAxis = 1e-8;
+  /// A start nearer the axis than this (sin theta) is where the L = 0 ray's start is moved onto that ray
+  /// (start_through_axis); farther out the ray keeps its start, as L^2 / sin^2 theta is below 1e-8 of its polar
+  /// speed there.
+  static constexpr double kNearAxisStart = 1e-4;
+  /// The closest pass by the axis (sin theta_min) below which a ray is slowed near the axis: 0.1, where L / sin^2
+  /// theta reaches 100 times its value on the equator.
+  static constexpr double kSlowedNearAxis = 0.1;
   bool through_axis_ = false;
+  /// The system's time is tau, d tau = d lambda_M / sin^2 theta, for a ray with L != 0 passing the axis closer than
+  /// kSlowedNearAxis (operator() multiplies dz/dlambda_M by sin^2 theta). Near the axis the ray crosses the sphere on
+  /// a nearly straight line, where in Mino time phi sweeps about pi within sin theta_min / |theta'| (phi' = L / sin^2
+  /// theta, a spike) and theta turns as sqrt(sin^2 theta_min + theta'^2 lambda^2), a kink: a step across the pass
+  /// that Fehlberg 7(8)'s four-stage error estimate accepted left the ray's direction wrong by 4e-3 rad (a camera
+  /// 1e-6 rad from the axis, rtol 1e-9). In tau, d phi / d tau = L + sin^2 theta a (P~ / Delta~ - E) and theta(tau)
+  /// (for the straight line sin theta_min / cos(v sin theta_min tau)) are smooth on the scale of the pass itself, and
+  /// the step control resolves it; away from the axis the two times differ by a factor of order one.
+  bool slowed_near_axis_ = false;
+  double axis_start_l_ = 0.0;  ///< L of a ray traced as the L = 0 ray from a start near the axis (0: none)
+
+  /// Moves z0 of a ray that starts near the axis (sin theta < kNearAxisStart) with a pass closer than kThroughAxis
+  /// onto the L = 0 ray parallel to it. Near the axis the sphere is a plane with polar coordinates (rho, phi),
+  /// rho = theta (or pi - theta at the south pole); the ray crosses it on a straight line with velocity
+  /// rho' e_rho + (L rho / sin^2 theta) e_phi in Mino time. The L = 0 ray is the line through the axis with that
+  /// velocity; the start goes to the nearest point on it (a move of at most r sin theta_min: 1e-8 r) and its
+  /// polar speed is sqrt(Theta) of the Carter constant Q + L^2 (the constructor), so the constraint holds at once.
+  /// Without this a camera 1e-9 rad from the axis started every ray with a polar speed missing L^2 / sin^2 theta,
+  /// a constraint violation of order one, and the guard ended them as non_finite.
+  GRTRACE_HD void start_through_axis(State& z) const {
+    const bool north = z[1] < std::numbers::pi / 2.0;
+    const double rho = north ? z[1] : std::numbers::pi - z[1], rho_rate = north ? z[4] : -z[4];
+    const double s = polar_sin_cos(z[1]).sin;
+    const double across = s > 0.0 ? axis_start_l_ * rho / (s * s) : 0.0;
+    const double cp = std::cos(z[2]), sp = std::sin(z[2]);
+    const double vx = rho_rate * cp - across * sp, vy = rho_rate * sp + across * cp, speed = std::hypot(vx, vy);
+    if (!(speed > 0.0)) return;
+    const double along = rho * (cp * vx + sp * vy) / speed;  // the start's distance along the line from the axis
+    const double rho_new = std::abs(along);
+    const double theta_new = north ? rho_new : std::numbers::pi - rho_new;
+    const double c = std::cos(theta_new);
+    const double polar_speed = std::sqrt(std::max(0.0, carter + a2e2_ * c * c));
+    const double rate = along >= 0.0 ? polar_speed : -polar_speed;  // away from the axis ahead of it, else towards
+    z[1] = theta_new;
+    z[2] = std::atan2(vy, vx) + (along >= 0.0 ? 0.0 : std::numbers::pi);
+    z[4] = north ? rate : -rate;
+  }
   double a2_ = 0.0, big_a_ = 0.0, k_ = 0.0, a2e2_ = 0.0, l2_ = 0.0;
   // Theta >= 0 on the ray means L^2 / sin^2 = Q + L^2 + a^2 E^2 cos^2 - theta'^2 <= Q + L^2 + a^2 E^2: the ray never
   // comes nearer the axis than its turning point. A trial stage far inside it (a step across a close pass by the

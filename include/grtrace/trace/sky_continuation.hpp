@@ -166,11 +166,11 @@ std::optional<FlatContinuationEstimate> flat_continuation_estimate(const M& metr
 /// caller falls back on the flat continuation).
 /// Method: Newton's iteration on the Mino time d to u = 0, each iterate a step of the tableau from z itself (split
 /// in 2, 4, ... equal steps until each one's embedded error estimate meets tol): d0 from the radial potential cut
-/// after u^2 (KerrMinoSystem::mino_time_to_infinity), then d += -u(d) / u'(d) (u' is a component of the state),
-/// each iterate still on the way out (u' < 0), which keeps it on the first root. The last correction, once its
-/// second-order term is below the tolerance, is applied to first order, z(d) + delta f(z(d)), as event refinement
-/// does (trace/geodesic_tracer.hpp). Typically two steps and two right-hand sides beyond f(z): about as much as
-/// the sky sphere's refinement it replaces in the tracers.
+/// after u^2 (KerrMinoSystem::mino_time_to_infinity), then d += -u(d) / u'(d) (u' read off the right-hand side, in the
+/// system's time), each iterate still on the way out (u' < 0), which keeps it on the first root. The last correction,
+/// once its second-order term is below the tolerance, is applied to first order, z(d) + delta f(z(d)), as event
+/// refinement does (trace/geodesic_tracer.hpp). Typically two steps and two right-hand sides beyond f(z): about as much
+/// as the sky sphere's refinement it replaces in the tracers.
 template <ExplicitTableau T>
 GRTRACE_GPU_CALLED GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(const KerrMinoSystem& system,
                                                                                 const Tolerance& tol,
@@ -183,7 +183,8 @@ GRTRACE_GPU_CALLED GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(
     RungeKuttaStepper<T, KerrMinoSystem::dimension> stepper;
     const State fz = system(z);
     const double angle_tolerance = tol.atol + tol.rtol * std::numbers::pi;
-    double d = system.mino_time_to_infinity(z);
+    // In the system's time (Mino time, or tau for a ray slowed near the axis: KerrMinoSystem::time_scale).
+    double d = system.mino_time_to_infinity(z) / system.time_scale(z);
     int pieces = 1;
     for (int attempt = 0; attempt < 16; ++attempt) {
       State y = z, fy = fz;
@@ -200,7 +201,7 @@ GRTRACE_GPU_CALLED GRTRACE_HD Optional<SkyDirection> kerr_direction_at_infinity(
         continue;
       }
       if (!all_finite(fy) || !(y[3] < 0.0)) return no_value;
-      const double delta = -y[0] / y[3];
+      const double delta = -y[0] / fy[0];  // fy[0] = u' (times the time scale)
       // z'' over the step, (f(z(d)) - f(z)) / d, bounds the first-order finish's error: delta^2 |z''| / 2.
       const double curvature = d != 0.0 ? std::max(std::abs(fy[1] - fz[1]), std::abs(fy[2] - fz[2])) / std::abs(d)
                                         : std::numeric_limits<double>::infinity();

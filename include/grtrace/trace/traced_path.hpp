@@ -22,12 +22,14 @@
 // a static emitter this is the frame's redshift channel; NaN where no static observer exists (g_00 <= 0).
 #pragma once
 
+#include "grtrace/core/memory_limit.hpp"
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -62,6 +64,11 @@ struct StepRecord {
 /// An 8-bit sRGB colour (the frame's preview colour of a pixel).
 using PathRgb8 = std::array<std::uint8_t, 3>;
 
+/// The bytes of a path's arrays with `samples` samples and `steps` step records.
+inline double path_bytes(std::size_t samples, std::size_t steps) {
+  return static_cast<double>(samples) * sizeof(PathSample) + static_cast<double>(steps) * sizeof(StepRecord);
+}
+
 struct TracedPath {
   std::vector<PathSample> samples;
   std::vector<StepRecord> steps;
@@ -86,6 +93,13 @@ class PathRecorder {
   void operator()(const Integrator& integ, double theta_end) {
     const double h = integ.last_step();
     if (out_->steps.empty()) start(integ.previous_state(), integ.previous_lambda(), h);
+    // Checked where the arrays grow (a doubling, so rarely): a ray of 1e5 steps at 1000 samples a step would hold
+    // 15 GB. MemoryLimitError (core/memory_limit.hpp) says what to lower.
+    if (out_->samples.size() + static_cast<std::size_t>(samples_per_step_) > out_->samples.capacity())
+      check_memory(path_bytes(2 * (out_->samples.size() + static_cast<std::size_t>(samples_per_step_)),
+                              2 * out_->steps.size() + 1),
+                   "a traced path of " + std::to_string(out_->steps.size()) + " steps at " +
+                       std::to_string(samples_per_step_) + " samples a step (fewer samples a step or a shorter ray)");
     const int step = static_cast<int>(out_->steps.size());
     for (int i = 1; i <= samples_per_step_; ++i) {
       const double theta = theta_end * static_cast<double>(i) / static_cast<double>(samples_per_step_);

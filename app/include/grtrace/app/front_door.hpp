@@ -68,7 +68,7 @@ struct RequestError : std::invalid_argument {
 /// own radius (the proper distance l for the wormhole).
 struct CameraRequest {
   double r = 200.0;
-  double theta_degrees = 90.0;  ///< strictly inside (0, 180): the chart is singular on the axis
+  double theta_degrees = 90.0;  ///< in [0, 180]; on the axis the camera is placed 1e-9 rad off it (off_axis)
   double phi_degrees = 0.0;
   std::string observer;          ///< static | zamo; "": zamo for kerr (valid in the ergosphere), static otherwise
   Vec3 velocity = Vec3::Zero();  ///< 3-velocity (fraction of c) in the observer's frame

@@ -87,8 +87,13 @@ std::vector<TracedPath> trace_pixels(const Tracer& tracer, const PixelState& pix
                                      const Events&... events) {
   std::vector<TracedPath> out;
   out.reserve(pixels.size());
+  double held = 0.0;  // the bundle's paths together, under the memory limit as each one is (trace_path)
   for (const auto& p : pixels) {
     TracedPath path = trace_path(tracer, pixel_state(p[0], p[1]), samples_per_step, observer_velocity, events...);
+    held += path_bytes(path.samples.capacity(), path.steps.capacity());
+    check_memory(held, "the paths of " + std::to_string(out.size() + 1) + " of " + std::to_string(pixels.size()) +
+                           " rays at " + std::to_string(samples_per_step) +
+                           " samples a step (fewer rays or fewer samples a step)");
     mark_pixel(path, p, frame);
     out.push_back(std::move(path));
   }

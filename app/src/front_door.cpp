@@ -99,8 +99,9 @@ AngleCorrection correction_of(const std::string& name) {
   throw RequestError("unknown --angle-correction '" + name + "'; choose none, flat or exact");
 }
 
-/// The farthest camera the Kerr-Schild chart draws (see check_camera_radius).
+/// The farthest camera the Kerr-Schild chart draws, and its largest sky sphere (see check_camera_radius).
 constexpr double kKerrSchildCameraRadius = 2e5;
+constexpr double kKerrSchildSkyRadius = 1e50;
 
 /// The camera's radius against the horizon guard and the sky sphere, in the metric's own radius (Boyer-Lindquist
 /// r for Kerr in both charts, the areal radius r(l) of the wormhole), and whether emitters at rest exist at the sky
@@ -124,6 +125,13 @@ void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& 
     throw RequestError("--camera-r " + shortest_number_text(radius_asked) +
                        ": the Kerr-Schild chart draws cameras out to r = 2e5 M; use --chart bl for a camera farther "
                        "out (it draws the shadow of a camera where a telescope is, 5e10 M)");
+  // Measured: every ray reaches a sky sphere at 1e50 M in Kerr-Schild's chart (94 steps a ray from r = 30) and none
+  // one at 1e55 M (max_steps: the chart's derivatives hold r^6, which overflows beyond 1e51); beyond 1e60 the
+  // metric itself overflows there and the sky's emitters were refused as "beyond a horizon".
+  if (ms.name == "kerr" && ms.chart == "ks" && s.escape_radius > kKerrSchildSkyRadius)
+    throw RequestError("--sky-radius " + shortest_number_text(s.escape_radius) +
+                       ": the Kerr-Schild chart's sky sphere can lie out to r = 1e50 M; lower it or use --chart bl "
+                       "(whose sky sphere can lie out to 1e100 M)");
   if (!sky_ok)
     throw RequestError("--sky-radius " + shortest_number_text(s.escape_radius) +
                        " lies beyond a horizon of this metric (no emitter can be at rest there); lower it");

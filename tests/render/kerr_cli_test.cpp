@@ -237,6 +237,23 @@ TEST_F(KerrCli, CamerasWhereTelescopesAreDrawTheShadowOfItsSize) {
   EXPECT_EQ(ks.status, 2) << ks.err;
   EXPECT_NE(ks.err.find("the Kerr-Schild chart draws cameras out to r = 2e5 M"), std::string::npos) << ks.err;
   EXPECT_TRUE(out_empty());
+  // Its sky sphere: every ray reaches one at 1e50 M; one farther out is refused, naming that radius (every ray ended
+  // as max_steps at 1e55 M, and at 1e80 M the sky's emitters were refused as "beyond a horizon").
+  const ToolRun far_sky = run(kerr({"--spin", "0.5", "--chart", "ks", "--scene", "sky", "--camera-r", "30",
+                                    "--sky-radius", "1e50"},
+                                   out("ks.exr").string()));
+  ASSERT_EQ(far_sky.status, 0) << far_sky.err;
+  for (const char* failure : {"\"max_steps\":0", "\"step_underflow\":0", "\"non_finite\":0"})
+    EXPECT_NE(far_sky.out.find(failure), std::string::npos) << far_sky.out;
+  fs::remove(out("ks.exr"));
+  fs::remove(out("ks.png"));
+  for (const char* sky : {"1e55", "1e80"}) {
+    const ToolRun refused = run(kerr({"--spin", "0.5", "--chart", "ks", "--sky-radius", sky}, out("ks.exr").string()));
+    EXPECT_EQ(refused.status, 2) << refused.err;
+    EXPECT_NE(refused.err.find("the Kerr-Schild chart's sky sphere can lie out to r = 1e50 M"), std::string::npos)
+        << refused.err;
+  }
+  EXPECT_TRUE(out_empty());
 }
 
 // A face-on view: --camera-theta 0 or 180 (the camera 1e-9 rad off the axis) for Kerr in both charts and for

@@ -354,10 +354,13 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   json.add("device", app::device_name(r.device));
   json.add("rtol", r.method.rtol).add("atol", r.method.atol);
   json.add("frames_with_failed_rays", failed_frames);
-  json.add("first_frame", flight_exr_path(q, 0)).add("last_frame", flight_exr_path(q, frames - 1));
+  // This run's frames: --frame-range's part, or the whole flight.
+  const int first = q.flight.range ? q.flight.range->first : 0,
+            last = q.flight.range ? q.flight.range->end - 1 : frames - 1;
+  json.add("first_frame", flight_exr_path(q, first)).add("last_frame", flight_exr_path(q, last));
   if (status_map)
-    json.add("first_status_map", status_map_path(flight_exr_path(q, 0)))
-        .add("last_status_map", status_map_path(flight_exr_path(q, frames - 1)));
+    json.add("first_status_map", status_map_path(flight_exr_path(q, first)))
+        .add("last_status_map", status_map_path(flight_exr_path(q, last)));
   if (!mp4.empty()) json.add("mp4", mp4);
   if (tracer == "planar") {
     json.add("table_rays", table_rays).add("table_steps", table_steps).add("fallback_rays", fallback_rays);

@@ -282,6 +282,14 @@ TEST(FlightCli, StatusMapsOfAFlightComeFromItsFramesOnDisk) {
                                  (dir.path / "g.exr").string());
   ASSERT_EQ(failing.status, 0) << failing.output;
   EXPECT_NE(failing.output.find("\"frames_with_failed_rays\":[0,1]"), std::string::npos) << failing.output;
+  // A part of the flight names its own frames and maps, not the flight's first and last.
+  const ToolRun part = render(kSmall + "--flight circular --camera-r 30 --frames 4 --frame-range 2:3 --status-map " +
+                              "--out " + (dir.path / "h.exr").string());
+  ASSERT_EQ(part.status, 0) << part.output;
+  for (const char* named : {"\"first_frame\":\"", "\"last_frame\":\""})
+    EXPECT_NE(part.output.find(named + (dir.path / "h-0002.exr").string()), std::string::npos) << part.output;
+  for (const char* named : {"\"first_status_map\":\"", "\"last_status_map\":\""})
+    EXPECT_NE(part.output.find(named + (dir.path / "h-0002-status.png").string()), std::string::npos) << part.output;
 }
 
 // SIGTERM while ffmpeg writes the video: the program is killed and reaped before the temporary is removed, so it

@@ -106,7 +106,6 @@ constexpr double kKerrSchildSkyRadius = 1e50;
 /// The camera's radius against the horizon guard and the sky sphere, in the metric's own radius (Boyer-Lindquist
 /// r for Kerr in both charts, the areal radius r(l) of the wormhole), and whether emitters at rest exist at the sky
 /// sphere (not beyond Schwarzschild-de Sitter's cosmological horizon).
-
 void check_camera_radius(const MetricSpec& ms, double radius_asked, const Vec4& x_spherical, const TraceSettings& s) {
   const auto [camera_radius, guard, sky_ok] = with_named_metric(ms, [&](const auto& m) {
     const Vec4 x = event_from_spherical(m, x_spherical);

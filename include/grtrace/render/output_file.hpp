@@ -96,6 +96,13 @@ inline int inode_flags(const std::filesystem::path& p, bool directory) {
   ::close(fd);
   return rc == 0 ? flags : 0;
 }
+
+/// Which of the flags that forbid replacing an entry `flags` holds, as chattr names it; nullptr for neither.
+inline const char* rename_forbidding_flag(int flags) {
+  if (flags & FS_IMMUTABLE_FL) return "immutable (chattr +i)";
+  if (flags & FS_APPEND_FL) return "append-only (chattr +a)";
+  return nullptr;
+}
 }  // namespace detail
 
 /// Throws std::runtime_error with a message naming the path when `target` cannot be created: an empty name, a
@@ -138,15 +145,12 @@ inline void check_output_path(const std::filesystem::path& target) {
   // The inode flags (chattr) the permission bits do not show, even to root: an immutable or append-only file cannot
   // be replaced, and an append-only directory keeps the temporary's name, so the rename that finishes the output
   // would fail after all the work.
-  if (fs::is_regular_file(entry)) {
-    if (const int flags = detail::inode_flags(target, false); flags & (FS_IMMUTABLE_FL | FS_APPEND_FL))
-      throw std::runtime_error("cannot write '" + target.string() + "': it is " +
-                               ((flags & FS_IMMUTABLE_FL) ? "immutable (chattr +i)" : "append-only (chattr +a)") +
-                               ", so it cannot be replaced; clear the flag (chattr -i / -a) or choose another name");
-  }
-  if (const int flags = detail::inode_flags(dir, true); flags & (FS_IMMUTABLE_FL | FS_APPEND_FL))
-    throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() + "' is " +
-                             ((flags & FS_IMMUTABLE_FL) ? "immutable (chattr +i)" : "append-only (chattr +a)") +
+  if (const char* flag =
+          fs::is_regular_file(entry) ? detail::rename_forbidding_flag(detail::inode_flags(target, false)) : nullptr)
+    throw std::runtime_error("cannot write '" + target.string() + "': it is " + flag +
+                             ", so it cannot be replaced; clear the flag (chattr -i / -a) or choose another name");
+  if (const char* flag = detail::rename_forbidding_flag(detail::inode_flags(dir, true)))
+    throw std::runtime_error("cannot write '" + target.string() + "': directory '" + dir.string() + "' is " + flag +
                              ": an output is written beside its name and renamed into place, which it refuses; "
                              "choose another directory");
 }

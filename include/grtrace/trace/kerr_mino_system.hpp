@@ -114,7 +114,7 @@ struct KerrMinoSystem {
     dz[2] = mul_add(angular_momentum, inv_s2, metric.spin * (p / delta - energy));
     dz[3] = u * mul_add(u * k_, mul_add(-2.0 * a2_, u, 3.0 * m), 2.0 * big_a_ * p - k_);
     dz[4] = sc.cos * sc.sin * (l2_ * inv_s2 * inv_s2 - a2e2_);
-    if (slowed_near_axis_) dz *= sc.sin / (sc.sin + kSlowedNearAxis);
+    if (slowed_near_axis_) dz *= sc.sin / (sc.sin + kSlowedNearAxis);  // time_scale(z), from the sine at hand
     return dz;
   }
 
@@ -177,7 +177,8 @@ struct KerrMinoSystem {
     return inner_product(metric, y.head<4>(), y.tail<4>(), y.tail<4>());
   }
 
-  /// d(system time) / d(Mino time) at z: 1, or sin^2 theta for a ray slowed near the axis (see slowed_near_axis_).
+  /// d(Mino time) / d(system time) at z: 1, or sin theta / (sin theta + kSlowedNearAxis) for a ray slowed near the
+  /// axis (see slowed_near_axis_): the factor operator() applies to dz/dlambda_M.
   GRTRACE_HD double time_scale(const State& z) const {
     if (!slowed_near_axis_) return 1.0;
     const double s = polar_sin_cos(z[1]).sin;
@@ -200,14 +201,15 @@ struct KerrMinoSystem {
   /// theta reaches 100 times its value on the equator.
   static constexpr double kSlowedNearAxis = 0.1;
   bool through_axis_ = false;
-  /// The system's time is tau, d tau = d lambda_M / sin^2 theta, for a ray with L != 0 passing the axis closer than
-  /// kSlowedNearAxis (operator() multiplies dz/dlambda_M by sin^2 theta). Near the axis the ray crosses the sphere on
-  /// a nearly straight line, where in Mino time phi sweeps about pi within sin theta_min / |theta'| (phi' = L / sin^2
-  /// theta, a spike) and theta turns as sqrt(sin^2 theta_min + theta'^2 lambda^2), a kink: a step across the pass
-  /// that Fehlberg 7(8)'s four-stage error estimate accepted left the ray's direction wrong by 4e-3 rad (a camera
-  /// 1e-6 rad from the axis, rtol 1e-9). In tau, d phi / d tau = L + sin^2 theta a (P~ / Delta~ - E) and theta(tau)
-  /// (for the straight line sin theta_min / cos(v sin theta_min tau)) are smooth on the scale of the pass itself, and
-  /// the step control resolves it; away from the axis the two times differ by a factor of order one.
+  /// The system's time is tau, d tau = d lambda_M (sin theta + s0) / sin theta with s0 = kSlowedNearAxis, for a ray
+  /// with L != 0 passing the axis closer than s0 (operator() multiplies dz/dlambda_M by time_scale). Near the axis
+  /// the ray crosses the sphere on a nearly straight line, where in Mino time phi sweeps about pi within
+  /// sin theta_min / |theta'| (phi' = L / sin^2 theta, a spike) and theta turns as sqrt(sin^2 theta_min + theta'^2
+  /// lambda^2), a kink: a step across the pass that Fehlberg 7(8)'s four-stage error estimate accepted left the ray's
+  /// direction wrong by 4e-3 rad (a camera 1e-6 rad from the axis, rtol 1e-9). In tau the distance from the axis
+  /// goes as sin theta_min cosh(v tau / s0) and d phi / d tau ~ L / (s0 sin theta): both smooth on the scale of the
+  /// pass, which the step control then resolves; away from the axis the two times differ by a factor of order one.
+  /// (A factor sin^2 theta instead puts a pole in theta(tau) at the pass's ends, where vern6 lost accuracy.)
   bool slowed_near_axis_ = false;
   double axis_start_l_ = 0.0;  ///< L of a ray traced as the L = 0 ray from a start near the axis (0: none)
 

@@ -41,6 +41,10 @@ decltype(auto) refusal_as_request_error(const std::string& prefix, F&& f) {
 /// check_request's.
 void check_method(const MethodRequest& m, const std::string& prefix = "");
 
+/// Whether the planar table tracer draws the named metric (front_door.cpp): static, spherically symmetric, with a
+/// horizon.
+bool planar_tracer_metric(const MetricSpec& metric);
+
 /// The frame renderer of a checked request in metric M (defined in frame_tracers_impl.hpp, instantiated per unit).
 template <MetricPolicy M>
 std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked, const M& metric);

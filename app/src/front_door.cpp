@@ -30,8 +30,6 @@
 
 namespace grtrace::app {
 
-namespace {
-
 /// The named metrics the planar table tracer draws (trace/auto_tracer.hpp): static and spherically symmetric
 /// (StaticSphericalMetric), with a horizon (Reissner-Nordstrom's |Q| < M, check_metric_spec, always gives it one).
 /// Asked of the metric's type, so a metric added to the named metrics gets the table where it applies.
@@ -42,6 +40,8 @@ bool planar_tracer_metric(const MetricSpec& metric) {
     else return false;
   });
 }
+
+namespace {
 
 /// Flat space is drawn with straight lines (FlatMetric, metric/metric_traits.hpp), never integrated.
 bool flat_metric(const MetricSpec& metric) {

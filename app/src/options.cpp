@@ -197,7 +197,18 @@ MethodRequest read_method(const OptionSource& s, const std::string& prefix) {
   m.atol = option_number(s, prefix + "atol");
   m.step = option_number(s, prefix + "step");
   check_method(m, prefix);
+  // A fixed step is no tolerance's: a tolerance given with it would be silently without effect.
+  for (const char* tolerance : {"rtol", "atol"})
+    refuse_unless(s, prefix + tolerance, m.control != "fixed",
+                  "an adaptive --" + prefix + "control (i, pi or doubling)");
   return m;
+}
+
+void check_scene_options(const OptionSource& s, const std::string& scene) {
+  for (const char* disk_option : {"disk-inner", "disk-outer", "disk-retrograde"})
+    refuse_unless(s, disk_option, scene == "disk", "--scene disk");
+  refuse_unless(s, "checker-squares", scene == "checker", "--scene checker");
+  refuse_unless(s, "sky-texture", scene == "sky" || scene == "disk", "--scene sky or disk");
 }
 
 RenderRequest read_render_request(const OptionSource& s) {
@@ -205,11 +216,8 @@ RenderRequest read_render_request(const OptionSource& s) {
   q.scene = text_of(s, "scene");
   if (!is_standard_scene(q.scene))
     throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(kStandardSceneNames));
-  const bool disk = q.scene == "disk";
   q.metric = read_metric(s, {kMetricNames.begin(), kMetricNames.end()});
-  refuse_unless(s, "disk-inner", disk, "--scene disk");
-  refuse_unless(s, "disk-outer", disk, "--scene disk");
-  refuse_unless(s, "disk-retrograde", disk, "--scene disk");
+  check_scene_options(s, q.scene);
   q.method = read_method(s, "");
   q.method.max_steps = integer_in(s, "max-steps", 1, 100'000'000, "--max-steps must be in 1 .. 1e8");
   q.sky_radius = option_number(s, "sky-radius");
@@ -221,6 +229,9 @@ RenderRequest read_render_request(const OptionSource& s) {
   q.threads = integer_in(s, "threads", 0, 1024, "--threads must be 0 (all cores) .. 1024");
   q.table_rays = integer_in(s, "table-rays", 8, 1'000'000, "--table-rays must be in 8 .. 1e6");
   q.tracer = text_of(s, "tracer");
+  // The table of rays is the planar tracer's (named, or auto's choice for a static spherically symmetric metric).
+  refuse_unless(s, "table-rays", q.tracer == "planar" || (q.tracer == "auto" && planar_tracer_metric(q.metric)),
+                "--tracer planar or auto with a static spherically symmetric metric (schwarzschild, rn or sds)");
   q.checker_squares = integer_in(s, "checker-squares", 1, 10000, "--checker-squares must be in 1 .. 10000");
   q.sky_texture = text_of(s, "sky-texture");
   if (s.given("disk-inner")) q.disk_inner = option_number(s, "disk-inner");

@@ -151,6 +151,15 @@ inline Request read_request(const CommandLine& cli) {
                      "--escape-radius); use a step in (0, " + JsonObject::number(2.0 * s.escape_radius) + "]");
   q.richardson = cli.flag_set("richardson");
   if (q.richardson && cli.text("control") != "doubling") throw UsageError("--richardson goes with --control doubling");
+  // Options that would be ignored: tolerances with a fixed step, what a ray from --position is
+  // given with a ray from infinity (--impact: null, future-directed, followed to its own distance).
+  const bool adaptive = cli.text("control") != "fixed", from_position = !cli.given("impact");
+  const char* const adaptive_needs = "an adaptive --control (i, pi or doubling)";
+  tools::refuse_inapplicable_options(cli, {{"rtol", adaptive, adaptive_needs},
+                                           {"atol", adaptive, adaptive_needs},
+                                           {"escape-radius", from_position, "--position and --velocity"},
+                                           {"kind", from_position, "--position and --velocity"},
+                                           {"past-directed", from_position, "--position and --velocity"}});
 
   // Kerr: the Boyer-Lindquist guard at r_+ (the start must be outside the horizon in both charts).
   const double r_guard = (1.0 + s.horizon_epsilon) * (q.kerr ? KerrMetric{mass, q.spin}.horizon_radius()

@@ -458,6 +458,7 @@ Request read_request(const CommandLine& cli) {
   // The options shared with grtrace-render are read and checked by the application library, as there.
   const ViewOptions options(cli, p, chart);
   q.metric = tools::as_usage_error([&] { return app::read_metric(options, kViewMetrics); });
+  tools::as_usage_error([&] { app::check_scene_options(options, q.scene); });
   q.mass = q.metric.mass;
   q.kerr = q.metric.name == "kerr";
   q.spin = q.metric.spin;
@@ -571,6 +572,28 @@ Request read_request(const CommandLine& cli) {
     o.camera.width = o.camera.height = 1;
     q.orbit_checked = tools::as_usage_error([&] { return app::check_request(o); });
   }
+
+  // The viewer's own options that mean something only with others: refused where they would be ignored.
+  const bool orbit_traced = q.show_orbit || !q.plot.empty();
+  const bool flight_orbit = flight && flight->kind == "orbit";
+  const char* const orbit_needs = "--orbit or --plot (the seed orbit)";
+  tools::refuse_inapplicable_options(
+      cli, {{"beam-width", q.bundle == "beam", "--bundle beam"},
+            {"bundle-size", q.bundle != "none", "--bundle grid, row, column or beam"},
+            {"orbit-r", orbit_traced, orbit_needs},
+            {"orbit-revolutions", orbit_traced, orbit_needs},
+            {"orbit-tableau", orbit_traced, orbit_needs},
+            {"orbit-control", orbit_traced, orbit_needs},
+            {"orbit-step", orbit_traced, orbit_needs},
+            {"orbit-rtol", orbit_traced, orbit_needs},
+            {"orbit-atol", orbit_traced, orbit_needs},
+            {"orbit-dr", orbit_traced || flight_orbit, "--orbit, --plot or --flight orbit"},
+            {"orbit-dphi", orbit_traced || flight_orbit, "--orbit, --plot or --flight orbit"}});
+  if (!q.plot.empty())  // a chart of the orbit has no 3D view, bundle or frame
+    for (const char* o : {"bundle", "bundle-size", "beam-width", "samples-per-step", "color-by", "hide", "checkerboard",
+                          "view-from", "view-at", "view-angle", "exposure"})
+      if (cli.given(o))
+        throw UsageError(std::string("--") + o + " belongs to the 3D view; not with " + plot_option + " " + q.plot);
 
   std::stringstream hide(cli.text("hide"));
   for (std::string item; std::getline(hide, item, ',');) {

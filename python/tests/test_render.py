@@ -96,6 +96,9 @@ BAD = [
     dict(metric="schwarzschild", chart="ks"),
     dict(error_map=True, metric="kerr"),
     dict(sky_texture="/nonexistent/texture.exr", scene="sky"),
+    dict(scene="disk", checker_squares=4),
+    dict(control="fixed", tableau="rk4", step=0.5, rtol=1e-3),
+    dict(tracer="general", table_rays=100),
 ]
 
 

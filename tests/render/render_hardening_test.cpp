@@ -526,9 +526,11 @@ class HardeningCli : public Hardening {
     ASSERT_TRUE(fs::exists(render_)) << render_;
     ASSERT_TRUE(fs::exists(geodesic_)) << geodesic_;
   }
-  /// A small fast frame.
-  std::vector<std::string> small(std::vector<std::string> args) const {
-    for (const char* a : {"--width", "12", "--height", "8", "--rtol", "1e-7", "--atol", "1e-9"}) args.emplace_back(a);
+  /// A small fast frame (loose tolerances unless `fixed_step`: a fixed step refuses them, they would mean nothing).
+  std::vector<std::string> small(std::vector<std::string> args, bool fixed_step = false) const {
+    for (const char* a : {"--width", "12", "--height", "8"}) args.emplace_back(a);
+    if (!fixed_step)
+      for (const char* a : {"--rtol", "1e-7", "--atol", "1e-9"}) args.emplace_back(a);
     return args;
   }
   fs::path render_, geodesic_;
@@ -740,12 +742,50 @@ TEST_F(HardeningCli, MeaninglessRenderParametersAreRefusedWithTheirRange) {
       {{"--scene", "sky", "--sky-texture", nan_tex.string()}, "texel (x 5, y 2) of channel G is not finite"},
   };
   for (const auto& [args, message] : bad) {
-    std::vector<std::string> full = small({"--out", out.string()});
+    std::vector<std::string> full =
+        small({"--out", out.string()}, std::find(args.begin(), args.end(), "fixed") != args.end());
     full.insert(full.end(), args.begin(), args.end());
     SCOPED_TRACE(args.front() + " " + args.back());
     expect_refused(run(render_, full), message);
     EXPECT_TRUE(listing(dir_ / "shared").empty());
   }
+}
+
+TEST_F(HardeningCli, OptionsThatMeanNothingWithTheOthersAreRefusedNotIgnored) {
+  // Each was accepted and silently without effect: a tolerance of a fixed step, a table the chosen tracer does not
+  // build, a scene's option for another scene, what a ray from --position is given with a ray from --impact.
+  const fs::path out = dir_ / "shared" / "frame.exr";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> render_cases = {
+      {{"--tableau", "rk4", "--control", "fixed", "--step", "0.5", "--rtol", "1e-3"},
+       "--rtol applies only with an adaptive --control (i, pi or doubling)"},
+      {{"--tableau", "rk4", "--control", "fixed", "--step", "0.5", "--atol", "1e-3"}, "--atol applies only with"},
+      {{"--tracer", "general", "--table-rays", "100"}, "--table-rays applies only with --tracer planar or auto"},
+      {{"--metric", "kerr", "--table-rays", "100"}, "--table-rays applies only with --tracer planar or auto"},
+      {{"--scene", "disk", "--checker-squares", "4"}, "--checker-squares applies only with --scene checker"},
+      {{"--scene", "checker", "--sky-texture", "sky.exr"}, "--sky-texture applies only with --scene sky or disk"},
+  };
+  for (const auto& [args, message] : render_cases) {
+    std::vector<std::string> full = {"--out", out.string()};
+    full.insert(full.end(), args.begin(), args.end());
+    SCOPED_TRACE(args.front() + " " + args.back());
+    expect_refused(run(render_, full), message);
+    EXPECT_TRUE(listing(dir_ / "shared").empty());
+  }
+  const std::vector<std::pair<std::vector<std::string>, std::string>> geodesic_cases = {
+      {{"--impact", "6", "--escape-radius", "50"}, "--escape-radius applies only with --position and --velocity"},
+      {{"--impact", "6", "--kind", "timelike"}, "--kind applies only with --position and --velocity"},
+      {{"--impact", "6", "--past-directed"}, "--past-directed applies only with --position and --velocity"},
+      {{"--impact", "6", "--tableau", "rk4", "--control", "fixed", "--step", "0.1", "--rtol", "1e-6"},
+       "--rtol applies only with an adaptive --control"},
+  };
+  for (const auto& [args, message] : geodesic_cases) {
+    SCOPED_TRACE(args.front() + " " + args.back());
+    expect_refused(run(geodesic_, args), message);
+  }
+  // Where they apply they are taken: the table with the planar tracer, the tolerances with an adaptive step.
+  const ToolRun planar = run(render_, small({"--tracer", "planar", "--table-rays", "100", "--out", out.string()}));
+  EXPECT_EQ(planar.status, 0) << planar.err;
+  EXPECT_NE(planar.out.find("\"table_rays\":"), std::string::npos) << planar.out;
 }
 
 TEST_F(HardeningCli, MeaninglessGeodesicParametersAndPathsAreRefused) {

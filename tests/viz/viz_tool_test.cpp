@@ -52,7 +52,7 @@ TEST(ViewTool, HelpListsOptionsWithDefaults) {
 }
 
 TEST(ViewTool, BadInputExitsWithTwo) {
-  const std::array<std::pair<const char*, const char*>, 19> cases = {{
+  const std::array<std::pair<const char*, const char*>, 28> cases = {{
       // The camera and metric groups shared with grtrace-render (examples/common/camera_options.hpp,
       // metric_options.hpp): the same refusals, worded once.
       {"--spin 0.5", "--spin applies only with --metric kerr"},
@@ -74,6 +74,17 @@ TEST(ViewTool, BadInputExitsWithTwo) {
       {"--tableau nope", "tableau"},
       {"--frame /nonexistent/frame.exr", "--frame"},
       {"--screenshot /nonexistent/dir/x.png", "--screenshot"},
+      // Options that mean nothing with the others given, refused instead of ignored: grtrace-render's scene rules
+      // (read by the application library) and the viewer's own.
+      {"--scene sky --disk-inner 8", "--disk-inner applies only with --scene disk"},
+      {"--scene checker --disk-retrograde", "--disk-retrograde applies only with --scene disk"},
+      {"--bundle grid --beam-width 3", "--beam-width applies only with --bundle beam"},
+      {"--bundle none --bundle-size 3x3", "--bundle-size applies only with --bundle grid, row, column or beam"},
+      {"--orbit-r 50", "--orbit-r applies only with --orbit or --plot"},
+      {"--orbit-tableau rk4", "--orbit-tableau applies only with --orbit or --plot"},
+      {"--orbit-dr 0.01", "--orbit-dr applies only with --orbit, --plot or --flight orbit"},
+      {"--plot orbit --bundle-size 3x3", "--bundle-size belongs to the 3D view; not with --plot orbit"},
+      {"--tableau rk4 --control fixed --step 1 --rtol 1e-6", "--rtol applies only with an adaptive --control"},
   }};
   for (const auto& [args, mention] : cases) {
     const ToolRun r = run(args);

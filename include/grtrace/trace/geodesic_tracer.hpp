@@ -219,7 +219,9 @@ class TraceLoop {
     if (!all_finite(z0)) return finish(RayStatus::non_finite, z0, 0.0, integ, p);
     for (std::size_t i = 0; i < K; ++i)
       if (!two_sided(i) && !(p.g_prev[i] > 0.0)) return finish(detail::status_of(i), z0, 0.0, integ, p, i);
-    integ.start(system_, z0, settings_.initial_step);
+    State z = z0;
+    align_with_axis(z);  // a start at a pass by the axis (a camera on the axis): the surfaces' sides are z0's
+    integ.start(system_, z, settings_.initial_step);
     return no_value;
   }
 
@@ -296,8 +298,10 @@ class TraceLoop {
       if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ, p);
     }
     observer(integ, 1.0);
-    if (State z = integ.state(); system_.wrap_chart(z)) {
-      ++p.chart_wraps;
+    State z = integ.state();
+    const bool wrapped = system_.wrap_chart(z);
+    if (wrapped) ++p.chart_wraps;
+    if (align_with_axis(z) || wrapped) {
       integ.reseat(system_, z);
       detail::for_each_event(all_, [&](std::size_t i, const auto& e) { p.g_prev[i] = on_state(i, e, z, p); });
     }
@@ -327,7 +331,7 @@ class TraceLoop {
     if (!quiet) return false;
     const bool check_due = p.steps_since_check + 1 >= std::max(1, settings_.constraint_check_interval);
     if (check_due && violated(z)) return false;
-    if (State wrapped = z; system_.wrap_chart(wrapped)) return false;
+    if (State wrapped = z; system_.wrap_chart(wrapped) || align_with_axis(wrapped)) return false;
     p.g_prev = g;
     p.steps_since_check = check_due ? 0 : p.steps_since_check + 1;
     return true;
@@ -353,6 +357,12 @@ class TraceLoop {
   GRTRACE_HD double radial_event(std::size_t i, double rho, const Progress& p) const {
     if (i == 0) return has_horizon_ && p.guard_armed ? rho - rho_guard_ : 1.0;
     return rho_escape_ - rho;
+  }
+  // The system's optional align_with_axis (a ray that passes a chart's axis closer than it resolves, moved onto
+  // its parallel through the axis: MetricGeodesicSystem); true when it changed z.
+  GRTRACE_HD bool align_with_axis(State& z) const {
+    if constexpr (requires { { system_.align_with_axis(z) } -> std::same_as<bool>; }) return system_.align_with_axis(z);
+    else return false;
   }
   // Every event on the integrated state: the two radial ones on its rho, the others on its (x, k).
   template <class E>

@@ -335,9 +335,16 @@ RenderRequest read_render_request(const OptionSource& options);
 /// camera (event, observer, velocity, look, up, fov; not the size) and the method (--<prefix>tableau,
 /// --<prefix>control,
 /// --<prefix>step, --<prefix>rtol, --<prefix>atol: a second integration's options carry a prefix, "orbit-").
+/// The method's --<prefix>rtol and --<prefix>atol given with --<prefix>control fixed (whose step no tolerance
+/// controls) are refused.
 MetricSpec read_metric(const OptionSource& options, const std::vector<std::string>& offered);
 CameraRequest read_camera(const OptionSource& options);
 MethodRequest read_method(const OptionSource& options, const std::string& prefix);
+
+/// Refuses (RequestError) a scene's option given for another scene: --disk-inner, --disk-outer, --disk-retrograde
+/// without the disk, --checker-squares without the checker, --sky-texture without a scene that shows the sky
+/// (sky, disk). read_render_request calls it; a tool that reads the scene itself (grtrace-view) calls it too.
+void check_scene_options(const OptionSource& options, const std::string& scene);
 
 /// One option's number, whole number or comma-separated numbers, read as the tools read them (RequestError naming
 /// --name).

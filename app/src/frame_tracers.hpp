@@ -41,6 +41,10 @@ decltype(auto) refusal_as_request_error(const std::string& prefix, F&& f) {
 /// check_request's.
 void check_method(const MethodRequest& m, const std::string& prefix = "");
 
+/// Refuses (RequestError) a camera polar angle outside [0, 180] degrees or a field of view outside (0, 180), quoting
+/// the values as given (an option's text, or a request's number): read_camera and check_request share the words.
+void check_camera_angles(const CameraRequest& camera, const std::string& theta_text, const std::string& fov_text);
+
 /// Whether the planar table tracer draws the named metric (front_door.cpp): static, spherically symmetric, with a
 /// horizon.
 bool planar_tracer_metric(const MetricSpec& metric);

@@ -41,6 +41,13 @@ bool planar_tracer_metric(const MetricSpec& metric) {
   });
 }
 
+void check_camera_angles(const CameraRequest& c, const std::string& theta_text, const std::string& fov_text) {
+  if (!(c.theta_degrees >= 0.0 && c.theta_degrees <= 180.0))
+    throw RequestError("--camera-theta must lie in [0, 180] degrees (0 and 180: on the spin axis), got " + theta_text);
+  if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
+    throw RequestError("--fov must lie in (0, 180) degrees, got " + fov_text);
+}
+
 namespace {
 
 /// Flat space is drawn with straight lines (FlatMetric, metric/metric_traits.hpp), never integrated.
@@ -260,11 +267,7 @@ CheckedRequest check_request(const RenderRequest& in) {
 
   // The camera: the event (r, theta, phi) in Boyer-Lindquist-like coordinates for every chart.
   const CameraRequest& c = q.camera;
-  if (!(c.theta_degrees >= 0.0 && c.theta_degrees <= 180.0))
-    throw RequestError("--camera-theta must lie in [0, 180] degrees (0 and 180: on the spin axis), got " +
-                       shortest_number_text(c.theta_degrees));
-  if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
-    throw RequestError("--fov must lie in (0, 180) degrees, got " + shortest_number_text(c.fov_degrees));
+  check_camera_angles(c, shortest_number_text(c.theta_degrees), shortest_number_text(c.fov_degrees));
   if (!std::isfinite(c.r) || !std::isfinite(c.phi_degrees))
     throw RequestError("--camera-r and --camera-phi must be finite numbers");
   q.camera.observer = observer_or_default(q);

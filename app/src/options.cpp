@@ -174,12 +174,8 @@ CameraRequest read_camera(const OptionSource& s) {
   c.r = option_number(s, "camera-r");
   c.theta_degrees = option_number(s, "camera-theta");
   c.phi_degrees = option_number(s, "camera-phi");
-  if (!(c.theta_degrees >= 0.0 && c.theta_degrees <= 180.0))
-    throw RequestError("--camera-theta must lie in [0, 180] degrees (0 and 180: on the spin axis), got " +
-                       text_of(s, "camera-theta"));
   c.fov_degrees = option_number(s, "fov");
-  if (!(c.fov_degrees > 0.0 && c.fov_degrees < 180.0))
-    throw RequestError("--fov must lie in (0, 180) degrees, got " + text_of(s, "fov"));
+  check_camera_angles(c, text_of(s, "camera-theta"), text_of(s, "fov"));  // in the words given
   if (s.given("observer")) c.observer = text_of(s, "observer");
   if (!c.observer.empty() && c.observer != "static" && c.observer != "zamo")
     throw RequestError("unknown --observer '" + c.observer + "'; choose static or zamo");

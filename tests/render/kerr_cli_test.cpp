@@ -291,13 +291,14 @@ TEST_F(KerrCli, ACameraOnTheAxisDrawsTheDiskFaceOn) {
     EXPECT_GT(std::count(object.begin(), object.end(), 1.0f), 10) << shown << "the shadow";
     for (const auto& entry : fs::directory_iterator(base_ / "out")) fs::remove(entry.path());
   }
-  // A camera path over the north pole (a file of camera states, one frame each), 1e-4 rad from the axis at its
-  // closest, moving along the meridian through its frame: every frame's rays pass the axis closely.
+  // A camera path over the north pole (a file of camera states, one frame each), through a row on the axis itself
+  // (placed 1e-9 rad off it, as --camera-theta 0 is; such a row used to be refused), moving along the meridian
+  // through its frame: every frame's rays pass the axis closely.
   {
     const double r = 30.0, a = 0.9, rate = 0.005;  // dtheta/dtau
     std::string csv = "tau,t,r,theta,phi,ut,ur,utheta,uphi\n";
-    const std::array<std::array<double, 2>, 5> rows = {{{0.1, 0.0}, {0.01, 0.0}, {1e-4, 0.0}, {1e-4, 3.141592653589793},
-                                                         {0.01, 3.141592653589793}}};
+    const std::array<std::array<double, 2>, 6> rows = {{{0.1, 0.0}, {0.01, 0.0}, {1e-4, 0.0}, {0.0, 3.141592653589793},
+                                                         {1e-4, 3.141592653589793}, {0.01, 3.141592653589793}}};
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const double theta = rows[i][0], sigma = r * r + a * a * std::cos(theta) * std::cos(theta);
       const double u_theta = rows[i][1] == 0.0 ? -rate : rate;  // towards the pole, then away from it

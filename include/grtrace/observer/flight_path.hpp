@@ -26,6 +26,7 @@
 #include "grtrace/core/ray_status.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 #include "grtrace/metric/metric_traits.hpp"
+#include "grtrace/metric/spherical_chart.hpp"
 #include "grtrace/observer/timelike_start.hpp"
 #include "grtrace/observer/worldline.hpp"
 #include "grtrace/observer/worldline_csv.hpp"
@@ -78,6 +79,11 @@ Worldline flight_path(const M& metric, const FlightPathSpec& spec) {
     if constexpr (spherical) {
       WorldlineSource source;
       path = read_worldline_csv(spec.csv, &source);
+      // A row on the polar axis (theta = 0 or pi) is placed kAxisOffset off it, as a camera is (make_camera): there
+      // its frame is the limit of those off the axis at the row's phi, and u keeps its components (g_phi_phi u^phi^2
+      // is 1e-18 r^2 u^phi^2 there, below the unit check's 1e-6).
+      for (WorldlineSample& sample : path.samples)
+        if (sample.x[2] >= 0.0 && sample.x[2] <= std::numbers::pi) sample.x[2] = off_axis(sample.x[2]);
       check_worldline(metric, path, &source);
     }
   } else {

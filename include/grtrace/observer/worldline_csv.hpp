@@ -129,7 +129,8 @@ void check_worldline(const M& metric, const Worldline& w, const WorldlineSource*
     if (!(s.x[2] > 0.0 && s.x[2] < std::numbers::pi))
       throw std::invalid_argument(from.where(i) + ": theta = " + std::to_string(s.x[2]) +
                                   " rad is on or beyond the polar axis, where the spherical chart is singular; a "
-                                  "camera needs 0 < theta < pi (radians)");
+                                  "camera needs 0 < theta < pi (radians; a flight's camera-path file may put a row "
+                                  "on the axis, 0 or pi, which is placed 1e-9 rad off it)");
     if (const double rh = metric.horizon_radius(); rh > 0.0 && !(metric.radius(s.x) > rh))
       throw std::invalid_argument(from.where(i) + ": r = " + std::to_string(metric.radius(s.x)) +
                                   " is on or inside the horizon");

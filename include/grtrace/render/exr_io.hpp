@@ -599,6 +599,8 @@ inline Image read_exr(const std::filesystem::path& path) {
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
     const Imath::Box2i window = header.dataWindow();
+    // Checked again: this is the header the pixels are read with, from a second open of the file, which may have
+    // been replaced since the first check (which is there to keep OpenEXR's own parse from oversized attributes).
     detail::check_exr_header(path, header);
     const long w = static_cast<long>(window.max.x) - window.min.x + 1;
     const long h = static_cast<long>(window.max.y) - window.min.y + 1;

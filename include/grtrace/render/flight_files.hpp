@@ -137,6 +137,8 @@ inline std::optional<Imf::Header> whole_scanline_exr_header(const std::filesyste
   } catch (const std::runtime_error&) {
     return std::nullopt;  // too short, or not an EXR
   }
+  // Parsed a second time (the check above read the header through OpenEXR's own file): here it is the stream's
+  // position after it that matters, where the chunk table starts.
   Imf::StdIFStream stream(file, path.c_str());
   Imf::Header header;
   header.readFrom(stream, version);

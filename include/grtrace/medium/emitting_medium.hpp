@@ -1,0 +1,99 @@
+// grtrace/medium/emitting_medium.hpp
+// What an emitting medium is: glowing, partly transparent matter that a ray collects light from all along its path
+// (an accretion flow, a torus), where a scene object (scene/scene_object.hpp) is a surface a ray ends on. The one
+// place that lists what a medium must and may provide.
+//
+// A medium is a small value type (no base class, no virtual functions); the tracer that integrates the light along
+// a ray (trace/emission_system.hpp) takes it as a template parameter, so it contains exactly that medium's physics.
+//
+// Must provide (checked by check_emitting_medium, with messages that name the mistake):
+//   static constexpr std::string_view kind        what it is ("spherical-accretion"): its name in image headers
+//   MediumCoefficients coefficients(const Metric& metric, const Vec4& x, double nu) const
+//       (a template on the metric, or one overload) the emission coefficient j_nu (energy per unit time, volume,
+//       frequency and solid angle) and the absorption coefficient alpha_nu (per unit length) at the event x, both
+//       in the fluid's frame and at the frequency nu measured there
+//   Vec4 fluid_velocity(const Metric& metric, const Vec4& x) const
+//       the fluid's 4-velocity at x (future-directed, g(u, u) = 1): the frame of j and alpha, and the redshift
+//       g = nu_obs / nu_fluid of the light it sends to the camera
+//   double outer_radius() const
+//       the metric's radius (radius(x)) beyond which j = alpha = 0: where the tracer stops asking (empty space
+//       costs a comparison per stage)
+//
+// May provide (detected at compile time; default false):
+//   static constexpr bool stationary = true;            j, alpha and u do not depend on t
+//   static constexpr bool axisymmetric = true;          nor on phi (a spherical chart's)
+//   static constexpr bool equator_mirror_symmetric = true;   unchanged by theta -> pi - theta
+//   static constexpr bool spherically_symmetric = true;      a function of r alone, u radial (implies the others)
+//
+// Units: geometric (G = c = 1, lengths in the metric's); j and alpha in any units whose product with a length is
+// an intensity and an optical depth.
+#pragma once
+
+#include "grtrace/core/host_device.hpp"
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+
+#include <concepts>
+#include <string_view>
+
+namespace grtrace {
+
+/// The coefficients of the radiative transfer equation at one event, in the fluid's frame.
+struct MediumCoefficients {
+  double emission = 0.0;    ///< j_nu
+  double absorption = 0.0;  ///< alpha_nu
+};
+
+/// What every emitting medium provides in the metric M (see the top of this file).
+template <class D, class M>
+concept EmittingMediumIn =
+    std::copy_constructible<D> && MetricPolicy<M> && requires(const D d, const M m, const Vec4 x, double nu) {
+      { D::kind } -> std::convertible_to<std::string_view>;
+      { d.coefficients(m, x, nu) } -> std::convertible_to<MediumCoefficients>;
+      { d.fluid_velocity(m, x) } -> std::convertible_to<Vec4>;
+      { d.outer_radius() } -> std::convertible_to<double>;
+    };
+
+/// Compile-time check with messages that name what is missing; used by the tracers that take a medium.
+template <class D, class M>
+constexpr bool check_emitting_medium() {
+  static_assert(requires { { D::kind } -> std::convertible_to<std::string_view>; },
+                "emitting medium: add `static constexpr std::string_view kind = \"...\";` (its name in image headers)");
+  static_assert(requires(const D d, const M m, const Vec4 x, double nu) {
+                  { d.coefficients(m, x, nu) } -> std::convertible_to<MediumCoefficients>;
+                },
+                "emitting medium: add `MediumCoefficients coefficients(const Metric&, const Vec4& x, double nu) const` "
+                "(j_nu and alpha_nu in the fluid's frame at x, nu measured there; a template on the metric serves "
+                "every metric)");
+  static_assert(requires(const D d, const M m, const Vec4 x) { { d.fluid_velocity(m, x) } -> std::convertible_to<Vec4>; },
+                "emitting medium: add `Vec4 fluid_velocity(const Metric&, const Vec4& x) const` (the fluid's "
+                "4-velocity at x, future-directed and unit)");
+  static_assert(requires(const D d) { { d.outer_radius() } -> std::convertible_to<double>; },
+                "emitting medium: add `double outer_radius() const` (beyond this radius j = alpha = 0)");
+  return true;
+}
+
+/// The optional traits (see the top of this file); a spherically symmetric medium is all of the others.
+template <class D>
+constexpr GRTRACE_HD bool medium_is_spherically_symmetric() {
+  if constexpr (requires { D::spherically_symmetric; }) return D::spherically_symmetric;
+  else return false;
+}
+template <class D>
+constexpr GRTRACE_HD bool medium_is_stationary() {
+  if constexpr (requires { D::stationary; }) return D::stationary || medium_is_spherically_symmetric<D>();
+  else return medium_is_spherically_symmetric<D>();
+}
+template <class D>
+constexpr GRTRACE_HD bool medium_is_axisymmetric() {
+  if constexpr (requires { D::axisymmetric; }) return D::axisymmetric || medium_is_spherically_symmetric<D>();
+  else return medium_is_spherically_symmetric<D>();
+}
+template <class D>
+constexpr GRTRACE_HD bool medium_is_equator_mirror_symmetric() {
+  if constexpr (requires { D::equator_mirror_symmetric; })
+    return D::equator_mirror_symmetric || medium_is_spherically_symmetric<D>();
+  else return medium_is_spherically_symmetric<D>();
+}
+
+}  // namespace grtrace

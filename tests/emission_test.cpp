@@ -1,0 +1,206 @@
+// The light of an emitting medium collected along a ray (trace/emission_system.hpp) against exact answers:
+// a uniform sphere in flat space (the chord times j, and the source function where it is optically thick), and the
+// spherically accreting Schwarzschild hole of Narayan, Johnson & Gammie (2019) (medium/spherical_accretion.hpp,
+// gas at rest and in free fall) against an independent quadrature along the exact ray, in long double.
+#include "grtrace/medium/emitting_medium.hpp"
+#include "grtrace/medium/spherical_accretion.hpp"
+#include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/tableau/verner65.hpp"
+#include "grtrace/trace/emission_system.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+namespace {
+
+using namespace grtrace;
+
+/// A user's own medium: a ball of gas at rest with a Gaussian profile, j = j0 exp(-r^2 / w^2), grey absorption
+/// alpha = kappa j (a constant source function S = j / alpha = 1 / kappa). Smooth, so that no step has to land on an
+/// edge; beyond 12 w (outer_radius) j is below 1e-62 j0 and taken as 0.
+struct GaussianBall {
+  static constexpr std::string_view kind = "gaussian-ball";
+  static constexpr bool spherically_symmetric = true;
+  double j0 = 1.0, width = 3.0, kappa = 0.0;
+  double outer_radius() const { return 12.0 * width; }
+  template <class M>
+  MediumCoefficients coefficients(const M& metric, const Vec4& x, double) const {
+    const double r = metric.radius(x), j = j0 * std::exp(-r * r / (width * width));
+    return {j, kappa * j};
+  }
+  template <class M>
+  Vec4 fluid_velocity(const M& metric, const Vec4& x) const {
+    return Vec4(1.0 / std::sqrt(metric.metric(x)(0, 0)), 0.0, 0.0, 0.0);
+  }
+};
+static_assert(EmittingMediumIn<GaussianBall, SchwarzschildMetric>);
+static_assert(EmittingMediumIn<SphericalAccretion, SchwarzschildMetric>);
+static_assert(medium_is_stationary<SphericalAccretion>() && medium_is_axisymmetric<SphericalAccretion>());
+
+TraceSettings settings(double rtol, double sky) {
+  TraceSettings s;
+  s.integrator.tolerance = {rtol, rtol * 1e-2};
+  s.escape_radius = sky;
+  s.max_steps = 1'000'000;
+  return s;
+}
+
+/// The backward ray of a static camera at r_o on the equator with impact parameter b, heading inwards, photon energy
+/// 1 at infinity (k_t = -1 as the future-directed photon's): k^t = -1 / f, k^phi = b / r_o^2.
+GeodesicState camera_ray(double mass, double r_o, double b) {
+  const double f = 1.0 - 2.0 * mass / r_o;
+  GeodesicState y;
+  y << 0.0, r_o, std::numbers::pi / 2, 0.0, -1.0 / f, -std::sqrt(1.0 - b * b * f / (r_o * r_o)), 0.0, b / (r_o * r_o);
+  return y;
+}
+
+TEST(Emission, AGaussianBallInFlatSpaceShinesItsColumnExactly) {
+  // Along a straight line at impact parameter b the column of j0 exp(-r^2 / w^2) is j0 w sqrt(pi) exp(-b^2 / w^2):
+  // the intensity without absorption; with alpha = kappa j, tau is kappa times it and I = (1 - e^-tau) / kappa, the
+  // source function where the ball is optically thick (a surface of that brightness).
+  const SchwarzschildMetric flat{0.0};
+  const double w = 3.0, column_at_0 = w * std::sqrt(std::numbers::pi);
+  for (const double b : {0.5, 2.0, 5.0}) {  // not 0: flat space's origin is the spherical chart's singular point
+    SCOPED_TRACE(b);
+    const GeodesicState y0 = camera_ray(0.0, 100.0, b);
+    const double column = 2.0 * column_at_0 * std::exp(-b * b / (w * w));
+    const EmissionResult thin = trace_emission<Fehlberg78, IController>(flat, GaussianBall{2.0, w, 0.0},
+                                                                        settings(1e-10, 1000.0), y0, 1.0, 1.0);
+    ASSERT_EQ(thin.trace.status, RayStatus::escaped);
+    EXPECT_NEAR(thin.intensity, column, 1e-8 * column);
+    EXPECT_EQ(thin.optical_depth, 0.0);
+    for (const double kappa : {0.2, 50.0}) {
+      const EmissionResult grey = trace_emission<Fehlberg78, IController>(flat, GaussianBall{2.0, w, kappa},
+                                                                          settings(1e-10, 1000.0), y0, 1.0, 1.0);
+      EXPECT_NEAR(grey.optical_depth, kappa * column, 1e-8 * kappa * column) << kappa;
+      const double expected = -std::expm1(-kappa * column) / kappa;
+      EXPECT_NEAR(grey.intensity, expected, 5e-8 * expected) << kappa;  // measured 1e-8 at kappa = 50 (tau 250)
+    }
+  }
+}
+
+// ---- the reference: I(b) by quadrature along the exact Schwarzschild ray --------------------------------------
+
+using Real = long double;
+
+/// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n).
+template <int N>
+struct GaussLegendre {
+  std::array<Real, static_cast<std::size_t>(N)> x{}, w{};
+  GaussLegendre() {
+    for (int i = 0; i < N; ++i) {
+      Real z = std::cos(std::numbers::pi_v<Real> * (i + 0.75L) / (N + 0.5L)), dp = 0;
+      for (int it = 0; it < 100; ++it) {
+        Real p0 = 1, p1 = z;
+        for (int k = 2; k <= N; ++k) {
+          const Real p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = N * (z * p1 - p0) / (z * z - 1);
+        const Real step = p1 / dp;
+        z -= step;
+        if (std::abs(step) < 1e-21L) break;
+      }
+      x[static_cast<std::size_t>(i)] = z;
+      w[static_cast<std::size_t>(i)] = 2 / ((1 - z * z) * dp * dp);
+    }
+  }
+  Real on(const std::function<Real(Real)>& f, Real a, Real b) const {
+    Real sum = 0;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) sum += w[i] * f((a + b) / 2 + (b - a) / 2 * x[i]);
+    return sum * (b - a) / 2;
+  }
+};
+
+/// Adaptive Gauss-Legendre: halves an interval until its two halves agree with it to `tol` of the whole.
+Real integrate(const std::function<Real(Real)>& f, Real a, Real b, Real tol, int depth = 0) {
+  static const GaussLegendre<12> rule;
+  const Real m = (a + b) / 2, whole = rule.on(f, a, b), halves = rule.on(f, a, m) + rule.on(f, m, b);
+  if (depth > 40 || std::abs(halves - whole) <= tol) return halves;
+  return integrate(f, a, m, tol / 2, depth + 1) + integrate(f, m, b, tol / 2, depth + 1);
+}
+
+/// I_nu at a static camera at r_o (M = 1) for impact parameter b, j = r^-2 out to r_out, sky sphere beyond r_out,
+/// the horizon guard at r_g: E_cam^3 times the integral of j / E_fluid^2 dr / |k^r| over the ray's legs (inwards
+/// from the camera, then, past the turning point, outwards), E_fluid = 1 / sqrt(f) at rest and
+/// (1 +- |k^r| sqrt(2 / r)) / f in free fall (+ on the inward leg of the backward ray), |k^r| = sqrt(1 - b^2 f / r^2).
+Real reference_intensity(SphericalAccretion::Gas gas, Real b, Real r_o, Real r_out, Real r_g, Real r_sky) {
+  const Real e_cam = 1 / std::sqrt(1 - 2 / r_o);
+  auto leg = [&](Real r, Real sign) {
+    const Real f = 1 - 2 / r, kr = std::sqrt(std::max<Real>(0, 1 - b * b * f / (r * r)));
+    const Real e_fluid = gas == SphericalAccretion::Gas::at_rest ? 1 / std::sqrt(f)
+                                                                 : (1 + sign * kr * std::sqrt(2 / r)) / f;
+    return std::pow(r, -2.0L) / (e_fluid * e_fluid);
+  };
+  auto kr_of = [&](Real r) { return std::sqrt(std::max<Real>(0, 1 - b * b * (1 - 2 / r) / (r * r))); };
+  const Real top = std::min(r_o, r_out), top_out = std::min(r_sky, r_out), tol = 1e-16L;
+  // The turning point: the largest root of r^3 - b^2 r + 2 b^2 (r^2 = b^2 f), where b exceeds 3 sqrt(3).
+  if (b > 3 * std::sqrt(3.0L)) {
+    Real r = b;
+    for (int it = 0; it < 200; ++it) r -= (r * r * r - b * b * r + 2 * b * b) / (3 * r * r - b * b);
+    // r = r_min + s^2 takes out the turning point's 1 / sqrt: |k^r| = s sqrt(N'(r_min) + 3 r_min d + d^2) / r^(3/2)
+    // with d = s^2 (N(r) = r^3 - b^2 r + 2 b^2 = r^3 k^r^2, expanded about its root), so 2 s / |k^r| has no 0 / 0.
+    auto through = [&](Real sign, Real upto) {
+      return integrate([&](Real s) {
+        const Real d = s * s, rr = r + d;
+        const Real kr_over_s = std::sqrt((3 * r * r - b * b + 3 * r * d + d * d) / (rr * rr * rr));
+        return leg(rr, sign) * 2 / kr_over_s;
+      }, 0, std::sqrt(upto - r), tol);
+    };
+    return e_cam * e_cam * e_cam * (through(+1, top) + through(-1, top_out));
+  }
+  return e_cam * e_cam * e_cam * integrate([&](Real rr) { return leg(rr, +1) / kr_of(rr); }, r_g, top, tol);
+}
+
+TEST(Emission, SphericalAccretionMatchesTheQuadratureOfTheExactRay) {
+  const SchwarzschildMetric metric{1.0};
+  const double r_o = 1000.0, r_out = 1e6;
+  const TraceSettings s = settings(1e-10, 2000.0);
+  const double r_g = (1.0 + s.horizon_epsilon) * 2.0;
+  for (const auto gas : {SphericalAccretion::Gas::at_rest, SphericalAccretion::Gas::free_fall}) {
+    SphericalAccretion medium;
+    medium.gas = gas;
+    medium.outer = r_out;
+    for (const double b : {0.0, 2.0, 4.5, 5.1, 5.3, 6.5, 10.0, 40.0}) {
+      SCOPED_TRACE(::testing::Message() << (gas == SphericalAccretion::Gas::at_rest ? "at rest" : "free fall")
+                                        << ", b = " << b);
+      const GeodesicState y0 = camera_ray(1.0, r_o, b);
+      const Vec4 u_cam(1.0 / std::sqrt(1.0 - 2.0 / r_o), 0.0, 0.0, 0.0);
+      const EmissionResult t = trace_emission_seen_by<Fehlberg78, IController>(metric, medium, s, y0, u_cam, 1.0);
+      ASSERT_EQ(t.trace.status, b < 5.19 ? RayStatus::captured : RayStatus::escaped);
+      const double ref = static_cast<double>(reference_intensity(gas, b, r_o, r_out, r_g, 2000.0));
+      EXPECT_NEAR(t.intensity, ref, 1e-6 * ref);
+      EXPECT_EQ(t.optical_depth, 0.0);
+    }
+  }
+}
+
+TEST(Emission, TheIntensityConvergesWithTheTolerance) {
+  // Free fall, a ray that passes the photon sphere: the error falls with the tolerance (the intensity is inside the
+  // step control), for two tableaux.
+  const SchwarzschildMetric metric{1.0};
+  SphericalAccretion medium;
+  medium.outer = 1e6;  // beyond the sky sphere: a smooth medium all along the ray
+  const double b = 5.3, r_o = 1000.0;
+  const double ref = static_cast<double>(
+      reference_intensity(SphericalAccretion::Gas::free_fall, b, r_o, 1e6, (1.0 + 1e-3) * 2.0, 2000.0));
+  const Vec4 u_cam(1.0 / std::sqrt(1.0 - 2.0 / r_o), 0.0, 0.0, 0.0);
+  auto error = [&]<class T>(double rtol) {
+    const EmissionResult t =
+        trace_emission_seen_by<T, IController>(metric, medium, settings(rtol, 2000.0), camera_ray(1.0, r_o, b), u_cam, 1.0);
+    return std::abs(t.intensity - ref) / ref;
+  };
+  for (const auto& [coarse, fine] : {std::pair{error.operator()<Fehlberg78>(1e-6), error.operator()<Fehlberg78>(1e-10)},
+                                     std::pair{error.operator()<Verner65>(1e-6), error.operator()<Verner65>(1e-10)}}) {
+    EXPECT_LT(fine, 1e-7);
+    EXPECT_LT(fine, coarse / 100.0) << coarse << " -> " << fine;
+  }
+}
+
+}  // namespace

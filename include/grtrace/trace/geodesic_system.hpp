@@ -145,8 +145,8 @@ struct MetricGeodesicSystem {
     else return false;
   }
 
-  /// A state near the polar axis of a spherical chart (sin theta < 1e-4) on a light ray that passes the axis closer than
-  /// kThroughAxis (|k_phi| <= kThroughAxis sqrt(k_theta^2 + k_phi^2 / sin^2 theta), the sine of its closest pass
+  /// A state near the polar axis of a spherical chart (sin theta < 1e-4) on a light ray that passes the axis closer
+  /// than kThroughAxis (|k_phi| <= kThroughAxis sqrt(k_theta^2 + k_phi^2 / sin^2 theta), the sine of its closest pass
   /// for a metric symmetric about the axis) is moved onto the ray parallel to it through the axis, k_phi = 0, and
   /// the function says whether it moved it (the tracing loop calls it at the start and after every accepted step).
   /// Why: such a ray turns around the axis at sin theta ~ |k_phi| / sqrt(reach), where k^phi ~ k_phi / sin^2 theta
@@ -183,9 +183,9 @@ struct MetricGeodesicSystem {
       if (!(speed > 0.0)) return false;
       // Ahead of the line's pass through the axis (moving away from it) or behind it.
       const bool ahead = cp * vx + sp * vy >= 0.0;
-      State moved = y;
-      moved[2] = y[2];
-      moved[3] = x[3] + std::remainder(std::atan2(vy, vx) + (ahead ? 0.0 : pi) - x[3], 2.0 * pi);  // phi kept continuous
+      State moved = y;  // theta (rho) kept
+      // phi kept continuous
+      moved[3] = x[3] + std::remainder(std::atan2(vy, vx) + (ahead ? 0.0 : pi) - x[3], 2.0 * pi);
       const Vec4 x1 = moved.head<4>();
       const Mat4 g1 = metric->metric(x1);
       if (g1(3, 3) == 0.0 || g1(2, 2) == 0.0) return false;
@@ -208,8 +208,8 @@ struct MetricGeodesicSystem {
   }
 
  private:
-  /// Where align_with_axis looks (sin theta below this): within it L^2 / sin^2 theta of a ray that passes the axis
-  /// closer than kThroughAxis is at most 1e-8 of its polar speed.
+  /// Where align_with_axis looks (rho, the angle from the axis, below this): within it L^2 / sin^2 theta of a ray that
+  /// passes the axis closer than kThroughAxis is at most 1e-8 of its polar speed.
   static constexpr double kNearAxis = 1e-4;
   /// The closest pass (sine) below which a ray is taken through the axis (as in trace/kerr_mino_system.hpp): the
   /// step control resolves passes above it (about ten steps a decade of distance from the axis).

@@ -7,6 +7,7 @@
 //   frame_tracers_kerr_schild.cpp    KerrSchildMetric (general)
 //   frame_tracers_rn_sds.cpp         AutoReissnerNordstrom, AutoSchwarzschildDeSitter (auto/planar, general)
 //   frame_tracers_wormhole_ef.cpp    AutoEllisWormhole, AutoEddingtonFinkelstein (general)
+//   medium_frames.cpp                emitting media (--scene accretion) in the static spherical metrics
 // and the rays of grtrace-view and the Python module in ray_tracers.cpp (all of them, a unit of their own).
 // A metric added to the named metrics (metric/named_metrics.hpp) is named in one of these units: the front door
 // (front_door.cpp) reaches it through with_named_metric, and a metric no unit instantiates is a link error.
@@ -52,6 +53,9 @@ bool planar_tracer_metric(const MetricSpec& metric);
 /// The frame renderer of a checked request in metric M (defined in frame_tracers_impl.hpp, instantiated per unit).
 template <MetricPolicy M>
 std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked, const M& metric);
+
+/// The frame renderer of an emitting medium's scene (is_medium_scene; medium_frames.cpp, the default method only).
+std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked);
 
 /// The ray tracer of a checked request in metric M (defined in ray_tracers.cpp).
 template <MetricPolicy M>

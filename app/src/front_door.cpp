@@ -7,11 +7,13 @@
 #include "grtrace/core/number_text.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/observer/observers.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/scene/thin_disk.hpp"
+#include "grtrace/trace/medium_tracers.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -39,6 +41,16 @@ bool planar_tracer_metric(const MetricSpec& metric) {
     if constexpr (StaticSphericalMetric<std::remove_cvref_t<decltype(m)>>) return m.horizon_radius() > 0.0;
     else return false;
   });
+}
+
+bool is_medium_scene(std::string_view scene) {
+  return std::find(kMediumSceneNames.begin(), kMediumSceneNames.end(), scene) != kMediumSceneNames.end();
+}
+
+std::vector<std::string> scene_names() {
+  std::vector<std::string> names(kStandardSceneNames.begin(), kStandardSceneNames.end());
+  names.insert(names.end(), kMediumSceneNames.begin(), kMediumSceneNames.end());
+  return names;
 }
 
 void check_camera_angles(const CameraRequest& c, const std::string& theta_text, const std::string& fov_text) {
@@ -181,6 +193,31 @@ void check_tracer(const RenderRequest& q) {
                        "--tracer general");
 }
 
+/// What an emitting medium's scene needs (RenderRequest::accretion_gas): a static spherically symmetric hole, the
+/// default method (the one the application library compiles media with), a tracer that draws media, the CPU.
+void check_medium_request(const RenderRequest& q) {
+  if (!planar_tracer_metric(q.metric))
+    throw RequestError("--scene " + q.scene +
+                       " needs a static spherically symmetric hole (--metric schwarzschild, rn or sds): the gas falls "
+                       "radially in its static chart");
+  const ToolMethod& d = kToolMethods[0];
+  if (q.method.tableau != d.tableau || q.method.control != d.control)
+    throw RequestError("--scene " + q.scene + " is drawn with the default method (--tableau " +
+                       std::string(d.tableau) + " --control " + std::string(d.control) +
+                       "); leave --tableau and --control out");
+  if (q.tracer != "auto" && q.tracer != "planar" && q.tracer != "general")
+    throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene +
+                       "; use auto or planar (one table of rays) or general (every pixel integrated)");
+  if (q.error_map)
+    throw RequestError("--error-map judges where escaped rays point; --scene " + q.scene +
+                       " shows the light of its gas instead: leave --error-map out");
+  if (q.accretion_gas != "free-fall" && q.accretion_gas != "rest")
+    throw RequestError("unknown --accretion-gas '" + q.accretion_gas + "'; choose free-fall or rest");
+  if (!(q.accretion_power >= 0.0 && q.accretion_power <= 10.0))
+    throw RequestError("--accretion-power must lie in [0, 10] (j ~ r^-power), got " +
+                       shortest_number_text(q.accretion_power));
+}
+
 }  // namespace
 
 void check_method(const MethodRequest& m, const std::string& prefix) {
@@ -199,6 +236,8 @@ void check_method(const MethodRequest& m, const std::string& prefix) {
 // ---- devices ------------------------------------------------------------------------------------------------
 
 std::optional<std::string> gpu_refusal(const RenderRequest& q) {
+  if (is_medium_scene(q.scene))
+    return "--scene " + q.scene + " is drawn on the CPU (the GPU does not trace emitting media yet); use --device cpu or auto";
   if (q.method.tableau != kGpuTableau || q.method.control != kGpuControl)
     return "the GPU traces with --tableau " + std::string(kGpuTableau) + " --control " + std::string(kGpuControl) +
            " only; use those, or --device cpu for the other methods";
@@ -221,7 +260,7 @@ std::string choose_device(std::string_view asked, const RenderRequest& q) {
     throw RequestError("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
   // Where auto keeps the CPU anyway, the driver is not asked (its start costs a tenth of a second where there is a
   // GPU, and nothing is gained).
-  if (asked == "auto" && (!kAutoPicksGpu || cpu_table_tracer_draws(q))) return "cpu";
+  if (asked == "auto" && (!kAutoPicksGpu || cpu_table_tracer_draws(q) || is_medium_scene(q.scene))) return "cpu";
   const auto refusal = gpu_refusal(q);
   if (asked == "cuda" && refusal) throw RequestError("--device cuda: " + *refusal);
   return refusal ? "cpu" : "cuda";
@@ -244,11 +283,13 @@ const GpuStatus& gpu_status() {
 
 CheckedRequest check_request(const RenderRequest& in) {
   RenderRequest q = in;
-  if (!is_standard_scene(q.scene))
-    throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(kStandardSceneNames));
+  const bool medium = is_medium_scene(q.scene);
+  if (!is_standard_scene(q.scene) && !medium)
+    throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(scene_names()));
   const bool disk = q.scene == "disk";
   refusal_as_request_error("", [&] { check_metric_spec(q.metric); });
   const MetricSpec& ms = q.metric;
+  if (medium) check_medium_request(q);
   if (ms.name == "minkowski" && disk)
     throw RequestError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
 
@@ -292,7 +333,7 @@ CheckedRequest check_request(const RenderRequest& in) {
     }
   }
   if (q.threads < 0 || q.threads > 1024) throw RequestError("--threads must be 0 (all cores) .. 1024");
-  if (q.table_rays == 0) q.table_rays = grtrace::default_table_rays;
+  if (q.table_rays == 0) q.table_rays = medium ? grtrace::default_medium_table_rays : grtrace::default_table_rays;
   if (q.table_rays < 8 || q.table_rays > 1'000'000) throw RequestError("--table-rays must be in 8 .. 1e6");
 
   CameraSpec spec;
@@ -311,7 +352,8 @@ CheckedRequest check_request(const RenderRequest& in) {
       "", [&] { return with_named_metric(ms, [&](const auto& m) { return make_camera(m, spec); }); });
 
   StandardSceneSpec scene;
-  scene.name = q.scene;
+  // A medium does not end rays: its rays (a viewer's, Python's trace_ray) are the sky scene's.
+  scene.name = medium ? "sky" : q.scene;
   // The wormhole's other universe (rays ending at l < 0) gets a sky of its own, seen through the throat.
   scene.far_side = ms.name == "wormhole";
   if (q.checker_squares < 1 || q.checker_squares > 10000) throw RequestError("--checker-squares must be in 1 .. 10000");
@@ -375,6 +417,7 @@ std::unique_ptr<FrameRenderer> FrameRenderer::create(const RenderRequest& reques
 }
 
 std::unique_ptr<FrameRenderer> FrameRenderer::create(const CheckedRequest& checked) {
+  if (is_medium_scene(checked.request.scene)) return make_medium_renderer(checked);
   return with_named_metric(checked.request.metric,
                            [&](const auto& metric) { return make_frame_renderer(checked, metric); });
 }
@@ -457,6 +500,7 @@ void record_report(Image& image, const RenderReport& r) {
     m["sky_radius_for_rtol"] = exact_number(r.continuation_error->sky_radius_for_rtol);
   }
   m["mirrors"] = r.mirrors;
+  if (r.flux) m["flux"] = exact_number(*r.flux);
   if (r.error) {
     m["error_max"] = exact_number(r.error->max);
     m["error_median"] = exact_number(r.error->median);
@@ -511,6 +555,11 @@ void describe_request(Image& image, const CheckedRequest& checked) {
       m["kerr_schild_slicing"] = q.metric.slicing == KerrSchildSlicing::ingoing ? "ingoing" : "outgoing";
   }
   m["observer"] = q.camera.observer;
+  if (q.scene == "accretion") {
+    m["medium"] = std::string(SphericalAccretion::kind);
+    m["accretion_gas"] = q.accretion_gas;
+    m["accretion_power"] = exact_number(q.accretion_power);
+  }
   if (q.scene == "disk") {
     m["disk_sense"] = q.disk_retrograde ? "retrograde" : "prograde";
     m["disk_inner"] = exact_number(checked.scene.disk.r_in);
@@ -522,7 +571,7 @@ void describe_request(Image& image, const CheckedRequest& checked) {
   m["atol"] = exact_number(q.method.atol);
   m["max_steps"] = std::to_string(q.method.max_steps);
   m["sky_radius"] = exact_number(q.sky_radius);
-  m["angle_correction"] = q.angle_correction;
+  if (!is_medium_scene(q.scene)) m["angle_correction"] = q.angle_correction;
 }
 
 std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequest& checked) {
@@ -544,7 +593,7 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
   add("device", r.device);
   if (r.gpu_trace_seconds) add("gpu_trace_seconds", *r.gpu_trace_seconds);  // the kernel's share of "seconds"
   if (r.gpu_seconds) add("gpu_seconds", *r.gpu_seconds);                    // and the GPU's whole share
-  add("sky_continuation", r.sky_continuation);
+  if (!r.sky_continuation.empty()) add("sky_continuation", r.sky_continuation);  // a medium's frame has none
   if (r.continuation_error) {  // a flat continuation's estimated error
     add("sky_continuation_error", r.continuation_error->error);
     add("sky_radius_for_rtol", r.continuation_error->sky_radius_for_rtol);
@@ -560,6 +609,7 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
     add("error_pixels", r.error->judged);
     add("error_mismatches", r.error->mismatches);
   }
+  if (r.flux) add("flux", *r.flux);
   if (r.tracer == "planar") {
     add("table_rays", r.table_rays);
     add("table_steps", r.table_steps);

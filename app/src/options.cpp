@@ -5,6 +5,7 @@
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/core/number_text.hpp"
 #include "grtrace/trace/critical_angle_grid.hpp"
+#include "grtrace/trace/medium_tracers.hpp"
 
 #include <algorithm>
 #include <deque>
@@ -25,7 +26,9 @@ std::string_view keep(std::string text) { return built_texts().emplace_back(std:
 
 std::vector<OptionInfo> make_render_options() {
   std::vector<OptionInfo> o;
-  o.push_back({"scene", "checker", "checker | sky | redshift | disk"});
+  o.push_back({"scene", "checker",
+               "checker | sky | redshift | disk | accretion (glowing gas falling onto a static spherically symmetric "
+               "hole: schwarzschild, rn or sds; channels intensity and optical_depth)"});
   std::string metrics;
   for_each_named_metric([&]<class E>() { metrics += (metrics.empty() ? "" : " | ") + std::string(E::help); });
   o.push_back({"metric", kMetricNames[0], keep(metrics)});
@@ -74,7 +77,8 @@ std::vector<OptionInfo> make_render_options() {
                "Reissner-Nordstrom with --tracer auto), else the CPU. The report and the EXR header (device) name "
                "the device that ran"});
   o.push_back({"table-rays", keep(std::to_string(grtrace::default_table_rays)),
-               "planar tracer: table rays on each side of the critical angle"});
+               keep("planar tracer: table rays on each side of the critical angle (--scene accretion: " +
+                    std::to_string(grtrace::default_medium_table_rays) + ")")});
   o.push_back({"sky-texture", "", "equirectangular EXR (R,G,B) for the sky of the sky and disk scenes"});
   o.push_back(
       {"checker-squares", "18", "checker scene: squares along theta on sky and horizon (twice as many in phi)"});
@@ -86,6 +90,9 @@ std::vector<OptionInfo> make_render_options() {
                "disk scene: the gas turns against the hole's rotation (default: with it; towards +phi for a "
                "non-rotating hole)",
                true});
+  o.push_back({"accretion-gas", "free-fall",
+               "accretion scene: free-fall (from rest at infinity, Narayan, Johnson & Gammie 2019) | rest"});
+  o.push_back({"accretion-power", "2", "accretion scene: the emissivity falls as r^-power, power in [0, 10]"});
   o.push_back({"threads", "0", "OpenMP threads (0 = all cores)"});
   o.push_back({"error-map", "",
                "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
@@ -205,13 +212,17 @@ void check_scene_options(const OptionSource& s, const std::string& scene) {
     refuse_unless(s, disk_option, scene == "disk", "--scene disk");
   refuse_unless(s, "checker-squares", scene == "checker", "--scene checker");
   refuse_unless(s, "sky-texture", scene == "sky" || scene == "disk", "--scene sky or disk");
+  for (const char* medium_option : {"accretion-gas", "accretion-power"})
+    refuse_unless(s, medium_option, scene == "accretion", "--scene accretion");
+  // A medium's frame shows its light, not where escaped rays point.
+  refuse_unless(s, "angle-correction", !is_medium_scene(scene), "a scene that shows the sky (not a medium's)");
 }
 
 RenderRequest read_render_request(const OptionSource& s) {
   RenderRequest q;
   q.scene = text_of(s, "scene");
-  if (!is_standard_scene(q.scene))
-    throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(kStandardSceneNames));
+  if (!is_standard_scene(q.scene) && !is_medium_scene(q.scene))
+    throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(scene_names()));
   q.metric = read_metric(s, {kMetricNames.begin(), kMetricNames.end()});
   check_scene_options(s, q.scene);
   q.method = read_method(s, "");
@@ -223,7 +234,10 @@ RenderRequest read_render_request(const OptionSource& s) {
       std::clamp(option_integer(s, "width"), -1L, 1L << 20));  // range checked with the height, by check_request
   q.camera.height = static_cast<int>(std::clamp(option_integer(s, "height"), -1L, 1L << 20));
   q.threads = integer_in(s, "threads", 0, 1024, "--threads must be 0 (all cores) .. 1024");
-  q.table_rays = integer_in(s, "table-rays", 8, 1'000'000, "--table-rays must be in 8 .. 1e6");
+  // Not given: 0, the tracer's own default (check_request: the planar table's or a medium's).
+  q.table_rays = s.given("table-rays")
+                     ? integer_in(s, "table-rays", 8, 1'000'000, "--table-rays must be in 8 .. 1e6")
+                     : 0;
   q.tracer = text_of(s, "tracer");
   // The table of rays is the planar tracer's (named, or auto's choice for a static spherically symmetric metric).
   refuse_unless(s, "table-rays", q.tracer == "planar" || (q.tracer == "auto" && planar_tracer_metric(q.metric)),
@@ -233,6 +247,8 @@ RenderRequest read_render_request(const OptionSource& s) {
   if (s.given("disk-inner")) q.disk_inner = option_number(s, "disk-inner");
   q.disk_outer = option_number(s, "disk-outer");
   q.disk_retrograde = s.given("disk-retrograde");
+  q.accretion_gas = text_of(s, "accretion-gas");
+  q.accretion_power = option_number(s, "accretion-power");
   q.error_map = s.given("error-map");
   q.mirrors = !s.given("no-mirrors");
   q.device = text_of(s, "device");

@@ -53,6 +53,7 @@
 #include "grtrace/trace/deflection.hpp"
 #include "grtrace/trace/emission_system.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/medium_tracers.hpp"
 #include "grtrace/trace/method_dispatch.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 #include "grtrace/trace/scene_tracer.hpp"

@@ -539,10 +539,7 @@ PYBIND11_MODULE(_grtrace, m) {
     return out;
   });
   m.def("_metrics", &metrics);
-  m.def("_scenes", [] {
-    std::vector<std::string> out(kStandardSceneNames.begin(), kStandardSceneNames.end());
-    return out;
-  });
+  m.def("_scenes", [] { return app::scene_names(); });
   m.def("_methods", [] {
     py::list out;
     for (const app::ToolMethod& t : app::kToolMethods) {

@@ -46,6 +46,23 @@ def test_channels_equal_the_tools_exr_bit_for_bit(options, run_tool):
         assert frame.header[key] == tool.header[key], key
 
 
+def test_an_accretion_frame_is_the_tools_with_its_light_and_flux(run_tool):
+    options = dict(scene="accretion", accretion_gas="rest", camera_r=100, fov=8, width=40, height=40)
+    frame = grtrace.render(**options)
+    code, out, err, exr = run_tool(options)
+    assert code == 0, err
+    tool = grtrace.read_exr(str(exr))
+    assert "intensity" in frame.channel_names and "optical_depth" in frame.channel_names
+    for name in frame.channel_names:
+        assert np.array_equal(bits(frame[name]), bits(tool[name])), name
+    line = json.loads(out.strip().splitlines()[-1])
+    assert frame.report["flux"] == line["flux"] > 0
+    assert frame.report["tracer"] == "planar"
+    # The brightest ring is the photon ring's, around the dimmer shadow.
+    intensity = frame["intensity"]
+    assert intensity[20, 20] < 0.5 * intensity.max()
+
+
 def test_channels_are_views_of_the_frames_memory():
     frame = grtrace.render(**MAIN_FRAME)
     a = frame["redshift"]
@@ -99,6 +116,8 @@ BAD = [
     dict(scene="disk", checker_squares=4),
     dict(control="fixed", tableau="rk4", step=0.5, rtol=1e-3),
     dict(tracer="general", table_rays=100),
+    dict(accretion_gas="rest"),
+    dict(scene="accretion", metric="kerr"),
 ]
 
 

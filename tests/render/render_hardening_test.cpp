@@ -763,6 +763,9 @@ TEST_F(HardeningCli, OptionsThatMeanNothingWithTheOthersAreRefusedNotIgnored) {
       {{"--metric", "kerr", "--table-rays", "100"}, "--table-rays applies only with --tracer planar or auto"},
       {{"--scene", "disk", "--checker-squares", "4"}, "--checker-squares applies only with --scene checker"},
       {{"--scene", "checker", "--sky-texture", "sky.exr"}, "--sky-texture applies only with --scene sky or disk"},
+      {{"--scene", "sky", "--accretion-gas", "rest"}, "--accretion-gas applies only with --scene accretion"},
+      {{"--scene", "accretion", "--angle-correction", "flat"}, "--angle-correction applies only with a scene that"},
+      {{"--scene", "accretion", "--metric", "kerr"}, "--scene accretion needs a static spherically symmetric hole"},
   };
   for (const auto& [args, message] : render_cases) {
     std::vector<std::string> full = {"--out", out.string()};
@@ -786,6 +789,15 @@ TEST_F(HardeningCli, OptionsThatMeanNothingWithTheOthersAreRefusedNotIgnored) {
   const ToolRun planar = run(render_, small({"--tracer", "planar", "--table-rays", "100", "--out", out.string()}));
   EXPECT_EQ(planar.status, 0) << planar.err;
   EXPECT_NE(planar.out.find("\"table_rays\":"), std::string::npos) << planar.out;
+  // A medium's frame: its light in the EXR, its flux in the JSON line.
+  const ToolRun gas = run(render_, small({"--scene", "accretion", "--camera-r", "100", "--fov", "8", "--accretion-gas",
+                                          "rest", "--out", out.string()}));
+  ASSERT_EQ(gas.status, 0) << gas.err;
+  EXPECT_NE(gas.out.find("\"flux\":"), std::string::npos) << gas.out;
+  EXPECT_NE(gas.out.find("\"tracer\":\"planar\""), std::string::npos) << gas.out;
+  const Image frame = grtrace::read_exr(out.string());
+  EXPECT_TRUE(frame.has_channel("intensity") && frame.has_channel("optical_depth"));
+  EXPECT_EQ(frame.metadata.at("accretion_gas"), "rest");
 }
 
 TEST_F(HardeningCli, MeaninglessGeodesicParametersAndPathsAreRefused) {

@@ -24,6 +24,9 @@
 //   static constexpr bool axisymmetric = true;          nor on phi (a spherical chart's)
 //   static constexpr bool equator_mirror_symmetric = true;   unchanged by theta -> pi - theta
 //   static constexpr bool spherically_symmetric = true;      a function of r alone, u radial (implies the others)
+//   static constexpr bool frequency_independent = true;      j_nu and alpha_nu do not depend on nu (a flat
+//       spectrum): a frame's pixels then differ only by their redshift, which lets a table of rays serve a moving
+//       camera (trace/medium_tracers.hpp)
 //
 // Units: geometric (G = c = 1, lengths in the metric's); j and alpha in any units whose product with a length is
 // an intensity and an optical depth.
@@ -94,6 +97,12 @@ constexpr GRTRACE_HD bool medium_is_equator_mirror_symmetric() {
   if constexpr (requires { D::equator_mirror_symmetric; })
     return D::equator_mirror_symmetric || medium_is_spherically_symmetric<D>();
   else return medium_is_spherically_symmetric<D>();
+}
+
+template <class D>
+constexpr GRTRACE_HD bool medium_is_frequency_independent() {
+  if constexpr (requires { D::frequency_independent; }) return D::frequency_independent;
+  else return false;
 }
 
 }  // namespace grtrace

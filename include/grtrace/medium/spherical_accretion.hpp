@@ -27,6 +27,7 @@ namespace grtrace {
 struct SphericalAccretion {
   static constexpr std::string_view kind = "spherical-accretion";
   static constexpr bool spherically_symmetric = true;
+  static constexpr bool frequency_independent = true;
 
   enum class Gas { at_rest, free_fall };
 

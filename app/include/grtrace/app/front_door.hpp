@@ -90,18 +90,24 @@ struct MethodRequest {
 /// seed report's main frame).
 struct RenderRequest {
   MetricSpec metric;                 ///< metric/named_metrics.hpp
-  std::string scene = "checker";     ///< checker | sky | redshift | disk (scene/standard_scenes.hpp)
+  std::string scene = "checker";     ///< checker | sky | redshift | disk (scene/standard_scenes.hpp) | accretion
   int checker_squares = 18;          ///< checker: squares along theta on sky and horizon
   std::string sky_texture;           ///< sky and disk: an equirectangular EXR (R, G, B) replacing the stars
   std::optional<double> disk_inner;  ///< disk: inner edge; nothing: 6 M, or for kerr the ISCO of the disk's sense
   double disk_outer = 20.0;
   bool disk_retrograde = false;  ///< disk: the gas turns against the hole (default: with it)
+  /// accretion: glowing gas around a static spherically symmetric hole (medium/spherical_accretion.hpp), j ~ r^-power
+  /// out to beyond the sky sphere, falling freely from rest at infinity ("free-fall") or at rest ("rest"); drawn
+  /// with the default method, on the CPU, by one table of rays (tracer auto or planar) or every pixel integrated
+  /// (general). Its channels: intensity (at nu_obs = 1, geometric units), optical_depth; R, G, B a picture of it.
+  std::string accretion_gas = "free-fall";
+  double accretion_power = 2.0;
   CameraRequest camera;
   MethodRequest method;
   double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
   std::string angle_correction = "exact";  ///< escaped rays' continuation: none | flat | exact
   std::string tracer = "auto";             ///< auto | general | planar | kerr-mino | straight-line (kTracerNames)
-  int table_rays = 0;                      ///< planar tracer: table rays per side of the critical angle (0: default)
+  int table_rays = 0;  ///< planar tracer: table rays per side of the critical angle (0: default; a medium's, 512)
   std::string device = "auto";             ///< auto | cpu | cuda (choose_device)
   int threads = 0;                         ///< OpenMP threads (0: all cores)
   bool mirrors = true;                     ///< trace half or a quarter of a mirror-symmetric frame and reflect the rest
@@ -166,6 +172,9 @@ struct RenderReport {
   std::optional<ContinuationEstimate> continuation_error;   ///< a flat continuation's estimated error
   long table_rays = 0, table_steps = 0, fallback_rays = 0;  ///< the planar tracer's table and fallback
   std::optional<ErrorSummary> error;                        ///< with RenderRequest::error_map
+  /// An emitting medium's frame: the intensity integrated over the frame's solid angle (the sum of each pixel's
+  /// intensity times its solid angle seen by the camera), in the intensity's units times steradians.
+  std::optional<double> flux;
 };
 
 /// One entry of a report as the JSON line and the Python dict give it.
@@ -359,6 +368,12 @@ std::vector<double> option_numbers(const OptionSource& options, const std::strin
 inline constexpr std::array<std::string_view, 5> kTracerNames = {"auto", "general", "planar", "kerr-mino",
                                                                  "straight-line"};
 inline constexpr std::array<std::string_view, 3> kDeviceNames = {"auto", "cpu", "cuda"};
+
+/// The scenes of emitting media (RenderRequest::accretion_gas), beside the surfaces' (kStandardSceneNames).
+inline constexpr std::array<std::string_view, 1> kMediumSceneNames = {"accretion"};
+bool is_medium_scene(std::string_view scene);
+/// Every scene a request can name: the standard scenes, then the media.
+std::vector<std::string> scene_names();
 
 /// The GPU this build can trace on: whether the CUDA backend was compiled in, and the first CUDA device's name or
 /// why there is none. Asked once per process.

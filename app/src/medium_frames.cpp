@@ -1,0 +1,128 @@
+// Frames of emitting media (--scene accretion: SphericalAccretion, medium/spherical_accretion.hpp) in the named
+// metrics that are static, spherically symmetric and have a horizon (check_request refuses the others): one table
+// of rays (SphericalMediumTracer: tracer auto or planar) or every pixel integrated (GeneralMediumTracer: general),
+// with the tools' default method only (the one declared method media are offered with), on the CPU.
+#include "frame_tracers.hpp"
+#include "grtrace/medium/spherical_accretion.hpp"
+#include "grtrace/metric/static_spherical.hpp"
+#include "grtrace/render/medium_frame.hpp"
+#include "grtrace/trace/medium_tracers.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+namespace grtrace::app {
+
+namespace {
+
+static_assert(kToolMethods[0].tableau == Fehlberg78::name && kToolMethods[0].control == IController::name,
+              "medium_frames.cpp instantiates media with the tools' default method: keep it the first of kToolMethods");
+
+/// The frame's flux: every pixel's intensity times the solid angle the camera sees it under (a pinhole: the pixel's
+/// area on the image plane at unit distance, du dv, over (1 + u^2 + v^2)^(3/2)); NaN for a frame one pixel wide or
+/// high (no pitch).
+double frame_flux(const Camera& camera, const Image& image) {
+  const int w = camera.width(), h = camera.height();
+  if (w < 2 || h < 2) return std::nan("");
+  const double t = camera.tan_half_fov();
+  const double du = 2.0 * t / (w - 1), dv = 2.0 * t * h / (static_cast<double>(w) * (h - 1));
+  const std::vector<float>& intensity = image.channel("intensity");
+  double flux = 0.0;
+  for (int row = 0; row < h; ++row) {
+    const double v = t * (2.0 * row / (h - 1) - 1.0) * h / w;
+    for (int col = 0; col < w; ++col) {
+      const double u = t * (2.0 * col / (w - 1) - 1.0), q = 1.0 + u * u + v * v;
+      flux += static_cast<double>(intensity[image.index(col, row)]) * du * dv / (q * std::sqrt(q));
+    }
+  }
+  return flux;
+}
+
+/// The renderer of one medium tracer, which it owns (built in place: the table tracer holds an atomic).
+template <class Tracer>
+class MediumFrameRenderer final : public FrameRenderer {
+ public:
+  template <class Make>
+  MediumFrameRenderer(const CheckedRequest& checked, const Make& make) : FrameRenderer(checked), tracer_(make()) {}
+
+  RenderResult render(const RenderControl& control) const override {
+    RenderOptions options = render_options(checked_, control);
+    options.mirror_symmetry = false;  // render_medium_frame traces every pixel (a look-up each with the table)
+    FrameFacts facts;
+    const long fallbacks_before = tracer_.fallback_rays();
+    const auto t0 = std::chrono::steady_clock::now();
+    Frame frame = render_medium_frame(camera(), tracer_, options);
+    facts.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    facts.tracer.name = Tracer::name;
+    if constexpr (requires { tracer_.table_rays(); }) {
+      facts.tracer.table_rays = tracer_.table_rays();
+      facts.tracer.table_steps = tracer_.table_steps();
+    }
+    facts.tracer.fallback_rays = tracer_.fallback_rays() - fallbacks_before;
+    const double flux = frame_flux(camera(), frame.image);
+    RenderResult result = finish_render(checked_, std::move(frame), facts, setup_seconds_, {});
+    result.report.flux = flux;
+    result.image.metadata["flux"] = exact_number(flux);
+    return result;
+  }
+
+  void set_setup_seconds(double s) { setup_seconds_ = s; }
+
+ private:
+  Tracer tracer_;
+};
+
+/// The general tracer with the fallback count the report asks every medium tracer for (none: it is the fallback).
+template <class General>
+struct CountedGeneral : General {
+  using General::General;
+  long fallback_rays() const { return 0; }
+};
+
+template <class Make>
+std::unique_ptr<FrameRenderer> own_medium_tracer(const CheckedRequest& checked, const Make& make) {
+  using Tracer = std::remove_cvref_t<decltype(make())>;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto renderer = std::make_unique<MediumFrameRenderer<Tracer>>(checked, make);
+  renderer->set_setup_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  return renderer;
+}
+
+SphericalAccretion accretion_of(const CheckedRequest& checked) {
+  const RenderRequest& q = checked.request;
+  SphericalAccretion gas;
+  gas.gas = q.accretion_gas == "rest" ? SphericalAccretion::Gas::at_rest : SphericalAccretion::Gas::free_fall;
+  gas.power = q.accretion_power;
+  gas.outer = 2.0 * checked.settings.escape_radius;  // beyond the sky sphere: no edge on any ray
+  return gas;
+}
+
+}  // namespace
+
+std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked) {
+  const RenderRequest& q = checked.request;
+  const SphericalAccretion gas = accretion_of(checked);
+  return with_named_metric(q.metric, [&](const auto& metric) -> std::unique_ptr<FrameRenderer> {
+    using M = std::remove_cvref_t<decltype(metric)>;
+    if constexpr (StaticSphericalMetric<M>) {
+      if (q.tracer == "general") {
+        return own_medium_tracer(checked, [&] {
+          return CountedGeneral<GeneralMediumTracer<M, Fehlberg78, IController, SphericalAccretion>>(
+              metric, gas, checked.settings, checked.camera.tetrad().e[0], 1.0);
+        });
+      }
+      return own_medium_tracer(checked, [&] {
+        return SphericalMediumTracer<M, Fehlberg78, IController, SphericalAccretion>(metric, gas, checked.settings,
+                                                                                     checked.camera, 1.0, q.table_rays);
+      });
+    } else {
+      throw std::logic_error("grtrace_app: a medium's scene reached a metric check_request refuses for it");
+    }
+  });
+}
+
+}  // namespace grtrace::app

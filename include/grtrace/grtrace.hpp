@@ -19,6 +19,7 @@
 #include "grtrace/integrate/runge_kutta_stepper.hpp"
 #include "grtrace/integrate/step_controller.hpp"
 #include "grtrace/medium/emitting_medium.hpp"
+#include "grtrace/medium/polish_doughnut.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/auto_metric.hpp"
 #include "grtrace/metric/circular_orbits.hpp"

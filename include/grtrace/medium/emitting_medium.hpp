@@ -24,6 +24,10 @@
 //   static constexpr bool axisymmetric = true;          nor on phi (a spherical chart's)
 //   static constexpr bool equator_mirror_symmetric = true;   unchanged by theta -> pi - theta
 //   static constexpr bool spherically_symmetric = true;      a function of r alone, u radial (implies the others)
+//   double boundary(const Metric& metric, const Vec4& x) const
+//       positive outside the gas, <= 0 inside, where j and alpha jump or kink (a hard edge, a torus's surface): the
+//       tracer ends a step where a ray crosses it, so that no step is integrated across it
+//       (trace/emission_system.hpp); without it, a medium should be smooth
 //   static constexpr bool frequency_independent = true;      j_nu and alpha_nu do not depend on nu (a flat
 //       spectrum): a frame's pixels then differ only by their redshift, which lets a table of rays serve a moving
 //       camera (trace/medium_tracers.hpp)

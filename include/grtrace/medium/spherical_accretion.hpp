@@ -37,11 +37,17 @@ struct SphericalAccretion {
   double outer = 1000.0;        ///< no gas beyond this radius
 
   GRTRACE_HD double outer_radius() const { return outer; }
+  /// r - outer: the gas's edge, where j jumps to 0 (the tracer ends its steps there, and takes no light beyond).
+  template <MetricPolicy M>
+  GRTRACE_HD double boundary(const M& metric, const Vec4& x) const {
+    return metric.radius(x) - outer;
+  }
 
   template <MetricPolicy M>
   GRTRACE_HD MediumCoefficients coefficients(const M& metric, const Vec4& x, double /*nu*/) const {
-    const double r = metric.radius(x);
-    return {r <= outer ? emissivity * std::pow(r, -power) : 0.0, 0.0};
+    // Not cut at `outer`: the tracer takes the edge from boundary() and ends its steps there, and a step inside
+    // needs the law continued smoothly a little way beyond it.
+    return {emissivity * std::pow(metric.radius(x), -power), 0.0};
   }
 
   /// At rest: u = e_t / sqrt(g_tt). Free fall from rest at infinity: u^t = 1 / g_tt (energy u_t = 1), u^r from

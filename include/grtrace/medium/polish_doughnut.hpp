@@ -1,0 +1,144 @@
+// grtrace/medium/polish_doughnut.hpp
+// A geometrically thick torus of gas in hydrostatic equilibrium around a rotating (or not) hole: the "Polish
+// doughnut" of constant specific angular momentum (Abramowicz, Jaroszynski & Sikora 1978; Kozlowski, Jaroszynski &
+// Abramowicz 1978), an emitting medium (medium/emitting_medium.hpp) for any stationary axisymmetric metric in a
+// spherical chart (Kerr in Boyer-Lindquist coordinates, Schwarzschild, Reissner-Nordstrom).
+//
+// Takes:   the inner edge r_in and the pressure maximum r_c on the equator (r_in < r_c; prograde: the gas turns
+//          towards +phi), the polytropic index n (p = K rho^(1 + 1/n)), the emissivity j0 and opacity kappa per
+//          unit density: j_nu = j0 rho, alpha_nu = kappa rho (grey, frequency-independent: a constant source
+//          function S = j0 / kappa where kappa > 0).
+// Returns: rho (1 at r_c), j, alpha and the gas's 4-velocity at an event.
+// Method:  the gas turns on circles with l = -u_phi / u_t the same everywhere, the Keplerian value at r_c. With
+//          signature (+, -, -, -), g^{mu nu} u_mu u_nu = 1 gives u_t = A^(-1/2), A = g^tt - 2 l g^tphi + l^2 g^phiphi,
+//          and the relativistic Euler equation of a barotropic gas integrates to h = exp(W_in - W), W = ln u_t (the
+//          effective potential; h the specific enthalpy, 1 on the surface through r_in). A polytrope's enthalpy is
+//          h = 1 + (n + 1) K rho^(1/n), so rho = ((h - 1) / (h_c - 1))^n. Where A <= 0 no orbit of this l is
+//          timelike (near the axis and the horizon): no gas. The angular velocity is
+//          Omega = -(g_tphi + l g_tt) / (g_phiphi + l g_tphi), given wherever that circle is timelike (on the
+//          surface too); where it is not, the zero angular momentum observer's (any timelike one would do: no gas).
+// Assumes: r_c beyond the marginally bound orbit, so that the torus closes (W_in < 0: a finite outer edge, found on
+//          the equator at construction; off the equator the surface lies inside that radius, as a constant-l
+//          torus's does: tests/medium_torus_test.cpp checks it on a grid).
+#pragma once
+
+#include "grtrace/core/host_device.hpp"
+#include "grtrace/core/types.hpp"
+#include "grtrace/medium/emitting_medium.hpp"
+#include "grtrace/metric/circular_orbits.hpp"
+#include "grtrace/metric/metric_concept.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string_view>
+
+namespace grtrace {
+
+template <MetricPolicy Metric>
+class PolishDoughnut {
+  static_assert(Metric::chart == Chart::spherical,
+                "PolishDoughnut: the torus is stated in a spherical chart (t, r, theta, phi) of a stationary "
+                "axisymmetric metric (Kerr in Boyer-Lindquist coordinates, Schwarzschild)");
+
+ public:
+  static constexpr std::string_view kind = "polish-doughnut";
+  static constexpr bool stationary = true;
+  static constexpr bool axisymmetric = true;
+  static constexpr bool equator_mirror_symmetric = true;
+  static constexpr bool frequency_independent = true;
+
+  /// Takes the metric (held by value: the torus's constants are computed from it), r_in < r_c, n > 0, j0 >= 0,
+  /// kappa >= 0. std::invalid_argument when no torus exists for them (see the top of this file).
+  PolishDoughnut(const Metric& metric, double r_in, double r_c, double n = 3.0, double j0 = 1.0, double kappa = 0.0)
+      : metric_(metric), r_in_(r_in), r_c_(r_c), n_(n), j0_(j0), kappa_(kappa) {
+    if (!(r_in > 0.0 && r_c > r_in && n > 0.0 && j0 >= 0.0 && kappa >= 0.0))
+      throw std::invalid_argument("PolishDoughnut: need 0 < r_in < r_c, n > 0, j0 >= 0, kappa >= 0");
+    const auto u = circular_orbit_velocity(metric, r_c, +1);
+    if (!u) throw std::invalid_argument("PolishDoughnut: no circular orbit at r_c (inside the photon orbit)");
+    const Vec4 lowered = metric.metric(Vec4(0.0, r_c, std::numbers::pi / 2.0, 0.0)) * *u;
+    l_ = -lowered[3] / lowered[0];
+    w_in_ = potential(equator(r_in));
+    w_c_ = potential(equator(r_c));
+    if (!(w_in_ < 0.0))
+      throw std::invalid_argument(
+          "PolishDoughnut: the torus through r_in is not bound (its surface is open); "
+          "move r_in out or r_c in");
+    if (!(w_c_ < w_in_)) throw std::invalid_argument("PolishDoughnut: no gas between r_in and r_c");
+    h_c_minus_1_ = std::expm1(w_in_ - w_c_);
+    // The outer edge on the equator: W rises from W_c at r_c back to W_in (bracketed by doubling, then bisected).
+    double lo = r_c, hi = 2.0 * r_c;
+    while (potential(equator(hi)) < w_in_) {
+      lo = hi;
+      hi *= 2.0;
+      if (hi > 1e12) throw std::invalid_argument("PolishDoughnut: no outer edge found");
+    }
+    for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (potential(equator(mid)) < w_in_ ? lo : hi) = mid;
+    }
+    r_out_ = hi;
+  }
+
+  double outer_radius() const { return r_out_; }
+  double inner_edge() const { return r_in_; }
+  double pressure_maximum() const { return r_c_; }
+  double angular_momentum() const { return l_; }  ///< l = -u_phi / u_t
+
+  /// W = ln u_t at x (+infinity where no orbit of this l is timelike).
+  double potential(const Vec4& x) const {
+    const Mat4 g = metric_.metric(x);
+    const double d = g(0, 0) * g(3, 3) - g(0, 3) * g(0, 3);
+    const double a = (g(3, 3) + 2.0 * l_ * g(0, 3) + l_ * l_ * g(0, 0)) / d;
+    return a > 0.0 ? -0.5 * std::log(a) : std::numeric_limits<double>::infinity();
+  }
+
+  /// rho at x: 1 at the pressure maximum, 0 outside the torus.
+  double density(const Vec4& x) const {
+    const double w = potential(x);
+    if (!(w < w_in_)) return 0.0;
+    return std::pow(std::expm1(w_in_ - w) / h_c_minus_1_, n_);
+  }
+
+  /// Positive outside the torus, <= 0 inside (W - W_in, capped at 1 where no orbit of this l is timelike): the
+  /// tracer ends its steps on the surface, where rho ~ depth^n is not smooth.
+  template <MetricPolicy M>
+  double boundary(const M&, const Vec4& x) const {
+    return std::min(potential(x) - w_in_, 1.0);
+  }
+
+  /// j and alpha from rho continued smoothly across the surface (odd in h - 1: negative outside), as the tracer
+  /// needs them within a step that ends on the surface (boundary()); it takes none outside.
+  template <MetricPolicy M>
+  MediumCoefficients coefficients(const M&, const Vec4& x, double /*nu*/) const {
+    const double h1 = std::expm1(w_in_ - std::min(potential(x), w_in_ + 1.0));  // W = +inf (no orbit): h - 1 ~ -0.6
+    const double rho = std::copysign(std::pow(std::abs(h1) / h_c_minus_1_, n_), h1);
+    return {j0_ * rho, kappa_ * rho};
+  }
+
+  template <MetricPolicy M>
+  Vec4 fluid_velocity(const M&, const Vec4& x) const {
+    const Mat4 g = metric_.metric(x);
+    double omega = -(g(0, 3) + l_ * g(0, 0)) / (g(3, 3) + l_ * g(0, 3));
+    double norm = g(0, 0) + 2.0 * omega * g(0, 3) + omega * omega * g(3, 3);
+    // The gas's circles wherever they are timelike (its surface included: a ray meeting it there is shaded by this
+    // velocity); where they are not, no gas either: the zero angular momentum observer.
+    if (!(norm > 0.0)) {
+      omega = -g(0, 3) / g(3, 3);
+      norm = g(0, 0) + 2.0 * omega * g(0, 3) + omega * omega * g(3, 3);
+    }
+    const double ut = 1.0 / std::sqrt(norm);
+    return Vec4(ut, 0.0, 0.0, ut * omega);
+  }
+
+ private:
+  static Vec4 equator(double r) { return Vec4(0.0, r, std::numbers::pi / 2.0, 0.0); }
+
+  Metric metric_;
+  double r_in_, r_c_, n_, j0_, kappa_;
+  double l_ = 0.0, w_in_ = 0.0, w_c_ = 0.0, h_c_minus_1_ = 1.0, r_out_ = 0.0;
+};
+
+}  // namespace grtrace

@@ -145,6 +145,18 @@ TEST(AppLayer, FlightFramesAreItsSingleFrames) {
 }
 
 /// Option texts by name, as a command line or Python keywords give them.
+/// f() must throw a RequestError whose message contains `says`.
+template <class F>
+void expect_refused(const std::string& says, F&& f) {
+  SCOPED_TRACE(says);
+  try {
+    f();
+    ADD_FAILURE() << "not refused";
+  } catch (const app::RequestError& e) {
+    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+  }
+}
+
 class Texts : public app::OptionSource {
  public:
   explicit Texts(std::map<std::string, std::string> given) : given_(std::move(given)) {}
@@ -189,15 +201,8 @@ TEST(AppLayer, ReadsTheRequestByOptionNamesAsTheToolsSpellThem) {
        "--metric must be schwarzschild, minkowski, kerr, rn, sds, wormhole or "
        "schwarzschild-ef, got 'teapot'"},
   };
-  for (const auto& [given, says] : refused) {
-    SCOPED_TRACE(says);
-    try {
-      (void)app::read_render_request(Texts(given));
-      ADD_FAILURE() << "not refused";
-    } catch (const app::RequestError& e) {
-      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
-    }
-  }
+  for (const auto& [given, says] : refused)
+    expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
 }
 
 TEST(AppLayer, RayPathsEndWhereTheSceneTracersRaysEnd) {
@@ -282,15 +287,7 @@ TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
       {inside, "--camera-r 2 is at or inside the horizon"},
       {fixed_without_step, "--control fixed needs a step"},
   };
-  for (const Refused& c : cases) {
-    SCOPED_TRACE(c.says);
-    try {
-      (void)app::check_request(c.q);
-      ADD_FAILURE() << "not refused";
-    } catch (const app::RequestError& e) {
-      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
-    }
-  }
+  for (const Refused& c : cases) expect_refused(c.says, [&] { (void)app::check_request(c.q); });
   EXPECT_NO_THROW((void)app::check_request(request("rn", "disk", "vern6", "i", "planar")));
   EXPECT_NO_THROW((void)app::check_request(request("kerr", "disk", "rkf78", "i", "kerr-mino")));
   EXPECT_NO_THROW((void)app::check_request(request("minkowski", "checker", "rkf78", "i", "straight-line")));
@@ -491,15 +488,7 @@ TEST(AppLayer, AnAccretionRequestItsTracersCannotDrawIsRefused) {
       {gas, "unknown --accretion-gas 'plasma'; choose free-fall or rest"},
       {power, "--accretion-power must lie in [0, 10]"},
   };
-  for (const Refused& c : cases) {
-    SCOPED_TRACE(c.says);
-    try {
-      (void)app::check_request(c.q);
-      ADD_FAILURE() << "not refused";
-    } catch (const app::RequestError& e) {
-      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
-    }
-  }
+  for (const Refused& c : cases) expect_refused(c.says, [&] { (void)app::check_request(c.q); });
   // By option names: the accretion's options without it, and what means nothing with it.
   const std::vector<std::pair<std::map<std::string, std::string>, std::string>> refused = {
       {{{"accretion-gas", "rest"}}, "--accretion-gas applies only with --scene accretion"},
@@ -508,15 +497,8 @@ TEST(AppLayer, AnAccretionRequestItsTracersCannotDrawIsRefused) {
       {{{"scene", "accretion"}, {"tracer", "general"}, {"table-rays", "64"}}, "--table-rays applies only with"},
       {{{"scene", "teapot"}}, "choose checker, sky, redshift, disk or accretion"},
   };
-  for (const auto& [given, says] : refused) {
-    SCOPED_TRACE(says);
-    try {
-      (void)app::read_render_request(Texts(given));
-      ADD_FAILURE() << "not refused";
-    } catch (const app::RequestError& e) {
-      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
-    }
-  }
+  for (const auto& [given, says] : refused)
+    expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
   const app::RenderRequest read = app::read_render_request(
       Texts({{"scene", "accretion"}, {"accretion-gas", "rest"}, {"accretion-power", "3"}, {"table-rays", "64"}}));
   EXPECT_EQ(read.accretion_gas, "rest");

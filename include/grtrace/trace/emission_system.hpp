@@ -15,7 +15,8 @@
 //          velocity), and the proper length the photon crosses in the fluid's frame is dl = E_fluid d lambda
 //          (lambda the ray's affine parameter, k = dx / d lambda); emission at a point is dimmed by the optical
 //          depth between it and the camera, which is what tau holds when the ray gets there. Beyond the medium's
-//          outer radius both derivatives are 0 without asking the medium.
+//          outer radius both derivatives are 0 without asking the medium. A medium with a boundary (an edge where
+//          j and alpha jump or kink) has every step end where the ray crosses it (detail::end_step_on_boundary).
 // Opaque matter: where the medium absorbs, all derivatives are slowed by sigma = 1 / (1 + alpha r) (r the metric's
 //          radius), so the ray's parameter s (ds = d lambda / sigma) advances about one unit of optical depth per
 //          r / E of parameter at most. Without it a step could cross an optically thick layer in one go, its stages

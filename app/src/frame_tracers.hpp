@@ -69,6 +69,7 @@ struct FrameFacts {
   std::string device = "cpu";  ///< cpu or cuda
   std::optional<double> gpu_trace_seconds, gpu_seconds;
   double trace_seconds = 0.0;  ///< the wall time of the frame's tracing and shading
+  std::optional<double> flux;  ///< an emitting medium's frame: the intensity summed over the pixels' solid angles
 };
 
 /// The render loop's options of a request and a control (threads, mirrors, progress, cancel).

@@ -535,6 +535,7 @@ RenderResult finish_render(const CheckedRequest& checked, Frame&& frame, const F
   r.mirrors = facts.mirrors;
   r.sky_continuation = facts.tracer.sky_continuation;
   r.continuation_error = facts.continuation_error;
+  r.flux = facts.flux;
   // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
   if (checked.request.error_map) r.error = add_error_channel(checked, result.image, directions);
   describe_request(result.image, checked);

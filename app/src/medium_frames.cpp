@@ -53,7 +53,8 @@ class MediumFrameRenderer final : public FrameRenderer {
     RenderOptions options = render_options(checked_, control);
     options.mirror_symmetry = false;  // render_medium_frame traces every pixel (a look-up each with the table)
     FrameFacts facts;
-    const long fallbacks_before = tracer_.fallback_rays();
+    long fallbacks_before = 0;  // the general tracer has none: it is the fallback
+    if constexpr (requires { tracer_.fallback_rays(); }) fallbacks_before = tracer_.fallback_rays();
     const auto t0 = std::chrono::steady_clock::now();
     Frame frame = render_medium_frame(camera(), tracer_, options);
     facts.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -62,25 +63,16 @@ class MediumFrameRenderer final : public FrameRenderer {
       facts.tracer.table_rays = tracer_.table_rays();
       facts.tracer.table_steps = tracer_.table_steps();
     }
-    facts.tracer.fallback_rays = tracer_.fallback_rays() - fallbacks_before;
-    const double flux = frame_flux(camera(), frame.image);
-    RenderResult result = finish_render(checked_, std::move(frame), facts, setup_seconds_, {});
-    result.report.flux = flux;
-    result.image.metadata["flux"] = exact_number(flux);
-    return result;
+    if constexpr (requires { tracer_.fallback_rays(); })
+      facts.tracer.fallback_rays = tracer_.fallback_rays() - fallbacks_before;
+    facts.flux = frame_flux(camera(), frame.image);
+    return finish_render(checked_, std::move(frame), facts, setup_seconds_, {});
   }
 
   void set_setup_seconds(double s) { setup_seconds_ = s; }
 
  private:
   Tracer tracer_;
-};
-
-/// The general tracer with the fallback count the report asks every medium tracer for (none: it is the fallback).
-template <class General>
-struct CountedGeneral : General {
-  using General::General;
-  long fallback_rays() const { return 0; }
 };
 
 template <class Make>
@@ -111,7 +103,7 @@ std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checke
     if constexpr (StaticSphericalMetric<M>) {
       if (q.tracer == "general") {
         return own_medium_tracer(checked, [&] {
-          return CountedGeneral<GeneralMediumTracer<M, Fehlberg78, IController, SphericalAccretion>>(
+          return GeneralMediumTracer<M, Fehlberg78, IController, SphericalAccretion>(
               metric, gas, checked.settings, checked.camera.tetrad().e[0], 1.0);
         });
       }

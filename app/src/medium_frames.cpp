@@ -22,26 +22,6 @@ namespace {
 static_assert(kToolMethods[0].tableau == Fehlberg78::name && kToolMethods[0].control == IController::name,
               "medium_frames.cpp instantiates media with the tools' default method: keep it the first of kToolMethods");
 
-/// The frame's flux: every pixel's intensity times the solid angle the camera sees it under (a pinhole: the pixel's
-/// area on the image plane at unit distance, du dv, over (1 + u^2 + v^2)^(3/2)); NaN for a frame one pixel wide or
-/// high (no pitch).
-double frame_flux(const Camera& camera, const Image& image) {
-  const int w = camera.width(), h = camera.height();
-  if (w < 2 || h < 2) return std::nan("");
-  const double t = camera.tan_half_fov();
-  const double du = 2.0 * t / (w - 1), dv = 2.0 * t * h / (static_cast<double>(w) * (h - 1));
-  const std::vector<float>& intensity = image.channel("intensity");
-  double flux = 0.0;
-  for (int row = 0; row < h; ++row) {
-    const double v = t * (2.0 * row / (h - 1) - 1.0) * h / w;
-    for (int col = 0; col < w; ++col) {
-      const double u = t * (2.0 * col / (w - 1) - 1.0), q = 1.0 + u * u + v * v;
-      flux += static_cast<double>(intensity[image.index(col, row)]) * du * dv / (q * std::sqrt(q));
-    }
-  }
-  return flux;
-}
-
 /// The renderer of one medium tracer, which it owns (built in place: the table tracer holds an atomic).
 template <class Tracer>
 class MediumFrameRenderer final : public FrameRenderer {
@@ -65,7 +45,7 @@ class MediumFrameRenderer final : public FrameRenderer {
     }
     if constexpr (requires { tracer_.fallback_rays(); })
       facts.tracer.fallback_rays = tracer_.fallback_rays() - fallbacks_before;
-    facts.flux = frame_flux(camera(), frame.image);
+    facts.flux = medium_frame_flux(camera(), frame.image);
     return finish_render(checked_, std::move(frame), facts, setup_seconds_, {});
   }
 

@@ -12,6 +12,10 @@
 //       (a template on the metric, or one overload) the emission coefficient j_nu (energy per unit time, volume,
 //       frequency and solid angle) and the absorption coefficient alpha_nu (per unit length) at the event x, both
 //       in the fluid's frame and at the frequency nu measured there
+//     or, for light that depends on the direction it leaves in (synchrotron: the angle to the magnetic field),
+//   MediumCoefficients coefficients(const Metric& metric, const Vec4& x, const Vec4& k, const Vec4& u, double nu) const
+//       the same, given the ray's wave vector k at x (any scale or sign: its direction is what counts) and the
+//       fluid's velocity u there (fluid_velocity's, computed once for both)
 //   Vec4 fluid_velocity(const Metric& metric, const Vec4& x) const
 //       the fluid's 4-velocity at x (future-directed, g(u, u) = 1): the frame of j and alpha, and the redshift
 //       g = nu_obs / nu_fluid of the light it sends to the camera
@@ -52,26 +56,41 @@ struct MediumCoefficients {
 };
 
 /// What every emitting medium provides in the metric M (see the top of this file).
+/// Whether D's coefficients take the ray's direction (the second form at the top of this file).
+template <class D, class M>
+concept MediumWithDirectedLight = requires(const D d, const M m, const Vec4 x, double nu) {
+  { d.coefficients(m, x, x, x, nu) } -> std::convertible_to<MediumCoefficients>;
+};
+
 template <class D, class M>
 concept EmittingMediumIn =
     std::copy_constructible<D> && MetricPolicy<M> && requires(const D d, const M m, const Vec4 x, double nu) {
       { D::kind } -> std::convertible_to<std::string_view>;
-      { d.coefficients(m, x, nu) } -> std::convertible_to<MediumCoefficients>;
       { d.fluid_velocity(m, x) } -> std::convertible_to<Vec4>;
       { d.outer_radius() } -> std::convertible_to<double>;
-    };
+    } && (MediumWithDirectedLight<D, M> || requires(const D d, const M m, const Vec4 x, double nu) {
+      { d.coefficients(m, x, nu) } -> std::convertible_to<MediumCoefficients>;
+    });
+
+/// The coefficients of either form at x, for a ray with wave vector k through fluid moving with u.
+template <class D, class M>
+GRTRACE_HD MediumCoefficients medium_coefficients(const D& d, const M& m, const Vec4& x, const Vec4& k, const Vec4& u,
+                                                  double nu) {
+  if constexpr (MediumWithDirectedLight<D, M>) return d.coefficients(m, x, k, u, nu);
+  else return d.coefficients(m, x, nu);
+}
 
 /// Compile-time check with messages that name what is missing; used by the tracers that take a medium.
 template <class D, class M>
 constexpr bool check_emitting_medium() {
   static_assert(requires { { D::kind } -> std::convertible_to<std::string_view>; },
                 "emitting medium: add `static constexpr std::string_view kind = \"...\";` (its name in image headers)");
-  static_assert(requires(const D d, const M m, const Vec4 x, double nu) {
+  static_assert(MediumWithDirectedLight<D, M> || requires(const D d, const M m, const Vec4 x, double nu) {
                   { d.coefficients(m, x, nu) } -> std::convertible_to<MediumCoefficients>;
                 },
                 "emitting medium: add `MediumCoefficients coefficients(const Metric&, const Vec4& x, double nu) const` "
                 "(j_nu and alpha_nu in the fluid's frame at x, nu measured there; a template on the metric serves "
-                "every metric)");
+                "every metric), or its form with the ray's direction, `coefficients(metric, x, k, u, nu)`");
   static_assert(requires(const D d, const M m, const Vec4 x) { { d.fluid_velocity(m, x) } -> std::convertible_to<Vec4>; },
                 "emitting medium: add `Vec4 fluid_velocity(const Metric&, const Vec4& x) const` (the fluid's "
                 "4-velocity at x, future-directed and unit)");

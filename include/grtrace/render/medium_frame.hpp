@@ -55,6 +55,26 @@ inline void shade_intensity(Image& image, double exponent = 1.0) {
   image.metadata["intensity_peak"] = exact_number(peak);
 }
 
+/// The frame's flux in the camera's sky: every pixel's intensity times the solid angle the camera sees it under (a
+/// pinhole: the pixel's area on the image plane at unit distance, du dv, over (1 + u^2 + v^2)^(3/2)); NaN for a
+/// frame one pixel wide or high (no pitch). In janskys at a telescope: SourceScale::janskys (core/physical_units.hpp).
+inline double medium_frame_flux(const Camera& camera, const Image& image) {
+  const int w = camera.width(), h = camera.height();
+  if (w < 2 || h < 2) return std::nan("");
+  const double t = camera.tan_half_fov();
+  const double du = 2.0 * t / (w - 1), dv = 2.0 * t * h / (static_cast<double>(w) * (h - 1));
+  const std::vector<float>& intensity = image.channel("intensity");
+  double flux = 0.0;
+  for (int row = 0; row < h; ++row) {
+    const double v = t * (2.0 * row / (h - 1) - 1.0) * h / w;
+    for (int col = 0; col < w; ++col) {
+      const double u = t * (2.0 * col / (w - 1) - 1.0), q = 1.0 + u * u + v * v;
+      flux += static_cast<double>(intensity[image.index(col, row)]) * du * dv / (q * std::sqrt(q));
+    }
+  }
+  return flux;
+}
+
 template <class Tracer>
 Frame render_medium_frame(const Camera& camera, const Tracer& tracer, const RenderOptions& options = {},
                           double exponent = 1.0) {

@@ -88,7 +88,7 @@ struct EmissionSystem {
     const Vec4 u = medium->fluid_velocity(*ray.metric, x);
     const double e_fluid = std::abs(inner_product(*ray.metric, x, k, u));
     const double g = camera_energy / e_fluid;
-    const MediumCoefficients c = medium->coefficients(*ray.metric, x, frequency / g);
+    const MediumCoefficients c = medium_coefficients(*medium, *ray.metric, x, k, u, frequency / g);
     dz[kIntensity] = g * g * g * c.emission * std::exp(-z[kOpticalDepth]) * e_fluid;
     dz[kOpticalDepth] = c.absorption * e_fluid;
     if (c.absorption > 0.0) dz *= 1.0 / (1.0 + c.absorption * ray.metric->radius(x));  // sigma (top of this file)

@@ -23,6 +23,11 @@
 #include <string>
 #include <vector>
 
+namespace grtrace {
+struct SourceScale;
+struct RiafParameters;
+}  // namespace grtrace
+
 namespace grtrace::app {
 
 /// f(), a std::invalid_argument it throws (a library refusal) as a RequestError with `prefix` before its message.
@@ -54,6 +59,10 @@ bool planar_tracer_metric(const MetricSpec& metric);
 template <MetricPolicy M>
 std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked, const M& metric);
 
+/// The scale and the flow of --scene riaf (the source's presets, the request's accretion rate; medium/riaf.hpp).
+SourceScale source_scale(const RenderRequest& q);
+RiafParameters riaf_parameters(const RenderRequest& q);
+
 /// The frame renderer of an emitting medium's scene (is_medium_scene; medium_frames.cpp, the default method only).
 std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked);
 
@@ -70,6 +79,7 @@ struct FrameFacts {
   std::optional<double> gpu_trace_seconds, gpu_seconds;
   double trace_seconds = 0.0;  ///< the wall time of the frame's tracing and shading
   std::optional<double> flux;  ///< an emitting medium's frame: the intensity summed over the pixels' solid angles
+  std::optional<double> flux_jy, microarcseconds_per_pixel;  ///< the same in physical units (riaf)
 };
 
 /// The render loop's options of a request and a control (threads, mirrors, progress, cancel).

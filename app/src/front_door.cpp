@@ -7,6 +7,7 @@
 #include "grtrace/core/number_text.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/medium/riaf.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/metric/static_spherical.hpp"
@@ -41,6 +42,17 @@ bool planar_tracer_metric(const MetricSpec& metric) {
     if constexpr (StaticSphericalMetric<std::remove_cvref_t<decltype(m)>>) return m.horizon_radius() > 0.0;
     else return false;
   });
+}
+
+SourceScale source_scale(const RenderRequest& q) {
+  return q.source == "sgr-a" ? SourceScale::sgr_a() : SourceScale::m87();
+}
+
+RiafParameters riaf_parameters(const RenderRequest& q) {
+  RiafParameters p = q.source == "sgr-a" ? RiafParameters::sgr_a() : RiafParameters::m87();
+  if (q.accretion_rate) p.accretion_rate = *q.accretion_rate;
+  p.outer = q.sky_radius;  // the gas fills the sky sphere (at 400 M its 230 GHz light is below 1e-30 of the peak)
+  return p;
 }
 
 bool is_medium_scene(std::string_view scene) {
@@ -196,15 +208,25 @@ void check_tracer(const RenderRequest& q) {
 /// What an emitting medium's scene needs (RenderRequest::accretion_gas): a static spherically symmetric hole, the
 /// default method (the one the application library compiles media with), a tracer that draws media, the CPU.
 void check_medium_request(const RenderRequest& q) {
-  if (!planar_tracer_metric(q.metric))
+  if (q.scene == "riaf") {
+    if (q.metric.name != "kerr" || q.metric.chart != "bl")
+      throw RequestError("--scene riaf flows around a Kerr hole in Boyer-Lindquist coordinates: use --metric kerr "
+                         "(--spin 0 for Schwarzschild) and leave --chart out");
+    if (q.metric.mass != 1.0)
+      throw RequestError("--scene riaf takes the hole's mass from --source (lengths in units of it): leave --mass out");
+  } else if (!planar_tracer_metric(q.metric)) {
     throw RequestError("--scene " + q.scene +
                        " needs a static spherically symmetric hole (--metric schwarzschild, rn or sds): the gas falls "
                        "radially in its static chart");
+  }
   const ToolMethod& d = kToolMethods[0];
   if (q.method.tableau != d.tableau || q.method.control != d.control)
     throw RequestError("--scene " + q.scene + " is drawn with the default method (--tableau " +
                        std::string(d.tableau) + " --control " + std::string(d.control) +
                        "); leave --tableau and --control out");
+  if (q.scene == "riaf" && q.tracer != "auto" && q.tracer != "general")
+    throw RequestError("--tracer " + q.tracer + " cannot draw --scene riaf; use auto or general (every pixel "
+                       "integrated)");
   if (q.tracer != "auto" && q.tracer != "planar" && q.tracer != "general")
     throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene +
                        "; use auto or planar (one table of rays) or general (every pixel integrated)");
@@ -216,6 +238,18 @@ void check_medium_request(const RenderRequest& q) {
   if (!(q.accretion_power >= 0.0 && q.accretion_power <= 10.0))
     throw RequestError("--accretion-power must lie in [0, 10] (j ~ r^-power), got " +
                        shortest_number_text(q.accretion_power));
+  if (std::find(kRiafSourceNames.begin(), kRiafSourceNames.end(), q.source) == kRiafSourceNames.end())
+    throw RequestError("unknown --source '" + q.source + "'; choose " +
+                       choice_list(kRiafSourceNames));
+  if (q.accretion_rate && !(*q.accretion_rate > 0.0 && *q.accretion_rate <= 1e3))
+    throw RequestError("--accretion-rate must lie in (0, 1e3] solar masses a year, got " +
+                       shortest_number_text(*q.accretion_rate));
+  if (!(q.frequency_ghz > 0.0 && q.frequency_ghz <= 1e7))
+    throw RequestError("--frequency must lie in (0, 1e7] GHz, got " + shortest_number_text(q.frequency_ghz));
+  if (q.scene == "riaf" && !(q.camera.r >= kMinPhysicalCameraRadius))
+    throw RequestError("--scene riaf gives angles and fluxes as a distant telescope sees them: use --camera-r " +
+                       exact_number(kMinPhysicalCameraRadius) + " or more (got " + shortest_number_text(q.camera.r) +
+                       ")");
 }
 
 }  // namespace
@@ -501,6 +535,8 @@ void record_report(Image& image, const RenderReport& r) {
   }
   m["mirrors"] = r.mirrors;
   if (r.flux) m["flux"] = exact_number(*r.flux);
+  if (r.flux_jy) m["flux_jy"] = exact_number(*r.flux_jy);
+  if (r.microarcseconds_per_pixel) m["microarcseconds_per_pixel"] = exact_number(*r.microarcseconds_per_pixel);
   if (r.error) {
     m["error_max"] = exact_number(r.error->max);
     m["error_median"] = exact_number(r.error->median);
@@ -536,6 +572,8 @@ RenderResult finish_render(const CheckedRequest& checked, Frame&& frame, const F
   r.sky_continuation = facts.tracer.sky_continuation;
   r.continuation_error = facts.continuation_error;
   r.flux = facts.flux;
+  r.flux_jy = facts.flux_jy;
+  r.microarcseconds_per_pixel = facts.microarcseconds_per_pixel;
   // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
   if (checked.request.error_map) r.error = add_error_channel(checked, result.image, directions);
   describe_request(result.image, checked);
@@ -560,6 +598,23 @@ void describe_request(Image& image, const CheckedRequest& checked) {
     m["medium"] = std::string(SphericalAccretion::kind);
     m["accretion_gas"] = q.accretion_gas;
     m["accretion_power"] = exact_number(q.accretion_power);
+  }
+  if (q.scene == "riaf") {
+    const RiafParameters p = riaf_parameters(q);
+    const SourceScale s = source_scale(q);
+    m["medium"] = "riaf";
+    m["source"] = q.source;
+    m["mass_solar"] = exact_number(s.mass_solar);
+    m["distance_pc"] = exact_number(s.distance_pc);
+    m["accretion_rate"] = exact_number(p.accretion_rate);
+    m["frequency_ghz"] = exact_number(q.frequency_ghz);
+    m["electron_temperature"] = exact_number(p.temperature);
+    m["density_power"] = exact_number(p.density_power);
+    m["temperature_power"] = exact_number(p.temperature_power);
+    m["thickness"] = exact_number(p.thickness);
+    m["plasma_beta"] = exact_number(p.beta);
+    m["inflow_speed"] = exact_number(p.inflow_speed);
+    m["intensity_unit"] = "erg s^-1 cm^-2 Hz^-1 sr^-1";
   }
   if (q.scene == "disk") {
     m["disk_sense"] = q.disk_retrograde ? "retrograde" : "prograde";
@@ -611,6 +666,8 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
     add("error_mismatches", r.error->mismatches);
   }
   if (r.flux) add("flux", *r.flux);
+  if (r.flux_jy) add("flux_jy", *r.flux_jy);
+  if (r.microarcseconds_per_pixel) add("microarcseconds_per_pixel", *r.microarcseconds_per_pixel);
   if (r.tracer == "planar") {
     add("table_rays", r.table_rays);
     add("table_steps", r.table_steps);

@@ -1,16 +1,25 @@
-// Frames of emitting media (--scene accretion: SphericalAccretion, medium/spherical_accretion.hpp) in the named
-// metrics that are static, spherically symmetric and have a horizon (check_request refuses the others): one table
-// of rays (SphericalMediumTracer: tracer auto or planar) or every pixel integrated (GeneralMediumTracer: general),
-// with the tools' default method only (the one declared method media are offered with), on the CPU.
+// Frames of emitting media, with the tools' default method only (the one declared method media are offered with),
+// on the CPU:
+//   --scene accretion: SphericalAccretion (medium/spherical_accretion.hpp) in the named metrics that are static,
+//     spherically symmetric and have a horizon (check_request refuses the others): one table of rays
+//     (SphericalMediumTracer: tracer auto or planar) or every pixel integrated (GeneralMediumTracer: general);
+//   --scene riaf: RiafFlow (medium/riaf.hpp) around Kerr in Boyer-Lindquist coordinates, every pixel integrated,
+//     its intensity in cgs, its flux in janskys and its pixel in microarcseconds at the source's distance.
 #include "frame_tracers.hpp"
+#include "grtrace/core/physical_units.hpp"
+#include "grtrace/medium/riaf.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/render/medium_frame.hpp"
+#include "grtrace/render/scale_bar.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -46,21 +55,32 @@ class MediumFrameRenderer final : public FrameRenderer {
     if constexpr (requires { tracer_.fallback_rays(); })
       facts.tracer.fallback_rays = tracer_.fallback_rays() - fallbacks_before;
     facts.flux = medium_frame_flux(camera(), frame.image);
+    if (scale_) {  // physical units: the camera far away (check_request), its angles scaled by r / D
+      const double r_cam = checked_.request.camera.r;
+      facts.flux_jy = scale_->janskys(*facts.flux, r_cam);
+      const double pixel = 2.0 * camera().tan_half_fov() / std::max(1, camera().width() - 1);  // at the centre
+      facts.microarcseconds_per_pixel = scale_->microarcseconds_at_telescope(pixel, r_cam);
+      draw_scale_bar(frame.image, *facts.microarcseconds_per_pixel);  // into the picture (R, G, B) only
+    }
     return finish_render(checked_, std::move(frame), facts, setup_seconds_, {});
   }
 
   void set_setup_seconds(double s) { setup_seconds_ = s; }
+  void set_scale(const SourceScale& s) { scale_ = s; }
 
  private:
   Tracer tracer_;
+  std::optional<SourceScale> scale_;
 };
 
 template <class Make>
-std::unique_ptr<FrameRenderer> own_medium_tracer(const CheckedRequest& checked, const Make& make) {
+std::unique_ptr<FrameRenderer> own_medium_tracer(const CheckedRequest& checked, const Make& make,
+                                                 std::optional<SourceScale> scale = {}) {
   using Tracer = std::remove_cvref_t<decltype(make())>;
   const auto t0 = std::chrono::steady_clock::now();
   auto renderer = std::make_unique<MediumFrameRenderer<Tracer>>(checked, make);
   renderer->set_setup_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  if (scale) renderer->set_scale(*scale);
   return renderer;
 }
 
@@ -77,6 +97,18 @@ SphericalAccretion accretion_of(const CheckedRequest& checked) {
 
 std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked) {
   const RenderRequest& q = checked.request;
+  if (q.scene == "riaf") {  // Kerr in Boyer-Lindquist coordinates (check_request)
+    const KerrMetric metric{q.metric.mass, q.metric.spin};
+    const RiafParameters p = riaf_parameters(q);
+    return own_medium_tracer(
+        checked,
+        [&] {
+          return GeneralMediumTracer<KerrMetric, Fehlberg78, IController, RiafFlow<KerrMetric>>(
+              metric, RiafFlow<KerrMetric>(metric, p), checked.settings, checked.camera.tetrad().e[0],
+              q.frequency_ghz * 1e9);
+        },
+        source_scale(q));
+  }
   const SphericalAccretion gas = accretion_of(checked);
   return with_named_metric(q.metric, [&](const auto& metric) -> std::unique_ptr<FrameRenderer> {
     using M = std::remove_cvref_t<decltype(metric)>;

@@ -28,7 +28,8 @@ std::vector<OptionInfo> make_render_options() {
   std::vector<OptionInfo> o;
   o.push_back({"scene", "checker",
                "checker | sky | redshift | disk | accretion (glowing gas falling onto a static spherically symmetric "
-               "hole: schwarzschild, rn or sds; channels intensity and optical_depth)"});
+               "hole: schwarzschild, rn or sds; channels intensity and optical_depth) | riaf (the hot flow of M87* or "
+               "Sgr A* around --metric kerr, thermal synchrotron in physical units: intensity in cgs, flux in Jy)"});
   std::string metrics;
   for_each_named_metric([&]<class E>() { metrics += (metrics.empty() ? "" : " | ") + std::string(E::help); });
   o.push_back({"metric", kMetricNames[0], keep(metrics)});
@@ -93,6 +94,13 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"accretion-gas", "free-fall",
                "accretion scene: free-fall (from rest at infinity, Narayan, Johnson & Gammie 2019) | rest"});
   o.push_back({"accretion-power", "2", "accretion scene: the emissivity falls as r^-power, power in [0, 10]"});
+  o.push_back({"source", "m87",
+               "riaf scene: m87 (6.5e9 solar masses at 16.8 Mpc) | sgr-a (4.0e6 at 8.15 kpc): the scale of the "
+               "image and its flux, and the accretion rate's default"});
+  o.push_back({"accretion-rate", "",
+               "riaf scene: solar masses a year reaching the hole, in (0, 1e3] (default: 5e-4 for m87, 1e-8 for "
+               "sgr-a, near the flux the EHT measures)"});
+  o.push_back({"frequency", "230", "riaf scene: the observed frequency in GHz, in (0, 1e7]"});
   o.push_back({"threads", "0", "OpenMP threads (0 = all cores)"});
   o.push_back({"error-map", "",
                "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
@@ -214,6 +222,8 @@ void check_scene_options(const OptionSource& s, const std::string& scene) {
   refuse_unless(s, "sky-texture", scene == "sky" || scene == "disk", "--scene sky or disk");
   for (const char* medium_option : {"accretion-gas", "accretion-power"})
     refuse_unless(s, medium_option, scene == "accretion", "--scene accretion");
+  for (const char* riaf_option : {"source", "accretion-rate", "frequency"})
+    refuse_unless(s, riaf_option, scene == "riaf", "--scene riaf");
   // A medium's frame shows its light, not where escaped rays point.
   refuse_unless(s, "angle-correction", !is_medium_scene(scene), "a scene that shows the sky (not a medium's)");
 }
@@ -249,6 +259,9 @@ RenderRequest read_render_request(const OptionSource& s) {
   q.disk_retrograde = s.given("disk-retrograde");
   q.accretion_gas = text_of(s, "accretion-gas");
   q.accretion_power = option_number(s, "accretion-power");
+  q.source = text_of(s, "source");
+  if (s.given("accretion-rate")) q.accretion_rate = option_number(s, "accretion-rate");
+  q.frequency_ghz = option_number(s, "frequency");
   q.error_map = s.given("error-map");
   q.mirrors = !s.given("no-mirrors");
   q.device = text_of(s, "device");

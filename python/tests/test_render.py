@@ -63,6 +63,22 @@ def test_an_accretion_frame_is_the_tools_with_its_light_and_flux(run_tool):
     assert intensity[20, 20] < 0.5 * intensity.max()
 
 
+def test_a_riaf_frame_is_the_tools_in_physical_units(run_tool):
+    options = dict(scene="riaf", metric="kerr", spin=0.9, source="sgr-a", camera_r=1000, camera_theta=17,
+                   fov=2.3, width=12, height=12, sky_radius=2000, rtol=1e-8)
+    frame = grtrace.render(**options)
+    code, out, err, exr = run_tool(options)
+    assert code == 0, err
+    tool = grtrace.read_exr(str(exr))
+    assert np.array_equal(bits(frame["intensity"]), bits(tool["intensity"]))
+    line = json.loads(out.strip().splitlines()[-1])
+    assert frame.report["flux_jy"] == line["flux_jy"]
+    assert 1.0 < line["flux_jy"] < 5.0  # Sgr A* at 230 GHz: 2.4 Jy measured
+    assert frame.report["microarcseconds_per_pixel"] == pytest.approx(4.84 * 1000 * 2 * np.tan(np.radians(1.15)) / 11,
+                                                                      rel=1e-3)
+    assert tool.header["source"] == "sgr-a" and tool.header["medium"] == "riaf"
+
+
 def test_channels_are_views_of_the_frames_memory():
     frame = grtrace.render(**MAIN_FRAME)
     a = frame["redshift"]
@@ -118,6 +134,10 @@ BAD = [
     dict(tracer="general", table_rays=100),
     dict(accretion_gas="rest"),
     dict(scene="accretion", metric="kerr"),
+    dict(scene="riaf", metric="kerr", camera_r=50),
+    dict(scene="riaf", metric="kerr", camera_r=1000, sky_radius=2000, source="m31"),
+    dict(source="sgr-a"),
+    dict(scene="riaf", metric="schwarzschild"),
 ]
 
 

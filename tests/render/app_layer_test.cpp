@@ -6,6 +6,7 @@
 // cannot draw, saying what to use instead.
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/app/tool_methods.hpp"
+#include "grtrace/core/physical_units.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/observer/flight_path.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
@@ -495,7 +496,7 @@ TEST(AppLayer, AnAccretionRequestItsTracersCannotDrawIsRefused) {
       {{{"scene", "sky"}, {"accretion-power", "3"}}, "--accretion-power applies only with --scene accretion"},
       {{{"scene", "accretion"}, {"angle-correction", "flat"}}, "--angle-correction applies only with a scene that"},
       {{{"scene", "accretion"}, {"tracer", "general"}, {"table-rays", "64"}}, "--table-rays applies only with"},
-      {{{"scene", "teapot"}}, "choose checker, sky, redshift, disk or accretion"},
+      {{{"scene", "teapot"}}, "choose checker, sky, redshift, disk, accretion or riaf"},
   };
   for (const auto& [given, says] : refused)
     expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
@@ -504,4 +505,86 @@ TEST(AppLayer, AnAccretionRequestItsTracersCannotDrawIsRefused) {
   EXPECT_EQ(read.accretion_gas, "rest");
   EXPECT_EQ(read.accretion_power, 3.0);
   EXPECT_EQ(read.table_rays, 64);
+}
+
+namespace {
+
+/// Sgr A* seen from 1000 M at 17 degrees to the spin axis, a frame 40 M wide, 16 x 16 pixels.
+app::RenderRequest riaf_request() {
+  app::RenderRequest q;
+  q.metric.name = "kerr";
+  q.metric.spin = 0.9;
+  q.scene = "riaf";
+  q.source = "sgr-a";
+  q.method.rtol = 1e-8;
+  q.method.atol = 1e-10;
+  q.sky_radius = 2000.0;
+  q.camera.r = 1000.0;
+  q.camera.theta_degrees = 17.0;
+  q.camera.fov_degrees = 2.0 * std::atan(20.0 / 1000.0) * 180.0 / std::numbers::pi;
+  q.camera.width = q.camera.height = 16;
+  return q;
+}
+
+}  // namespace
+
+TEST(AppLayer, ARiafFrameIsInPhysicalUnits) {
+  const app::RenderRequest q = riaf_request();
+  const app::RenderResult r = app::render(q);
+  EXPECT_EQ(r.report.tracer, "general");
+  EXPECT_EQ(r.report.stats.failures(), 0);
+  // The flux at the telescope is the camera's times (r_cam / D)^2, in janskys: Sgr A*'s order (2.4 Jy measured).
+  const SourceScale s = SourceScale::sgr_a();
+  const double d = s.distance_pc * cgs::parsec / s.gravitational_radius_cm();
+  ASSERT_TRUE(r.report.flux_jy && r.report.flux);
+  EXPECT_NEAR(*r.report.flux_jy, *r.report.flux * (1000.0 / d) * (1000.0 / d) / 1e-23, 1e-12 * *r.report.flux_jy);
+  EXPECT_GT(*r.report.flux_jy, 1.2);
+  EXPECT_LT(*r.report.flux_jy, 4.8);
+  // A pixel: 40 M over 15 pitches at the camera, 4.84 microarcseconds an M at Sgr A*'s distance.
+  EXPECT_NEAR(*r.report.microarcseconds_per_pixel, 40.0 / 15.0 * s.microarcseconds_per_m(), 1e-9);
+  EXPECT_EQ(r.image.metadata.at("medium"), "riaf");
+  EXPECT_EQ(r.image.metadata.at("source"), "sgr-a");
+  EXPECT_EQ(std::stod(r.image.metadata.at("accretion_rate")), 1e-8);
+  EXPECT_EQ(std::stod(r.image.metadata.at("frequency_ghz")), 230.0);
+  EXPECT_EQ(std::stod(r.image.metadata.at("flux_jy")), *r.report.flux_jy);
+  // Ten times the accretion rate: denser, hotter in field, brighter.
+  app::RenderRequest more = q;
+  more.accretion_rate = 1e-7;
+  EXPECT_GT(*app::render(more).report.flux_jy, 3.0 * *r.report.flux_jy);
+}
+
+TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
+  app::RenderRequest schwarzschild = riaf_request();
+  schwarzschild.metric.name = "schwarzschild";
+  app::RenderRequest ks = riaf_request();
+  ks.metric.chart = "ks";
+  app::RenderRequest mass = riaf_request();
+  mass.metric.mass = 2.0;
+  app::RenderRequest near = riaf_request();
+  near.camera.r = 50.0;
+  app::RenderRequest source = riaf_request();
+  source.source = "cyg-x1";
+  app::RenderRequest rate = riaf_request();
+  rate.accretion_rate = 0.0;
+  app::RenderRequest frequency = riaf_request();
+  frequency.frequency_ghz = -230.0;
+  app::RenderRequest mino = riaf_request();
+  mino.tracer = "kerr-mino";
+  const std::vector<Refused> cases = {
+      {schwarzschild, "--scene riaf flows around a Kerr hole in Boyer-Lindquist coordinates"},
+      {ks, "--scene riaf flows around a Kerr hole in Boyer-Lindquist coordinates"},
+      {mass, "--scene riaf takes the hole's mass from --source"},
+      {near, "use --camera-r 100 or more (got 50)"},
+      {source, "unknown --source 'cyg-x1'; choose m87 or sgr-a"},
+      {rate, "--accretion-rate must lie in (0, 1e3]"},
+      {frequency, "--frequency must lie in (0, 1e7] GHz"},
+      {mino, "--tracer kerr-mino cannot draw --scene riaf"},
+  };
+  for (const Refused& c : cases) expect_refused(c.says, [&] { (void)app::check_request(c.q); });
+  const std::vector<std::pair<std::map<std::string, std::string>, std::string>> refused = {
+      {{{"source", "m87"}}, "--source applies only with --scene riaf"},
+      {{{"scene", "accretion"}, {"frequency", "86"}}, "--frequency applies only with --scene riaf"},
+  };
+  for (const auto& [given, says] : refused)
+    expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
 }

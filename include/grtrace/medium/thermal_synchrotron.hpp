@@ -13,18 +13,17 @@
 //          within 2.3 % of the ultrarelativistic emissivity (the synchrotron function F(x) integrated over the
 //          distribution) for Theta_e >= 3 and 1 <= X <= 1e4 (tests/medium_riaf_test.cpp measures it).
 //          alpha_nu = j_nu / B_nu(T_e) (Kirchhoff's law: the plasma is thermal), B_nu the Planck function.
-//          K_2 comes from a table of ln K_2(1 / Theta) on a uniform grid of ln Theta, read by 4-point Lagrange
-//          interpolation (relative error below 1e-9 against std::cyl_bessel_k): the library's Bessel function costs
-//          about 0.4 us a call, and the transfer asks for it at every stage of every step.
+//          K_2 comes from a table of ln K_2(1 / Theta) on a uniform grid of ln Theta (core/uniform_table.hpp;
+//          relative error below 1e-9 against std::cyl_bessel_k): the library's Bessel function costs about 0.4 us
+//          a call, the table 70 ns, and the transfer asks for it at every stage of every step.
 // Assumes: Theta_e >= 0.01 (colder electrons emit nothing here: the fit is made for relativistic ones, and at
 //          230 GHz their emission is below exp(-40) of the warm gas's); nu, n_e, B >= 0.
 #pragma once
 
 #include "grtrace/core/physical_units.hpp"
+#include "grtrace/core/uniform_table.hpp"
 #include "grtrace/medium/emitting_medium.hpp"
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -32,36 +31,24 @@ namespace grtrace {
 
 namespace synchrotron_detail {
 
-/// ln K_2(1 / Theta) on ln Theta in [ln 0.01, ln 1e3]; beyond 1e3, K_2(x) = 2 / x^2 - 1 / 2 (x = 1 / Theta: its
-/// next term is of order x^2 ln x, below 1e-12 relative there).
+/// ln K_2(1 / Theta) on ln Theta in [ln 0.01, ln 1e3] (4097 nodes); beyond 1e3, K_2(x) = 2 / x^2 - 1 / 2 (x = 1 /
+/// Theta: its next term is of order x^2 ln x, below 1e-12 relative there).
 class BesselK2Table {
  public:
-  static constexpr int nodes = 4097;
   static constexpr double theta_min = 0.01, theta_max = 1e3;
 
-  BesselK2Table() {
-    for (int i = 0; i < nodes; ++i) log_k2_[static_cast<std::size_t>(i)] = std::log(std::cyl_bessel_k(2.0, 1.0 / theta_at(i)));
-  }
+  BesselK2Table()
+      : log_k2_(std::log(theta_min), std::log(theta_max), 4097,
+                [](double s) { return std::log(std::cyl_bessel_k(2.0, std::exp(-s))); }) {}
 
   /// K_2(1 / theta) for theta in [theta_min, inf).
   double operator()(double theta) const {
     if (theta >= theta_max) return 2.0 * theta * theta - 0.5;
-    const double s = (std::log(theta) - log_min()) / step();
-    const int i = std::clamp(static_cast<int>(s) - 1, 0, nodes - 4);
-    const double t = s - i;  // in [1, 2) inside the grid: the middle interval of the four nodes
-    const double* f = &log_k2_[static_cast<std::size_t>(i)];
-    // Lagrange's cubic through nodes 0, 1, 2, 3 at t.
-    const double v = -f[0] * (t - 1.0) * (t - 2.0) * (t - 3.0) / 6.0 + f[1] * t * (t - 2.0) * (t - 3.0) / 2.0 -
-                     f[2] * t * (t - 1.0) * (t - 3.0) / 2.0 + f[3] * t * (t - 1.0) * (t - 2.0) / 6.0;
-    return std::exp(v);
+    return std::exp(log_k2_(std::log(theta)));
   }
 
  private:
-  static double log_min() { return std::log(theta_min); }
-  static double step() { return (std::log(theta_max) - std::log(theta_min)) / (nodes - 1); }
-  static double theta_at(int i) { return std::exp(log_min() + i * step()); }
-
-  std::array<double, nodes> log_k2_{};
+  UniformTable log_k2_;
 };
 
 inline const BesselK2Table& bessel_k2_table() {

@@ -90,7 +90,7 @@ struct MethodRequest {
 /// seed report's main frame).
 struct RenderRequest {
   MetricSpec metric;                 ///< metric/named_metrics.hpp
-  std::string scene = "checker";     ///< checker | sky | redshift | disk (scene/standard_scenes.hpp) | accretion
+  std::string scene = "checker";  ///< checker | sky | redshift | disk (scene/standard_scenes.hpp) | accretion | riaf
   int checker_squares = 18;          ///< checker: squares along theta on sky and horizon
   std::string sky_texture;           ///< sky and disk: an equirectangular EXR (R, G, B) replacing the stars
   std::optional<double> disk_inner;  ///< disk: inner edge; nothing: 6 M, or for kerr the ISCO of the disk's sense
@@ -102,6 +102,14 @@ struct RenderRequest {
   /// (general). Its channels: intensity (at nu_obs = 1, geometric units), optical_depth; R, G, B a picture of it.
   std::string accretion_gas = "free-fall";
   double accretion_power = 2.0;
+  /// riaf: the hot accretion flow of M87* or Sgr A* (medium/riaf.hpp) around a Kerr hole (Boyer-Lindquist chart),
+  /// thermal synchrotron light observed at `frequency_ghz`, in physical units: the
+  /// source's mass and distance (core/physical_units.hpp) give the intensity in cgs, the flux in janskys and the
+  /// pixel in microarcseconds; drawn with the default method, every pixel integrated, on the CPU, from a camera
+  /// at least 100 M away (angles scale as seen from afar).
+  std::string source = "m87";                 ///< m87 | sgr-a (SourceScale and RiafParameters presets)
+  std::optional<double> accretion_rate;       ///< solar masses a year; nothing: the source's (RiafParameters)
+  double frequency_ghz = 230.0;               ///< the observed frequency
   CameraRequest camera;
   MethodRequest method;
   double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
@@ -175,6 +183,8 @@ struct RenderReport {
   /// An emitting medium's frame: the intensity integrated over the frame's solid angle (the sum of each pixel's
   /// intensity times its solid angle seen by the camera), in the intensity's units times steradians.
   std::optional<double> flux;
+  /// A medium in physical units (riaf): the flux at the telescope in janskys and a pixel's width there.
+  std::optional<double> flux_jy, microarcseconds_per_pixel;
 };
 
 /// One entry of a report as the JSON line and the Python dict give it.
@@ -370,7 +380,11 @@ inline constexpr std::array<std::string_view, 5> kTracerNames = {"auto", "genera
 inline constexpr std::array<std::string_view, 3> kDeviceNames = {"auto", "cpu", "cuda"};
 
 /// The scenes of emitting media (RenderRequest::accretion_gas), beside the surfaces' (kStandardSceneNames).
-inline constexpr std::array<std::string_view, 1> kMediumSceneNames = {"accretion"};
+inline constexpr std::array<std::string_view, 2> kMediumSceneNames = {"accretion", "riaf"};
+/// The sources --scene riaf offers (RenderRequest::source).
+inline constexpr std::array<std::string_view, 2> kRiafSourceNames = {"m87", "sgr-a"};
+/// The least camera radius of a medium in physical units: its angles are those seen from afar (to O(size / r)).
+inline constexpr double kMinPhysicalCameraRadius = 100.0;
 bool is_medium_scene(std::string_view scene);
 /// Every scene a request can name: the standard scenes, then the media.
 std::vector<std::string> scene_names();

@@ -139,13 +139,15 @@ Real integrate(const std::function<Real(Real)>& f, Real a, Real b, Real tol, int
 /// the horizon guard at r_g: E_cam^3 times the integral of j / E_fluid^2 dr / |k^r| over the ray's legs (inwards
 /// from the camera, then, past the turning point, outwards), E_fluid = 1 / sqrt(f) at rest and
 /// (1 +- |k^r| sqrt(2 / r)) / f in free fall (+ on the inward leg of the backward ray), |k^r| = sqrt(1 - b^2 f / r^2).
-Real reference_intensity(SphericalAccretion::Gas gas, Real b, Real r_o, Real r_out, Real r_g, Real r_sky) {
-  const Real e_cam = 1 / std::sqrt(1 - 2 / r_o);
+/// moment 1: the intensity weighted by g = E_cam / E_fluid (the emission-weighted redshift's numerator).
+Real reference_intensity(SphericalAccretion::Gas gas, Real b, Real r_o, Real r_out, Real r_g, Real r_sky,
+                         int moment = 0) {
+  const Real e_cam = 1 / std::sqrt(1 - 2 / r_o), e_cam_power = std::pow(e_cam, static_cast<Real>(3 + moment));
   auto leg = [&](Real r, Real sign) {
     const Real f = 1 - 2 / r, kr = std::sqrt(std::max<Real>(0, 1 - b * b * f / (r * r)));
     const Real e_fluid = gas == SphericalAccretion::Gas::at_rest ? 1 / std::sqrt(f)
                                                                  : (1 + sign * kr * std::sqrt(2 / r)) / f;
-    return std::pow(r, -2.0L) / (e_fluid * e_fluid);
+    return std::pow(r, -2.0L) / std::pow(e_fluid, static_cast<Real>(2 + moment));
   };
   auto kr_of = [&](Real r) { return std::sqrt(std::max<Real>(0, 1 - b * b * (1 - 2 / r) / (r * r))); };
   const Real top = std::min(r_o, r_out), top_out = std::min(r_sky, r_out), tol = 1e-16L;
@@ -163,9 +165,9 @@ Real reference_intensity(SphericalAccretion::Gas gas, Real b, Real r_o, Real r_o
         return leg(rr, sign) * 2 / kr_over_s;
       }, 0, std::sqrt(upto - r), tol);
     };
-    return e_cam * e_cam * e_cam * (through(+1, top) + through(-1, top_out));
+    return e_cam_power * (through(+1, top) + through(-1, top_out));
   }
-  return e_cam * e_cam * e_cam * integrate([&](Real rr) { return leg(rr, +1) / kr_of(rr); }, r_g, top, tol);
+  return e_cam_power * integrate([&](Real rr) { return leg(rr, +1) / kr_of(rr); }, r_g, top, tol);
 }
 
 TEST(Emission, SphericalAccretionMatchesTheQuadratureOfTheExactRay) {
@@ -190,6 +192,14 @@ TEST(Emission, SphericalAccretionMatchesTheQuadratureOfTheExactRay) {
       const double ref = static_cast<double>(reference_intensity(gas, b, r_o, r_out, r_g, 2000.0));
       EXPECT_NEAR(t.intensity, ref, 1e-6 * ref);
       EXPECT_EQ(t.optical_depth, 0.0);
+      // The emission-weighted redshift (above 1 where gas at rest beyond the camera's radius dominates); none
+      // where the ray meets no gas.
+      const double weighted = static_cast<double>(reference_intensity(gas, b, r_o, r_out, r_g, 2000.0, 1));
+      if (ref > 0.0) {
+        EXPECT_NEAR(t.redshift, weighted / ref, 1e-6 * weighted / ref);
+      } else {
+        EXPECT_TRUE(std::isnan(t.redshift));
+      }
     }
   }
 }

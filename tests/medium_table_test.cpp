@@ -45,6 +45,7 @@ struct Difference {
   double worst = 0.0;          ///< the largest |I_table - I_general| / I_general over the frame
   double worst_peak = 0.0;     ///< the largest |I_table - I_general| over the frame's brightest I_general
   double interpolation = 0.0;  ///< the largest |I_table - I_node| / I_node, I_node the table's own ray at the pixel
+  double redshift = 0.0;       ///< the largest |g_table - g_general| of the emission-weighted redshifts
   long status_mismatches = 0, pixels = 0;
 };
 
@@ -61,6 +62,7 @@ Difference compare(const Camera& camera, const A& table, const B& general) {
       peak = std::max(peak, g.intensity);
       worst_absolute = std::max(worst_absolute, std::abs(t.intensity - g.intensity));
       if (g.intensity > 0.0) d.worst = std::max(d.worst, std::abs(t.intensity - g.intensity) / g.intensity);
+      if (g.intensity > 0.0) d.redshift = std::max(d.redshift, std::abs(t.redshift - g.redshift));
       if (table.table() != nullptr && camera.tetrad().e[0][1] == 0.0) {  // a static camera: the node is the pixel
         const double node = table.table()->trace_node(planar_geometry(table.metric(), y0).delta).intensity;
         if (node > 0.0) d.interpolation = std::max(d.interpolation, std::abs(t.intensity - node) / node);
@@ -91,6 +93,7 @@ TEST(MediumTable, SphericalAccretionFromOneTableIsTheGeneralTracersFrame) {
       EXPECT_EQ(d.status_mismatches, 0);
       EXPECT_LT(d.worst, 1e-8);
       EXPECT_LT(d.interpolation, 1e-9);
+      EXPECT_LT(d.redshift, 1e-8);  // a moving camera's too: every g along the ray scaled by its Doppler factor
       EXPECT_EQ(table.fallback_rays(), 0);
     }
   }

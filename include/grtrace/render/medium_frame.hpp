@@ -7,7 +7,8 @@
 // Returns: a Frame whose image holds
 //            intensity       I_nu at nu_obs (the medium's units times a length: geometric, per the tracer's frequency)
 //            optical_depth   tau along the ray
-//            status, steps   as every frame's (object: 0 escaped, 1 captured; redshift and sky direction NaN)
+//            redshift        the emission-weighted g = nu_obs / nu_fluid of the light (NaN where there is none)
+//            status, steps   as every frame's (object: 0 escaped, 1 captured; sky direction NaN)
 //            R, G, B         the intensity over the frame's brightest pixel, raised to `exponent` (1: linear, as
 //                            the EHT shows images; 1/2 lifts the faint gas), in a black-red-yellow-white map
 //          and in its metadata the peak intensity the picture is scaled to ("intensity_peak").
@@ -93,6 +94,7 @@ Frame render_medium_frame(const Camera& camera, const Tracer& tracer, const Rend
         s.status = m.status;
         s.object = m.status == RayStatus::captured ? 1 : 0;
         s.steps = m.steps;
+        s.redshift = static_cast<float>(m.redshift);
         return s;
       },
       options);

@@ -10,6 +10,8 @@
 // Returns: trace_emission: the ray's TraceResult (status, final state: as the geodesic tracer's) with
 //          intensity   I_nu(nu_obs) at the camera = integral of g^3 j_nu(nu_obs / g) e^-tau dl
 //          optical_depth  tau = integral of alpha_nu(nu_obs / g) dl, from the camera to where the ray ended
+//          redshift    the emission-weighted g: integral of g dI over I (the shift of the light the camera sees, as
+//                      a surface's g is; NaN where I = 0)
 //          (the invariant intensity is intensity / nu_obs^3; with alpha = 0 it is conserved through empty space).
 // Method:  along the backward ray, g = nu_obs / nu_fluid = E_cam / E_fluid with E_fluid = |g(k, u)| (u the fluid's
 //          velocity), and the proper length the photon crosses in the fluid's frame is dl = E_fluid d lambda
@@ -45,13 +47,14 @@
 
 namespace grtrace {
 
-/// A geodesic system (trace/geodesic_system.hpp) of ten variables: the ray's (x, k) and the camera's intensity and
-/// optical depth (see the top of this file). Holds the metric and the medium by reference: they outlive the trace.
+/// A geodesic system (trace/geodesic_system.hpp) of eleven variables: the ray's (x, k), the camera's intensity, the
+/// optical depth and the intensity weighted by g (see the top of this file). Holds the metric and the medium by
+/// reference: they outlive the trace.
 template <MetricPolicy Metric, class Medium>
 struct EmissionSystem {
-  static constexpr int dimension = 10;
-  using State = Vector<10>;
-  static constexpr int kIntensity = 8, kOpticalDepth = 9;  ///< the slots of I_nu and tau in the state
+  static constexpr int dimension = 11;
+  using State = Vector<11>;
+  static constexpr int kIntensity = 8, kOpticalDepth = 9, kRedshiftWeight = 10;  ///< I_nu, tau, integral g dI
 
   MetricGeodesicSystem<Metric> ray;
   const Medium* medium;
@@ -78,7 +81,7 @@ struct EmissionSystem {
     const GeodesicState y = z.template head<8>();
     State dz;
     dz.template head<8>() = ray(y);
-    dz[kIntensity] = dz[kOpticalDepth] = 0.0;
+    dz[kIntensity] = dz[kOpticalDepth] = dz[kRedshiftWeight] = 0.0;
     const Vec4 x = y.head<4>(), k = y.tail<4>();
     if (boundary_side != nullptr) {  // the side of the boundary decides (no cut within a step: it is smooth)
       if (*boundary_side > 0) return dz;
@@ -91,6 +94,7 @@ struct EmissionSystem {
     const MediumCoefficients c = medium_coefficients(*medium, *ray.metric, x, k, u, frequency / g);
     dz[kIntensity] = g * g * g * c.emission * std::exp(-z[kOpticalDepth]) * e_fluid;
     dz[kOpticalDepth] = c.absorption * e_fluid;
+    dz[kRedshiftWeight] = g * dz[kIntensity];
     if (c.absorption > 0.0) dz *= 1.0 / (1.0 + c.absorption * ray.metric->radius(x));  // sigma (top of this file)
     return dz;
   }
@@ -197,6 +201,7 @@ struct EmissionResult {
   TraceResult trace;           ///< status hit where the medium became opaque; lambda is the parameter s
   double intensity = 0.0;      ///< I_nu at the camera, at nu_obs
   double optical_depth = 0.0;  ///< tau from the camera to the ray's end
+  double redshift = std::numeric_limits<double>::quiet_NaN();  ///< emission-weighted g (NaN: no light)
   bool opaque = false;         ///< the transmission fell below min_transmission: the ray ended in the medium
 };
 
@@ -258,6 +263,7 @@ EmissionResult trace_emission(const Metric& metric, const Medium& medium, const 
       observer.theta_end == 1.0 ? integ.state() : integ.step_from_previous(system, observer.theta_end);
   out.intensity = end[System::kIntensity];
   out.optical_depth = end[System::kOpticalDepth];
+  if (out.intensity > 0.0) out.redshift = end[System::kRedshiftWeight] / out.intensity;
   return out;
 }
 

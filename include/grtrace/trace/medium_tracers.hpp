@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -56,6 +57,7 @@ struct MediumSample {
   double intensity = 0.0;      ///< I_nu at the camera, at nu_obs
   double optical_depth = 0.0;  ///< tau along the ray, from the camera to its end
   int steps = 0;               ///< accepted steps (the table tracer: the nearest table ray's)
+  double redshift = std::numeric_limits<double>::quiet_NaN();  ///< emission-weighted g = nu_obs / nu_fluid
 };
 
 /// Every pixel's ray integrated with its light (trace_emission), seen by the camera's 4-velocity.
@@ -78,7 +80,7 @@ class GeneralMediumTracer {
   MediumSample trace(const GeodesicState& y0) const {
     const EmissionResult r =
         trace_emission_seen_by<T>(metric_, medium_, settings_, y0, velocity_, frequency_, controller_);
-    return {r.trace.status, r.intensity, r.optical_depth, r.trace.accepted};
+    return {r.trace.status, r.intensity, r.optical_depth, r.trace.accepted, r.redshift};
   }
 
   const Metric& metric() const { return metric_; }
@@ -160,6 +162,7 @@ class SphericalMediumTable {
     const CriticalAngleGrid::Stencil st = side.grid.stencil(std::abs(delta - delta_c_));
     const RayStatus expected = escaped ? RayStatus::escaped : RayStatus::captured;
     MediumSample s{expected, 0.0, 0.0, 0};
+    double weight = 0.0;  // I g, interpolated as I is (a product of smooth functions), then divided by I
     // Near the medium's edge: no interpolation there (max_steps: not a value). The light grows as the square root
     // of the chord inside the edge, sqrt(b_e - b), which a polynomial through nodes within a few spacings of it
     // misreads (SphericalAccretion cut at 8 M: 17 % at a pixel whose stencil lay just inside the edge).
@@ -173,7 +176,9 @@ class SphericalMediumTable {
       if (v.status != expected) s.status = v.status;  // a failed table ray poisons its neighbourhood
       s.intensity += w * v.intensity;
       s.optical_depth += w * v.optical_depth;
+      if (v.intensity > 0.0) weight += w * v.intensity * v.redshift;
     }
+    if (s.intensity > 0.0) s.redshift = weight / s.intensity;
     s.steps = side.values[static_cast<std::size_t>(st.nearest)].steps;
     return s;
   }
@@ -188,7 +193,7 @@ class SphericalMediumTable {
                  std::cos(delta) / std::sqrt(radial_scale_squared(metric_, r)), 0.0, std::sin(delta) / r);
     const EmissionResult e =
         trace_emission<T>(metric_, medium_, settings_, make_state(x, k), 1.0, frequency_, controller_);
-    return {e.trace.status, e.intensity, e.optical_depth, e.trace.accepted};
+    return {e.trace.status, e.intensity, e.optical_depth, e.trace.accepted, e.redshift};
   }
 
  private:
@@ -275,6 +280,7 @@ class SphericalMediumTracer {
       const double rho =
           std::abs(k.dot(camera_covelocity_)) / (std::sqrt(camera_frame_.lapse_squared) * std::abs(k[0]));
       s.intensity *= rho * rho * rho;
+      s.redshift *= rho;  // every g along the ray scales by rho, and every weight by rho^3
     }
     return s;
   }

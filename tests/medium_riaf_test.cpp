@@ -10,11 +10,13 @@
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/medium_frame.hpp"
+#include "grtrace/render/scale_bar.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -224,6 +226,26 @@ TEST(Riaf, M87AndSgrAShineAt230GHzWithTheFluxTheEhtMeasuresWithinAFactorOfTwo) {
     EXPECT_GT(jy, c.measured / 2.0) << c.p.mass_solar;
     EXPECT_LT(jy, c.measured * 2.0) << c.p.mass_solar;
   }
+}
+
+TEST(ScaleBar, ARoundLengthAtMostAQuarterOfTheWidth) {
+  EXPECT_EQ(round_scale_length(38.4), 20.0);
+  EXPECT_EQ(round_scale_length(50.0), 50.0);
+  EXPECT_EQ(round_scale_length(0.99), 0.5);
+  Image image(192, 96);
+  std::fill(image.channel("redshift").begin(), image.channel("redshift").end(), 0.5f);
+  const double length = draw_scale_bar(image, 0.8);  // a quarter: 38.4 uas
+  EXPECT_EQ(length, 20.0);
+  EXPECT_EQ(image.metadata.at("scale_bar_microarcseconds"), "20");
+  // The bar: 25 white pixels (20 / 0.8) on the row above the bottom margin, in R, G and B; the data untouched.
+  const int row = 96 - 3 - 1;
+  int white = 0;
+  for (int x = 0; x < 192; ++x) white += image.channel("G")[image.index(x, row)] == 1.0f ? 1 : 0;
+  EXPECT_EQ(white, 25);
+  EXPECT_EQ(image.channel("redshift")[image.index(10, row)], 0.5f);
+  Image small(20, 12);
+  EXPECT_EQ(draw_scale_bar(small, 0.8), 0.0);
+  EXPECT_EQ(draw_scale_bar(image, std::nan("")), 0.0);
 }
 
 }  // namespace

@@ -26,6 +26,9 @@
 namespace grtrace {
 struct SourceScale;
 struct RiafParameters;
+struct KerrMetric;
+template <MetricPolicy Metric>
+class PolishDoughnut;
 }  // namespace grtrace
 
 namespace grtrace::app {
@@ -62,6 +65,8 @@ std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked
 /// The scale and the flow of --scene riaf (the source's presets, the request's accretion rate; medium/riaf.hpp).
 SourceScale source_scale(const RenderRequest& q);
 RiafParameters riaf_parameters(const RenderRequest& q);
+/// The torus of --scene torus (std::invalid_argument where none exists for its radii).
+PolishDoughnut<KerrMetric> polish_doughnut(const RenderRequest& q);
 
 /// The frame renderer of an emitting medium's scene (is_medium_scene; medium_frames.cpp, the default method only).
 std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked);

@@ -7,7 +7,9 @@
 #include "grtrace/core/number_text.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
+#include "grtrace/medium/polish_doughnut.hpp"
 #include "grtrace/medium/riaf.hpp"
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/metric/static_spherical.hpp"
@@ -53,6 +55,12 @@ RiafParameters riaf_parameters(const RenderRequest& q) {
   if (q.accretion_rate) p.accretion_rate = *q.accretion_rate;
   p.outer = q.sky_radius;  // the gas fills the sky sphere (at 400 M its 230 GHz light is below 1e-30 of the peak)
   return p;
+}
+
+PolishDoughnut<KerrMetric> polish_doughnut(const RenderRequest& q) {
+  const KerrMetric metric{q.metric.mass, q.metric.spin};
+  return PolishDoughnut<KerrMetric>(metric, q.torus_inner * q.metric.mass, q.torus_peak * q.metric.mass, 3.0, 1.0,
+                                    q.torus_opacity);
 }
 
 bool is_medium_scene(std::string_view scene) {
@@ -208,11 +216,12 @@ void check_tracer(const RenderRequest& q) {
 /// What an emitting medium's scene needs (RenderRequest::accretion_gas): a static spherically symmetric hole, the
 /// default method (the one the application library compiles media with), a tracer that draws media, the CPU.
 void check_medium_request(const RenderRequest& q) {
-  if (q.scene == "riaf") {
+  if (q.scene == "riaf" || q.scene == "torus") {
     if (q.metric.name != "kerr" || q.metric.chart != "bl")
-      throw RequestError("--scene riaf flows around a Kerr hole in Boyer-Lindquist coordinates: use --metric kerr "
-                         "(--spin 0 for Schwarzschild) and leave --chart out");
-    if (q.metric.mass != 1.0)
+      throw RequestError("--scene " + q.scene +
+                         " flows around a Kerr hole in Boyer-Lindquist coordinates: use --metric kerr (--spin 0 for "
+                         "Schwarzschild) and leave --chart out");
+    if (q.scene == "riaf" && q.metric.mass != 1.0)
       throw RequestError("--scene riaf takes the hole's mass from --source (lengths in units of it): leave --mass out");
   } else if (!planar_tracer_metric(q.metric)) {
     throw RequestError("--scene " + q.scene +
@@ -224,9 +233,9 @@ void check_medium_request(const RenderRequest& q) {
     throw RequestError("--scene " + q.scene + " is drawn with the default method (--tableau " +
                        std::string(d.tableau) + " --control " + std::string(d.control) +
                        "); leave --tableau and --control out");
-  if (q.scene == "riaf" && q.tracer != "auto" && q.tracer != "general")
-    throw RequestError("--tracer " + q.tracer + " cannot draw --scene riaf; use auto or general (every pixel "
-                       "integrated)");
+  if ((q.scene == "riaf" || q.scene == "torus") && q.tracer != "auto" && q.tracer != "general")
+    throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene +
+                       "; use auto or general (every pixel integrated)");
   if (q.tracer != "auto" && q.tracer != "planar" && q.tracer != "general")
     throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene +
                        "; use auto or planar (one table of rays) or general (every pixel integrated)");
@@ -246,6 +255,18 @@ void check_medium_request(const RenderRequest& q) {
                        shortest_number_text(*q.accretion_rate));
   if (!(q.frequency_ghz > 0.0 && q.frequency_ghz <= 1e7))
     throw RequestError("--frequency must lie in (0, 1e7] GHz, got " + shortest_number_text(q.frequency_ghz));
+  if (!(q.torus_opacity >= 0.0 && q.torus_opacity <= 1e6))
+    throw RequestError("--torus-opacity must lie in [0, 1e6], got " + shortest_number_text(q.torus_opacity));
+  if (q.scene == "torus") {
+    try {
+      (void)polish_doughnut(q);
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      throw RequestError("--torus-inner " + shortest_number_text(q.torus_inner) + " --torus-peak " +
+                         shortest_number_text(q.torus_peak) + ": " + what.substr(what.find(':') + 2) +
+                         " (radii in M on the equator)");
+    }
+  }
   if (q.scene == "riaf" && !(q.camera.r >= kMinPhysicalCameraRadius))
     throw RequestError("--scene riaf gives angles and fluxes as a distant telescope sees them: use --camera-r " +
                        exact_number(kMinPhysicalCameraRadius) + " or more (got " + shortest_number_text(q.camera.r) +
@@ -598,6 +619,15 @@ void describe_request(Image& image, const CheckedRequest& checked) {
     m["medium"] = std::string(SphericalAccretion::kind);
     m["accretion_gas"] = q.accretion_gas;
     m["accretion_power"] = exact_number(q.accretion_power);
+  }
+  if (q.scene == "torus") {
+    const PolishDoughnut<KerrMetric> torus = polish_doughnut(q);
+    m["medium"] = std::string(PolishDoughnut<KerrMetric>::kind);
+    m["torus_inner"] = exact_number(q.torus_inner);
+    m["torus_peak"] = exact_number(q.torus_peak);
+    m["torus_outer"] = exact_number(torus.outer_radius() / q.metric.mass);
+    m["torus_opacity"] = exact_number(q.torus_opacity);
+    m["torus_polytropic_index"] = "3";
   }
   if (q.scene == "riaf") {
     const RiafParameters p = riaf_parameters(q);

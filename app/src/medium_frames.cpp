@@ -3,10 +3,13 @@
 //   --scene accretion: SphericalAccretion (medium/spherical_accretion.hpp) in the named metrics that are static,
 //     spherically symmetric and have a horizon (check_request refuses the others): one table of rays
 //     (SphericalMediumTracer: tracer auto or planar) or every pixel integrated (GeneralMediumTracer: general);
+//   --scene torus: PolishDoughnut (medium/polish_doughnut.hpp) around Kerr in Boyer-Lindquist coordinates, every
+//     pixel integrated, geometric units;
 //   --scene riaf: RiafFlow (medium/riaf.hpp) around Kerr in Boyer-Lindquist coordinates, every pixel integrated,
 //     its intensity in cgs, its flux in janskys and its pixel in microarcseconds at the source's distance.
 #include "frame_tracers.hpp"
 #include "grtrace/core/physical_units.hpp"
+#include "grtrace/medium/polish_doughnut.hpp"
 #include "grtrace/medium/riaf.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/kerr.hpp"
@@ -97,6 +100,13 @@ SphericalAccretion accretion_of(const CheckedRequest& checked) {
 
 std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked) {
   const RenderRequest& q = checked.request;
+  if (q.scene == "torus") {  // Kerr in Boyer-Lindquist coordinates (check_request)
+    const KerrMetric metric{q.metric.mass, q.metric.spin};
+    return own_medium_tracer(checked, [&] {
+      return GeneralMediumTracer<KerrMetric, Fehlberg78, IController, PolishDoughnut<KerrMetric>>(
+          metric, polish_doughnut(q), checked.settings, checked.camera.tetrad().e[0], 1.0);
+    });
+  }
   if (q.scene == "riaf") {  // Kerr in Boyer-Lindquist coordinates (check_request)
     const KerrMetric metric{q.metric.mass, q.metric.spin};
     const RiafParameters p = riaf_parameters(q);

@@ -29,7 +29,8 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"scene", "checker",
                "checker | sky | redshift | disk | accretion (glowing gas falling onto a static spherically symmetric "
                "hole: schwarzschild, rn or sds; channels intensity and optical_depth) | riaf (the hot flow of M87* or "
-               "Sgr A* around --metric kerr, thermal synchrotron in physical units: intensity in cgs, flux in Jy)"});
+               "Sgr A* around --metric kerr, thermal synchrotron in physical units: intensity in cgs, flux in Jy) | "
+               "torus (a thick torus of constant angular momentum around --metric kerr)"});
   std::string metrics;
   for_each_named_metric([&]<class E>() { metrics += (metrics.empty() ? "" : " | ") + std::string(E::help); });
   o.push_back({"metric", kMetricNames[0], keep(metrics)});
@@ -101,6 +102,11 @@ std::vector<OptionInfo> make_render_options() {
                "riaf scene: solar masses a year reaching the hole, in (0, 1e3] (default: 5e-4 for m87, 1e-8 for "
                "sgr-a, near the flux the EHT measures)"});
   o.push_back({"frequency", "230", "riaf scene: the observed frequency in GHz, in (0, 1e7]"});
+  o.push_back({"torus-inner", "6", "torus scene: the inner edge on the equator (M)"});
+  o.push_back({"torus-peak", "10",
+               "torus scene: the pressure maximum on the equator (M), beyond --torus-inner: its angular momentum is "
+               "the circular orbit's there"});
+  o.push_back({"torus-opacity", "0", "torus scene: alpha / j (0: optically thin; 1e3: nearly a surface), in [0, 1e6]"});
   o.push_back({"threads", "0", "OpenMP threads (0 = all cores)"});
   o.push_back({"error-map", "",
                "add an \"error\" channel: the angular error (rad) of each escaped pixel against the exact "
@@ -224,6 +230,8 @@ void check_scene_options(const OptionSource& s, const std::string& scene) {
     refuse_unless(s, medium_option, scene == "accretion", "--scene accretion");
   for (const char* riaf_option : {"source", "accretion-rate", "frequency"})
     refuse_unless(s, riaf_option, scene == "riaf", "--scene riaf");
+  for (const char* torus_option : {"torus-inner", "torus-peak", "torus-opacity"})
+    refuse_unless(s, torus_option, scene == "torus", "--scene torus");
   // A medium's frame shows its light, not where escaped rays point.
   refuse_unless(s, "angle-correction", !is_medium_scene(scene), "a scene that shows the sky (not a medium's)");
 }
@@ -262,6 +270,9 @@ RenderRequest read_render_request(const OptionSource& s) {
   q.source = text_of(s, "source");
   if (s.given("accretion-rate")) q.accretion_rate = option_number(s, "accretion-rate");
   q.frequency_ghz = option_number(s, "frequency");
+  q.torus_inner = option_number(s, "torus-inner");
+  q.torus_peak = option_number(s, "torus-peak");
+  q.torus_opacity = option_number(s, "torus-opacity");
   q.error_map = s.given("error-map");
   q.mirrors = !s.given("no-mirrors");
   q.device = text_of(s, "device");

@@ -23,7 +23,7 @@ def test_lists_are_the_librarys():
     assert [p["name"] for p in kerr["parameters"]] == ["spin"]
     sds = next(m for m in grtrace.metrics() if m["name"] == "sds")
     assert [p["name"] for p in sds["parameters"]] == ["lambda_"]
-    assert grtrace.scenes() == ["checker", "sky", "redshift", "disk", "accretion", "riaf"]
+    assert grtrace.scenes() == ["checker", "sky", "redshift", "disk", "accretion", "riaf", "torus"]
     assert {"tableau": "rkf78", "control": "i"}.items() <= grtrace.methods()[0].items()
     assert len(grtrace.methods()) == 6
     assert grtrace.tracers() == ["auto", "general", "planar", "kerr-mino", "straight-line"]

@@ -138,6 +138,8 @@ BAD = [
     dict(scene="riaf", metric="kerr", camera_r=1000, sky_radius=2000, source="m31"),
     dict(source="sgr-a"),
     dict(scene="riaf", metric="schwarzschild"),
+    dict(scene="torus", metric="kerr", torus_inner=12),
+    dict(torus_opacity=1),
 ]
 
 

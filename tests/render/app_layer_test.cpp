@@ -6,6 +6,8 @@
 // cannot draw, saying what to use instead.
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/app/tool_methods.hpp"
+#include "grtrace/medium/polish_doughnut.hpp"
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/core/physical_units.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/observer/flight_path.hpp"
@@ -496,7 +498,7 @@ TEST(AppLayer, AnAccretionRequestItsTracersCannotDrawIsRefused) {
       {{{"scene", "sky"}, {"accretion-power", "3"}}, "--accretion-power applies only with --scene accretion"},
       {{{"scene", "accretion"}, {"angle-correction", "flat"}}, "--angle-correction applies only with a scene that"},
       {{{"scene", "accretion"}, {"tracer", "general"}, {"table-rays", "64"}}, "--table-rays applies only with"},
-      {{{"scene", "teapot"}}, "choose checker, sky, redshift, disk, accretion or riaf"},
+      {{{"scene", "teapot"}}, "choose checker, sky, redshift, disk, accretion, riaf or torus"},
   };
   for (const auto& [given, says] : refused)
     expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
@@ -587,4 +589,47 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
   };
   for (const auto& [given, says] : refused)
     expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
+}
+
+TEST(AppLayer, ATorusFrameIsTheLibrarysGeneralTracersFrame) {
+  // The tools' torus (Kerr a = 0.9, r_in 6, peak 10, grey) against the library's tracer on the same camera.
+  app::RenderRequest q;
+  q.metric.name = "kerr";
+  q.metric.spin = 0.9;
+  q.scene = "torus";
+  q.torus_opacity = 0.5;
+  q.camera.r = 100.0;
+  q.camera.theta_degrees = 70.0;
+  q.camera.fov_degrees = 36.0;
+  q.camera.width = q.camera.height = 12;
+  const app::RenderResult r = app::render(q);
+  EXPECT_EQ(r.report.tracer, "general");
+  EXPECT_EQ(r.report.stats.failures(), 0);
+  const app::CheckedRequest checked = app::check_request(q);
+  const KerrMetric metric{1.0, 0.9};
+  const PolishDoughnut<KerrMetric> torus(metric, 6.0, 10.0, 3.0, 1.0, 0.5);
+  const GeneralMediumTracer<KerrMetric, Fehlberg78, IController, PolishDoughnut<KerrMetric>> tracer(
+      metric, torus, checked.settings, checked.camera.tetrad().e[0], 1.0);
+  const auto& intensity = r.image.channel("intensity");
+  double lit = 0.0;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) {
+      const MediumSample s = tracer.trace(checked.camera.pixel_state(x, y));
+      EXPECT_EQ(intensity[r.image.index(x, y)], static_cast<float>(s.intensity));
+      lit += s.intensity > 0.0 ? 1.0 : 0.0;
+    }
+  EXPECT_GT(lit, 10.0);  // the torus is in the frame
+  EXPECT_EQ(r.image.metadata.at("medium"), "polish-doughnut");
+  EXPECT_NEAR(std::stod(r.image.metadata.at("torus_outer")), torus.outer_radius(), 1e-9);
+  EXPECT_GT(*r.report.flux, 0.0);
+  // A torus that cannot exist, refused before any work, naming the radii.
+  app::RenderRequest open = q;
+  open.torus_inner = 12.0;
+  expect_refused("--torus-inner 12 --torus-peak 10: need 0 < r_in < r_c", [&] { (void)app::check_request(open); });
+  app::RenderRequest ks = q;
+  ks.metric.chart = "ks";
+  expect_refused("--scene torus flows around a Kerr hole in Boyer-Lindquist coordinates",
+                 [&] { (void)app::check_request(ks); });
+  expect_refused("--torus-opacity applies only with --scene torus",
+                 [&] { (void)app::read_render_request(Texts(std::map<std::string, std::string>{{"torus-opacity", "2"}})); });
 }

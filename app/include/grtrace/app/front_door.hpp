@@ -90,7 +90,8 @@ struct MethodRequest {
 /// seed report's main frame).
 struct RenderRequest {
   MetricSpec metric;                 ///< metric/named_metrics.hpp
-  std::string scene = "checker";  ///< checker | sky | redshift | disk (scene/standard_scenes.hpp) | accretion | riaf
+  /// checker | sky | redshift | disk (scene/standard_scenes.hpp) | accretion | riaf | torus
+  std::string scene = "checker";
   int checker_squares = 18;          ///< checker: squares along theta on sky and horizon
   std::string sky_texture;           ///< sky and disk: an equirectangular EXR (R, G, B) replacing the stars
   std::optional<double> disk_inner;  ///< disk: inner edge; nothing: 6 M, or for kerr the ISCO of the disk's sense
@@ -110,6 +111,12 @@ struct RenderRequest {
   std::string source = "m87";                 ///< m87 | sgr-a (SourceScale and RiafParameters presets)
   std::optional<double> accretion_rate;       ///< solar masses a year; nothing: the source's (RiafParameters)
   double frequency_ghz = 230.0;               ///< the observed frequency
+  /// torus: a Polish doughnut of constant angular momentum around a Kerr hole (medium/polish_doughnut.hpp), its
+  /// inner edge and pressure maximum on the equator, n = 3, j = rho, alpha = opacity rho (0: optically thin);
+  /// geometric units, the default method, every pixel integrated, on the CPU.
+  double torus_inner = 6.0;
+  double torus_peak = 10.0;
+  double torus_opacity = 0.0;
   CameraRequest camera;
   MethodRequest method;
   double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
@@ -380,7 +387,7 @@ inline constexpr std::array<std::string_view, 5> kTracerNames = {"auto", "genera
 inline constexpr std::array<std::string_view, 3> kDeviceNames = {"auto", "cpu", "cuda"};
 
 /// The scenes of emitting media (RenderRequest::accretion_gas), beside the surfaces' (kStandardSceneNames).
-inline constexpr std::array<std::string_view, 2> kMediumSceneNames = {"accretion", "riaf"};
+inline constexpr std::array<std::string_view, 3> kMediumSceneNames = {"accretion", "riaf", "torus"};
 /// The sources --scene riaf offers (RenderRequest::source).
 inline constexpr std::array<std::string_view, 2> kRiafSourceNames = {"m87", "sgr-a"};
 /// The least camera radius of a medium in physical units: its angles are those seen from afar (to O(size / r)).

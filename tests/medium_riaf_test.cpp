@@ -60,8 +60,12 @@ double simpson(const F& f, double a, double b, int n) {
 /// The synchrotron function F(x) = x integral_x^inf K_5/3(t) dt (t = x e^s: smooth in s).
 double synchrotron_function(double x) {
   const double upper = std::log((x + 60.0) / x);
-  return x * simpson([&](double s) { const double t = x * std::exp(s); return std::cyl_bessel_k(5.0 / 3.0, t) * t; },
-                     0.0, upper, 400);
+  return x * simpson(
+                 [&](double s) {
+                   const double t = x * std::exp(s);
+                   return std::cyl_bessel_k(5.0 / 3.0, t) * t;
+                 },
+                 0.0, upper, 400);
 }
 
 /// The ultrarelativistic thermal emissivity from first principles: a Maxwell-Juttner distribution (gamma >> 1:
@@ -90,7 +94,8 @@ TEST(ThermalSynchrotron, TheFitIsTheEmissivityOfTheDistributionWithinTwoAndAHalf
   const double b = 10.0, sin_theta = std::sin(std::numbers::pi / 3.0);
   for (const double theta : {3.0, 10.0, 30.0}) {
     for (const double x : {1.0, 10.0, 100.0, 1e3, 1e4}) {
-      const double nu_c = cgs::electron_charge * b / (2.0 * std::numbers::pi * cgs::electron_mass * cgs::speed_of_light);
+      const double nu_c =
+          cgs::electron_charge * b / (2.0 * std::numbers::pi * cgs::electron_mass * cgs::speed_of_light);
       const double nu = x * (2.0 / 9.0) * nu_c * theta * theta * sin_theta;
       const double fit = thermal_synchrotron(nu, 1e5, theta, b, sin_theta).emission;
       const double exact = emissivity_from_first_principles(nu, 1e5, theta, b, sin_theta);
@@ -188,15 +193,21 @@ TEST(Riaf, ItsAccretionRateIsTheMassFluxThroughTwoMasses) {
     p.thickness = h;
     const RiafFlow<KerrMetric> flow(metric, p);
     const double r_g = p.mass_solar * cgs::solar_gravitational_radius;
-    const double flux_per_steradian = simpson(
-        [&](double theta) { return flow.density(Vec4(0.0, 2.0, theta, 0.0)) * std::sin(theta); }, 1e-9,
-        std::numbers::pi - 1e-9, 20000);
+    const double flux_per_steradian =
+        simpson([&](double theta) { return flow.density(Vec4(0.0, 2.0, theta, 0.0)) * std::sin(theta); }, 1e-9,
+                std::numbers::pi - 1e-9, 20000);
     const double mdot = cgs::proton_mass * p.inflow_speed * cgs::speed_of_light * 2.0 * std::numbers::pi *
                         flux_per_steradian * 4.0 * r_g * r_g;
     const double expected = p.accretion_rate * cgs::solar_mass / cgs::year;
     EXPECT_NEAR(mdot, expected, 1e-6 * expected) << h;
   }
-  EXPECT_THROW(RiafFlow<KerrMetric>(metric, [] { RiafParameters q; q.beta = 0.0; return q; }()), std::invalid_argument);
+  EXPECT_THROW(RiafFlow<KerrMetric>(metric,
+                                    [] {
+                                      RiafParameters q;
+                                      q.beta = 0.0;
+                                      return q;
+                                    }()),
+               std::invalid_argument);
 }
 
 TEST(Riaf, M87AndSgrAShineAt230GHzWithTheFluxTheEhtMeasuresWithinAFactorOfTwo) {

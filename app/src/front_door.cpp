@@ -9,8 +9,8 @@
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/medium/polish_doughnut.hpp"
 #include "grtrace/medium/riaf.hpp"
-#include "grtrace/metric/kerr.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/observer/observers.hpp"
@@ -248,8 +248,7 @@ void check_medium_request(const RenderRequest& q) {
     throw RequestError("--accretion-power must lie in [0, 10] (j ~ r^-power), got " +
                        shortest_number_text(q.accretion_power));
   if (std::find(kRiafSourceNames.begin(), kRiafSourceNames.end(), q.source) == kRiafSourceNames.end())
-    throw RequestError("unknown --source '" + q.source + "'; choose " +
-                       choice_list(kRiafSourceNames));
+    throw RequestError("unknown --source '" + q.source + "'; choose " + choice_list(kRiafSourceNames));
   if (q.accretion_rate && !(*q.accretion_rate > 0.0 && *q.accretion_rate <= 1e3))
     throw RequestError("--accretion-rate must lie in (0, 1e3] solar masses a year, got " +
                        shortest_number_text(*q.accretion_rate));

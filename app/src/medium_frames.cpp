@@ -18,9 +18,9 @@
 #include "grtrace/render/scale_bar.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <algorithm>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -125,8 +125,8 @@ std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checke
     if constexpr (StaticSphericalMetric<M>) {
       if (q.tracer == "general") {
         return own_medium_tracer(checked, [&] {
-          return GeneralMediumTracer<M, Fehlberg78, IController, SphericalAccretion>(
-              metric, gas, checked.settings, checked.camera.tetrad().e[0], 1.0);
+          return GeneralMediumTracer<M, Fehlberg78, IController, SphericalAccretion>(metric, gas, checked.settings,
+                                                                                     checked.camera.tetrad().e[0], 1.0);
         });
       }
       return own_medium_tracer(checked, [&] {

@@ -6,28 +6,28 @@
 // cannot draw, saying what to use instead.
 #include "grtrace/app/front_door.hpp"
 #include "grtrace/app/tool_methods.hpp"
+#include "grtrace/core/physical_units.hpp"
 #include "grtrace/medium/polish_doughnut.hpp"
 #include "grtrace/metric/kerr.hpp"
-#include "grtrace/core/physical_units.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
-#include "grtrace/observer/flight_path.hpp"
-#include "grtrace/scene/standard_scenes.hpp"
-#include "grtrace/trace/kerr_mino_tracer.hpp"
-#include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/observer/flight_path.hpp"
 #include "grtrace/render/exr_io.hpp"
+#include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
 #include "grtrace/trace/auto_tracer.hpp"
+#include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
+#include "grtrace/trace/scene_tracer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -587,8 +587,7 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
       {{{"source", "m87"}}, "--source applies only with --scene riaf"},
       {{{"scene", "accretion"}, {"frequency", "86"}}, "--frequency applies only with --scene riaf"},
   };
-  for (const auto& [given, says] : refused)
-    expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
+  for (const auto& [given, says] : refused) expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
 }
 
 TEST(AppLayer, ATorusFrameIsTheLibrarysGeneralTracersFrame) {
@@ -630,6 +629,7 @@ TEST(AppLayer, ATorusFrameIsTheLibrarysGeneralTracersFrame) {
   ks.metric.chart = "ks";
   expect_refused("--scene torus flows around a Kerr hole in Boyer-Lindquist coordinates",
                  [&] { (void)app::check_request(ks); });
-  expect_refused("--torus-opacity applies only with --scene torus",
-                 [&] { (void)app::read_render_request(Texts(std::map<std::string, std::string>{{"torus-opacity", "2"}})); });
+  expect_refused("--torus-opacity applies only with --scene torus", [&] {
+    (void)app::read_render_request(Texts(std::map<std::string, std::string>{{"torus-opacity", "2"}}));
+  });
 }

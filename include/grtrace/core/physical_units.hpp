@@ -22,17 +22,17 @@ namespace grtrace {
 
 /// Physical constants in cgs units (see the top of this file for their sources).
 namespace cgs {
-inline constexpr double speed_of_light = 2.99792458e10;           ///< cm s^-1
-inline constexpr double planck = 6.62607015e-27;                  ///< erg s
-inline constexpr double boltzmann = 1.380649e-16;                 ///< erg K^-1
-inline constexpr double electron_charge = 4.803204712570263e-10;  ///< esu (statcoulomb)
-inline constexpr double electron_mass = 9.1093837015e-28;         ///< g
-inline constexpr double proton_mass = 1.67262192369e-24;          ///< g
-inline constexpr double solar_mass = 1.988409870698051e33;        ///< g (nominal G M_sun over CODATA G)
+inline constexpr double speed_of_light = 2.99792458e10;              ///< cm s^-1
+inline constexpr double planck = 6.62607015e-27;                     ///< erg s
+inline constexpr double boltzmann = 1.380649e-16;                    ///< erg K^-1
+inline constexpr double electron_charge = 4.803204712570263e-10;     ///< esu (statcoulomb)
+inline constexpr double electron_mass = 9.1093837015e-28;            ///< g
+inline constexpr double proton_mass = 1.67262192369e-24;             ///< g
+inline constexpr double solar_mass = 1.988409870698051e33;           ///< g (nominal G M_sun over CODATA G)
 inline constexpr double solar_gravitational_radius = 1.476625038e5;  ///< G M_sun / c^2 in cm
-inline constexpr double parsec = 3.0856775814913673e18;           ///< cm
-inline constexpr double year = 3.15576e7;                         ///< s (Julian year)
-inline constexpr double jansky = 1e-23;                           ///< erg s^-1 cm^-2 Hz^-1
+inline constexpr double parsec = 3.0856775814913673e18;              ///< cm
+inline constexpr double year = 3.15576e7;                            ///< s (Julian year)
+inline constexpr double jansky = 1e-23;                              ///< erg s^-1 cm^-2 Hz^-1
 inline constexpr double microarcsecond = std::numbers::pi / (180.0 * 3600.0 * 1e6);  ///< rad
 }  // namespace cgs
 

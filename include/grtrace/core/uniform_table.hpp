@@ -19,7 +19,8 @@ class UniformTable {
  public:
   UniformTable() = default;
   template <class F>
-  UniformTable(double x0, double x1, int n, const F& f) : x0_(x0), step_((x1 - x0) / (n - 1)), values_(static_cast<std::size_t>(n)) {
+  UniformTable(double x0, double x1, int n, const F& f)
+      : x0_(x0), step_((x1 - x0) / (n - 1)), values_(static_cast<std::size_t>(n)) {
     for (int i = 0; i < n; ++i) values_[static_cast<std::size_t>(i)] = f(x0 + i * step_);
   }
 

@@ -57,15 +57,15 @@ namespace grtrace {
 /// The parameters of RiafFlow (see the top of riaf.hpp); defaults: Broderick & Loeb's shape around M87*.
 /// RiafParameters::m87() and sgr_a() give each source's mass and an accretion rate that shines as it does.
 struct RiafParameters {
-  double mass_solar = 6.5e9;          ///< M in solar masses: lengths in cm, the density from the accretion rate
-  double accretion_rate = 5e-4;       ///< Mdot at the hole, solar masses per year
-  double temperature = 2e11;          ///< T_e at r = M, kelvin
-  double inflow_speed = 0.1;          ///< the radial speed at r = 2M that carries Mdot, in units of c
-  double density_power = 1.1;         ///< n_e ~ r^-density_power
-  double temperature_power = 0.84;    ///< T_e ~ r^-temperature_power
-  double thickness = 1.0;             ///< h: n_e ~ exp(-z^2 / (2 h^2 rho^2))
-  double beta = 10.0;                 ///< the gas's virial pressure over the field's
-  double outer = 1000.0;              ///< no emission beyond this radius (M)
+  double mass_solar = 6.5e9;        ///< M in solar masses: lengths in cm, the density from the accretion rate
+  double accretion_rate = 5e-4;     ///< Mdot at the hole, solar masses per year
+  double temperature = 2e11;        ///< T_e at r = M, kelvin
+  double inflow_speed = 0.1;        ///< the radial speed at r = 2M that carries Mdot, in units of c
+  double density_power = 1.1;       ///< n_e ~ r^-density_power
+  double temperature_power = 0.84;  ///< T_e ~ r^-temperature_power
+  double thickness = 1.0;           ///< h: n_e ~ exp(-z^2 / (2 h^2 rho^2))
+  double beta = 10.0;               ///< the gas's virial pressure over the field's
+  double outer = 1000.0;            ///< no emission beyond this radius (M)
 
   static RiafParameters m87() {
     RiafParameters p;
@@ -109,8 +109,7 @@ class RiafFlow {
   /// std::invalid_argument naming the parameter when one is out of range, or when the metric has no stable
   /// circular orbit (no ISCO found between its photon orbit and 1e4 M).
   RiafFlow(const Metric& metric, const RiafParameters& p) : metric_(metric), p_(p) {
-    if (const std::string problem = p.problem(); !problem.empty())
-      throw std::invalid_argument("RiafFlow: " + problem);
+    if (const std::string problem = p.problem(); !problem.empty()) throw std::invalid_argument("RiafFlow: " + problem);
     r_g_ = p.mass_solar * cgs::solar_gravitational_radius;
     // n_e at r = 2M on the equator from Mdot (see the top of this file); n_0 is its value continued to r = M.
     const double mdot = p.accretion_rate * cgs::solar_mass / cgs::year;

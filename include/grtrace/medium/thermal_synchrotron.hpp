@@ -80,10 +80,10 @@ inline MediumCoefficients thermal_synchrotron(double nu, double n_e, double thet
   const double nu_c = e * b_gauss / (2.0 * std::numbers::pi * cgs::electron_mass * c);
   const double nu_s = (2.0 / 9.0) * nu_c * theta_e * theta_e * sin_theta;
   const double x = nu / nu_s;
-  const double cbrt_x = std::cbrt(x), sixth_x = std::sqrt(cbrt_x);  // X^(1/3), X^(1/6)
+  const double cbrt_x = std::cbrt(x), sixth_x = std::sqrt(cbrt_x);           // X^(1/3), X^(1/6)
   const double shape = cbrt_x * sixth_x + std::exp2(11.0 / 12.0) * sixth_x;  // X^(1/2) + 2^(11/12) X^(1/6)
-  const double j = n_e * std::numbers::sqrt2 * std::numbers::pi * e * e * nu_s / (3.0 * maxwell_juttner_k2(theta_e) * c) *
-                   shape * shape * std::exp(-cbrt_x);
+  const double j = n_e * std::numbers::sqrt2 * std::numbers::pi * e * e * nu_s /
+                   (3.0 * maxwell_juttner_k2(theta_e) * c) * shape * shape * std::exp(-cbrt_x);
   if (!(j > 0.0)) return {};
   return {j, j / planck_intensity(nu, theta_e)};
 }

@@ -31,25 +31,42 @@ namespace scale_bar_detail {
 /// 3 x 5 glyphs, one row a byte (bit 2 the left column), for the characters of a label.
 inline std::array<std::uint8_t, 5> glyph(char c) {
   switch (c) {
-    case '0': return {7, 5, 5, 5, 7};
-    case '1': return {2, 6, 2, 2, 7};
-    case '2': return {7, 1, 7, 4, 7};
-    case '3': return {7, 1, 7, 1, 7};
-    case '4': return {5, 5, 7, 1, 1};
-    case '5': return {7, 4, 7, 1, 7};
-    case '6': return {7, 4, 7, 5, 7};
-    case '7': return {7, 1, 1, 1, 1};
-    case '8': return {7, 5, 7, 5, 7};
-    case '9': return {7, 5, 7, 1, 7};
-    case '.': return {0, 0, 0, 0, 2};
-    case 'u': return {0, 5, 5, 5, 7};
-    case 'a': return {0, 7, 1, 7, 7};
-    case 's': return {0, 7, 6, 1, 7};
-    default: return {0, 0, 0, 0, 0};
+    case '0':
+      return {7, 5, 5, 5, 7};
+    case '1':
+      return {2, 6, 2, 2, 7};
+    case '2':
+      return {7, 1, 7, 4, 7};
+    case '3':
+      return {7, 1, 7, 1, 7};
+    case '4':
+      return {5, 5, 7, 1, 1};
+    case '5':
+      return {7, 4, 7, 1, 7};
+    case '6':
+      return {7, 4, 7, 5, 7};
+    case '7':
+      return {7, 1, 1, 1, 1};
+    case '8':
+      return {7, 5, 7, 5, 7};
+    case '9':
+      return {7, 5, 7, 1, 7};
+    case '.':
+      return {0, 0, 0, 0, 2};
+    case 'u':
+      return {0, 5, 5, 5, 7};
+    case 'a':
+      return {0, 7, 1, 7, 7};
+    case 's':
+      return {0, 7, 6, 1, 7};
+    default:
+      return {0, 0, 0, 0, 0};
   }
 }
 
-inline bool inside(const Image& image, int x, int y) { return x >= 0 && y >= 0 && x < image.width() && y < image.height(); }
+inline bool inside(const Image& image, int x, int y) {
+  return x >= 0 && y >= 0 && x < image.width() && y < image.height();
+}
 
 /// Paints the pixel (x, y) with value v in R, G, B if it lies in the image.
 inline void paint(Image& image, int x, int y, float v) {

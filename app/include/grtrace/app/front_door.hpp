@@ -108,9 +108,9 @@ struct RenderRequest {
   /// source's mass and distance (core/physical_units.hpp) give the intensity in cgs, the flux in janskys and the
   /// pixel in microarcseconds; drawn with the default method, every pixel integrated, on the CPU, from a camera
   /// at least 100 M away (angles scale as seen from afar).
-  std::string source = "m87";                 ///< m87 | sgr-a (SourceScale and RiafParameters presets)
-  std::optional<double> accretion_rate;       ///< solar masses a year; nothing: the source's (RiafParameters)
-  double frequency_ghz = 230.0;               ///< the observed frequency
+  std::string source = "m87";            ///< m87 | sgr-a (SourceScale and RiafParameters presets)
+  std::optional<double> accretion_rate;  ///< solar masses a year; nothing: the source's (RiafParameters)
+  double frequency_ghz = 230.0;          ///< the observed frequency
   /// torus: a Polish doughnut of constant angular momentum around a Kerr hole (medium/polish_doughnut.hpp), its
   /// inner edge and pressure maximum on the equator, n = 3, j = rho, alpha = opacity rho (0: optically thin);
   /// geometric units, the default method, every pixel integrated, on the CPU.

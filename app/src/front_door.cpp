@@ -213,8 +213,7 @@ void check_tracer(const RenderRequest& q) {
                        "--tracer general");
 }
 
-/// What an emitting medium's scene needs (RenderRequest::accretion_gas): a static spherically symmetric hole, the
-/// default method (the one the application library compiles media with), a tracer that draws media, the CPU.
+/// What an emitting medium's scene needs: its hole (accretion: Schwarzschild; riaf, torus: Kerr), the default method (the one the application library compiles media with), a tracer that draws media, the CPU.
 void check_medium_request(const RenderRequest& q) {
   if (q.scene == "riaf" || q.scene == "torus") {
     if (q.metric.name != "kerr" || q.metric.chart != "bl")
@@ -223,10 +222,13 @@ void check_medium_request(const RenderRequest& q) {
                          "Schwarzschild) and leave --chart out");
     if (q.scene == "riaf" && q.metric.mass != 1.0)
       throw RequestError("--scene riaf takes the hole's mass from --source (lengths in units of it): leave --mass out");
-  } else if (!planar_tracer_metric(q.metric)) {
+  } else if (q.metric.name != "schwarzschild") {
+    // The tools compile the accreting gas for one hole (each metric is another instantiation of the medium's
+    // tracers, 5 to 10 s of the render command's build); a program of its own draws it around any static
+    // spherically symmetric one (SphericalMediumTracer).
     throw RequestError("--scene " + q.scene +
-                       " needs a static spherically symmetric hole (--metric schwarzschild, rn or sds): the gas falls "
-                       "radially in its static chart");
+                       " falls onto a Schwarzschild hole in the tools: use --metric schwarzschild (other static "
+                       "spherically symmetric holes: SphericalMediumTracer in a program of your own)");
   }
   const ToolMethod& d = kToolMethods[0];
   if (q.method.tableau != d.tableau || q.method.control != d.control)

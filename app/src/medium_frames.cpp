@@ -1,7 +1,7 @@
 // Frames of emitting media, with the tools' default method only (the one declared method media are offered with),
 // on the CPU:
-//   --scene accretion: SphericalAccretion (medium/spherical_accretion.hpp) in the named metrics that are static,
-//     spherically symmetric and have a horizon (check_request refuses the others): one table of rays
+//   --scene accretion: SphericalAccretion (medium/spherical_accretion.hpp) onto a Schwarzschild hole (one metric:
+//     each is another instantiation of the tracers; check_request refuses the others): one table of rays
 //     (SphericalMediumTracer: tracer auto or planar) or every pixel integrated (GeneralMediumTracer: general);
 //   --scene torus: PolishDoughnut (medium/polish_doughnut.hpp) around Kerr in Boyer-Lindquist coordinates, every
 //     pixel integrated, geometric units;
@@ -13,7 +13,7 @@
 #include "grtrace/medium/riaf.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/kerr.hpp"
-#include "grtrace/metric/static_spherical.hpp"
+#include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/render/medium_frame.hpp"
 #include "grtrace/render/scale_bar.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
@@ -23,7 +23,6 @@
 #include <cmath>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <type_traits>
 #include <utility>
 
@@ -119,23 +118,18 @@ std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checke
         },
         source_scale(q));
   }
+  // accretion: Schwarzschild (check_request).
   const SphericalAccretion gas = accretion_of(checked);
-  return with_named_metric(q.metric, [&](const auto& metric) -> std::unique_ptr<FrameRenderer> {
-    using M = std::remove_cvref_t<decltype(metric)>;
-    if constexpr (StaticSphericalMetric<M>) {
-      if (q.tracer == "general") {
-        return own_medium_tracer(checked, [&] {
-          return GeneralMediumTracer<M, Fehlberg78, IController, SphericalAccretion>(metric, gas, checked.settings,
-                                                                                     checked.camera.tetrad().e[0], 1.0);
-        });
-      }
-      return own_medium_tracer(checked, [&] {
-        return SphericalMediumTracer<M, Fehlberg78, IController, SphericalAccretion>(metric, gas, checked.settings,
-                                                                                     checked.camera, 1.0, q.table_rays);
-      });
-    } else {
-      throw std::logic_error("grtrace_app: a medium's scene reached a metric check_request refuses for it");
-    }
+  const SchwarzschildMetric metric{q.metric.mass};
+  if (q.tracer == "general") {
+    return own_medium_tracer(checked, [&] {
+      return GeneralMediumTracer<SchwarzschildMetric, Fehlberg78, IController, SphericalAccretion>(
+          metric, gas, checked.settings, checked.camera.tetrad().e[0], 1.0);
+    });
+  }
+  return own_medium_tracer(checked, [&] {
+    return SphericalMediumTracer<SchwarzschildMetric, Fehlberg78, IController, SphericalAccretion>(
+        metric, gas, checked.settings, checked.camera, 1.0, q.table_rays);
   });
 }
 

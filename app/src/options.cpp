@@ -27,8 +27,8 @@ std::string_view keep(std::string text) { return built_texts().emplace_back(std:
 std::vector<OptionInfo> make_render_options() {
   std::vector<OptionInfo> o;
   o.push_back({"scene", "checker",
-               "checker | sky | redshift | disk | accretion (glowing gas falling onto a static spherically symmetric "
-               "hole: schwarzschild, rn or sds; channels intensity and optical_depth) | riaf (the hot flow of M87* or "
+               "checker | sky | redshift | disk | accretion (glowing gas falling onto --metric schwarzschild; "
+               "channels intensity, optical_depth and the emission-weighted redshift) | riaf (the hot flow of M87* or "
                "Sgr A* around --metric kerr, thermal synchrotron in physical units: intensity in cgs, flux in Jy) | "
                "torus (a thick torus of constant angular momentum around --metric kerr)"});
   std::string metrics;

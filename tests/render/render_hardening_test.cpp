@@ -765,7 +765,7 @@ TEST_F(HardeningCli, OptionsThatMeanNothingWithTheOthersAreRefusedNotIgnored) {
       {{"--scene", "checker", "--sky-texture", "sky.exr"}, "--sky-texture applies only with --scene sky or disk"},
       {{"--scene", "sky", "--accretion-gas", "rest"}, "--accretion-gas applies only with --scene accretion"},
       {{"--scene", "accretion", "--angle-correction", "flat"}, "--angle-correction applies only with a scene that"},
-      {{"--scene", "accretion", "--metric", "kerr"}, "--scene accretion needs a static spherically symmetric hole"},
+      {{"--scene", "accretion", "--metric", "kerr"}, "--scene accretion falls onto a Schwarzschild hole"},
   };
   for (const auto& [args, message] : render_cases) {
     std::vector<std::string> full = {"--out", out.string()};

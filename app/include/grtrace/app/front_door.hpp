@@ -97,7 +97,7 @@ struct RenderRequest {
   std::optional<double> disk_inner;  ///< disk: inner edge; nothing: 6 M, or for kerr the ISCO of the disk's sense
   double disk_outer = 20.0;
   bool disk_retrograde = false;  ///< disk: the gas turns against the hole (default: with it)
-  /// accretion: glowing gas around a static spherically symmetric hole (medium/spherical_accretion.hpp), j ~ r^-power
+  /// accretion: glowing gas around a Schwarzschild hole (medium/spherical_accretion.hpp), j ~ r^-power
   /// out to beyond the sky sphere, falling freely from rest at infinity ("free-fall") or at rest ("rest"); drawn
   /// with the default method, on the CPU, by one table of rays (tracer auto or planar) or every pixel integrated
   /// (general). Its channels: intensity (at nu_obs = 1, geometric units), optical_depth; R, G, B a picture of it.

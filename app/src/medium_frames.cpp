@@ -18,7 +18,6 @@
 #include "grtrace/render/scale_bar.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -60,8 +59,7 @@ class MediumFrameRenderer final : public FrameRenderer {
     if (scale_) {  // physical units: the camera far away (check_request), its angles scaled by r / D
       const double r_cam = checked_.request.camera.r;
       facts.flux_jy = scale_->janskys(*facts.flux, r_cam);
-      const double pixel = 2.0 * camera().tan_half_fov() / std::max(1, camera().width() - 1);  // at the centre
-      facts.microarcseconds_per_pixel = scale_->microarcseconds_at_telescope(pixel, r_cam);
+      facts.microarcseconds_per_pixel = scale_->microarcseconds_at_telescope(camera_pixel_pitch(camera()), r_cam);
       draw_scale_bar(frame.image, *facts.microarcseconds_per_pixel);  // into the picture (R, G, B) only
     }
     return finish_render(checked_, std::move(frame), facts, setup_seconds_, {});

@@ -1,0 +1,165 @@
+// grtrace/core/jacobi_elliptic.hpp
+// What Kerr's null geodesics in closed form need beyond core/elliptic.hpp: Carlson's R_C and R_J, Legendre's F and
+// Pi for any real amplitude and a parameter m < 1 (negative included: Kerr's polar motion has m = u+ / u- < 0), the
+// Jacobi functions sn, cn, dn and the amplitude am, and one integral of the Jacobi cn, R1 below.
+//
+// Takes:   the parameter m = k^2 (not the modulus), m < 1; amplitudes and arguments finite, any size.
+// Returns: values to a few units in the last place (Carlson's series cut below 1e-17; the Jacobi functions by the
+//          arithmetic-geometric mean to convergence), except near the singular points named at each function.
+// Method:  R_C in closed form (arctan / artanh); R_J by Carlson's duplication with the R_C sum (B. C. Carlson,
+//          "Numerical computation of real or complex elliptic integrals", Numer. Algorithms 10 (1995) 13-26, §2;
+//          DLMF 19.36.2). F(phi|m) = s R_F(c^2, 1 - m s^2, 1) and Pi(n; phi|m) = F + (n/3) s^3 R_J(c^2, 1 - m s^2, 1,
+//          1 - n s^2) (DLMF 19.25.5 and 19.25.14, s = sin phi, c = cos phi) on [-pi/2, pi/2], extended by
+//          F(phi + j pi) = F(phi) + 2 j K. Pi with n > 1 is the Cauchy principal value (DLMF 19.7.9 with R_C's
+//          value for a negative second argument, DLMF 19.2.20). sn, cn, dn by the descending Landen transformation
+//          (the arithmetic-geometric mean, DLMF 22.20.1-22.20.2), one sin and cos for all three.
+// One source for the CPU and the GPU (no recursion, no library special functions).
+#pragma once
+
+#include "grtrace/core/elliptic.hpp"
+#include "grtrace/core/host_device.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace grtrace {
+
+/// Carlson's R_C(x, y) = (1/2) int_0^inf dt / ((t + y) sqrt(t + x)), x >= 0, y != 0; for y < 0 the Cauchy
+/// principal value (DLMF 19.2.20). Elementary: arccos / arccosh forms (DLMF 19.2.18-19.2.19), a series near x = y.
+inline GRTRACE_HD double carlson_rc(double x, double y) {
+  if (y < 0.0) return std::sqrt(x / (x - y)) * carlson_rc(x - y, -y);  // one level: x - y > 0, -y > 0 below
+  const double d = (x - y) / y;
+  if (std::abs(d) < 1e-3) {
+    // R_C(x, y) = y^-1/2 (1 - d/6 + 3 d^2 / 40 - 5 d^3 / 112 + 35 d^4 / 1152 - 63 d^5 / 2816 ...), d = (x - y) / y:
+    // the series of (arctan sqrt(-d)) / sqrt(-d); six terms reach 1e-18 at |d| = 1e-3.
+    return (1.0 + d * (-1.0 / 6.0 + d * (3.0 / 40.0 + d * (-5.0 / 112.0 + d * (35.0 / 1152.0 - d * 63.0 / 2816.0))))) /
+           std::sqrt(y);
+  }
+  if (x < y) return std::acos(std::sqrt(x / y)) / std::sqrt(y - x);
+  return std::acosh(std::sqrt(x / y)) / std::sqrt(x - y);
+}
+
+/// Carlson's R_J(x, y, z, p) = (3/2) int_0^inf dt / ((t + p) sqrt((t + x)(t + y)(t + z))), x, y, z >= 0 (at most one
+/// zero), p > 0.
+inline GRTRACE_HD double carlson_rj(double x, double y, double z, double p) {
+  const double x0 = x, y0 = y, z0 = z, a0 = (x + y + z + 2.0 * p) / 5.0;
+  const double delta = (p - x) * (p - y) * (p - z);
+  // Carlson's stopping rule: 4^-j Q < |A_j| with Q = (4 / eps)^(1/6) max |A0 - v|; eps = 1e-17 gives (4e17)^(1/6).
+  const double q = 860.0 * std::max(std::max(std::abs(a0 - x), std::abs(a0 - y)),
+                                    std::max(std::abs(a0 - z), std::abs(a0 - p)));
+  double a = a0, scale = 1.0, sum = 0.0, cube = 1.0;  // scale = 4^-j, cube = 4^-3j
+  for (int j = 0; j < 64 && !(scale * q < std::abs(a)); ++j) {
+    const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z), sp = std::sqrt(p);
+    const double lambda = sx * (sy + sz) + sy * sz;
+    const double d = (sp + sx) * (sp + sy) * (sp + sz);
+    sum += scale * carlson_rc(1.0, 1.0 + cube * delta / (d * d)) / d;
+    x = 0.25 * (x + lambda);
+    y = 0.25 * (y + lambda);
+    z = 0.25 * (z + lambda);
+    p = 0.25 * (p + lambda);
+    a = 0.25 * (a + lambda);
+    scale *= 0.25;
+    cube *= 1.0 / 64.0;
+  }
+  // The original arguments' deviations from A0 scaled by 4^-j / A_j, and the series (Carlson 1995 eq. 2.17-2.18).
+  const double f = scale / a;
+  const double X = (a0 - x0) * f, Y = (a0 - y0) * f, Z = (a0 - z0) * f, P = -0.5 * (X + Y + Z);
+  const double e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
+  const double e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P;
+  const double e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
+  const double e5 = X * Y * Z * P * P;
+  const double series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 -
+                        9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0;
+  return scale * series / (a * std::sqrt(a)) + 6.0 * sum;
+}
+
+/// K(m) = F(pi/2 | m) for m < 1.
+inline GRTRACE_HD double complete_f(double m) { return carlson_rf(0.0, 1.0 - m, 1.0); }
+
+/// Pi(n | m) = Pi(n; pi/2 | m) for m < 1; for n > 1 the Cauchy principal value K(m) - Pi(m / n | m) (DLMF 19.6.5).
+inline GRTRACE_HD double complete_pi(double n, double m) {
+  if (n > 1.0) {
+    const double n2 = m / n;
+    return complete_f(m) - (complete_f(m) + n2 / 3.0 * carlson_rj(0.0, 1.0 - m, 1.0, 1.0 - n2));
+  }
+  return complete_f(m) + n / 3.0 * carlson_rj(0.0, 1.0 - m, 1.0, 1.0 - n);
+}
+
+/// Legendre's F(phi | m) = int_0^phi dt / sqrt(1 - m sin^2 t) for any real phi and m < 1.
+inline GRTRACE_HD double legendre_f(double phi, double m) {
+  const double j = std::floor(phi / std::numbers::pi + 0.5);
+  const double t = phi - j * std::numbers::pi, s = std::sin(t), c = std::cos(t);
+  const double f = s * carlson_rf(c * c, 1.0 - m * s * s, 1.0);
+  return j == 0.0 ? f : f + 2.0 * j * complete_f(m);
+}
+
+/// Legendre's Pi(n; phi | m) = int_0^phi dt / ((1 - n sin^2 t) sqrt(1 - m sin^2 t)) for any real phi, m < 1, n < 1
+/// (no pole), or n > 1 as the Cauchy principal value: an antiderivative on each interval between poles
+/// (sin^2 phi = 1 / n), which is what a difference over a path that avoids them needs.
+inline GRTRACE_HD double legendre_pi(double n, double phi, double m) {
+  const double j = std::floor(phi / std::numbers::pi + 0.5);
+  const double t = phi - j * std::numbers::pi, s = std::sin(t), c = std::cos(t), s2 = s * s;
+  double v = 0.0;
+  if (n < 1.0 || 1.0 - n * s2 > 0.25) {
+    v = s * carlson_rf(c * c, 1.0 - m * s2, 1.0) + n / 3.0 * s * s2 * carlson_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n * s2);
+  } else {
+    // Near and beyond the pole: DLMF 19.7.9, Pi(n; t) = F(t) - Pi(m / n; t) + sqrt(cc) R_C((cc - 1)(cc - m),
+    // (cc - n)(cc - m / n)), cc = 1 / sin^2 t, for 0 < |t| <= pi / 2 (odd in t).
+    const double n2 = m / n, cc = 1.0 / s2, rf = carlson_rf(c * c, 1.0 - m * s2, 1.0);
+    const double pi2 = rf + n2 / 3.0 * s2 * carlson_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n2 * s2);  // Pi(n2; |t|) / |s|
+    const double rc = std::sqrt(cc) * carlson_rc((cc - 1.0) * (cc - m), (cc - n) * (cc - n2));
+    v = s * rf - s * pi2 + (s < 0.0 ? -rc : rc);
+  }
+  return j == 0.0 ? v : v + 2.0 * j * complete_pi(n, m);
+}
+
+/// sn, cn, dn of u for the parameter m < 1 (negative included), and the amplitude am(u) (continuous in u:
+/// am(u + 2K) = am(u) + pi).
+struct JacobiValues {
+  double sn, cn, dn, am;
+};
+
+/// The Jacobi elliptic functions by the descending Landen transformation (the arithmetic-geometric mean of 1 and
+/// sqrt(1 - m), DLMF 22.20.1-22.20.2): the amplitude of the last mean, then back up to am(u).
+inline GRTRACE_HD JacobiValues jacobi(double u, double m) {
+  // The mean converges quadratically: |a - b| halves its exponent each time; 8 levels reach 1e-300 from m = 1 - 1e-16.
+  constexpr int kLevels = 10;
+  double a[kLevels + 1], c[kLevels + 1];
+  a[0] = 1.0;
+  double b = std::sqrt(1.0 - m);
+  c[0] = 0.0;
+  int n = 0;
+  while (n < kLevels && std::abs(a[n] - b) > 1e-16 * a[n]) {
+    const double an = 0.5 * (a[n] + b);
+    c[n + 1] = 0.5 * (a[n] - b);
+    b = std::sqrt(a[n] * b);
+    a[++n] = an;
+  }
+  double phi = std::ldexp(a[n] * u, n);
+  for (int i = n; i > 0; --i) phi = 0.5 * (phi + std::asin(c[i] / a[i] * std::sin(phi)));
+  const double sn = std::sin(phi), cn = std::cos(phi);
+  return {sn, cn, std::sqrt(1.0 - m * sn * sn), phi};
+}
+
+/// R1(alpha; u | m) = int_0^u dv / (1 + alpha cn(v | m)) for 0 <= m < 1 and any alpha with 1 + alpha cn != 0 on
+/// [0, u] (the integral Kerr's radial motion needs when two roots of its potential are complex; Byrd & Friedman
+/// 341.03, Gralla & Lupsasca 2020 appendix B). With c0 = 1 - alpha^2, n = alpha^2 / (alpha^2 - 1), w = sd(v):
+///   1 / (1 + alpha cn) = (1 - alpha cn) / (c0 (1 - n sn^2)), and cn dv = d(sn) / dn, which w turns into
+///   int cn dv / (c0 (1 - n sn^2)) = int dw / (c0 + D w^2), D = m + (1 - m) alpha^2;
+/// so R1 = Pi(n; am u | m) / c0 - alpha * (arctan or log form of int dw / (c0 + D w^2)). For alpha^2 > 1, Pi is the
+/// principal value: its logarithm at cn = 1 / alpha (no pole of the integrand) cancels the second term's.
+inline GRTRACE_HD double jacobi_r1(double alpha, double u, double m) {
+  const JacobiValues j = jacobi(u, m);
+  const double c0 = 1.0 - alpha * alpha, d = m + (1.0 - m) * alpha * alpha, w = j.sn / j.dn;
+  double second = 0.0;
+  if (c0 > 0.0) {
+    second = std::atan(w * std::sqrt(d / c0)) / std::sqrt(c0 * d);
+  } else {
+    const double sc = std::sqrt(-c0), sd = std::sqrt(d);
+    second = std::log(std::abs((sd * w - sc) / (sd * w + sc))) / (2.0 * sc * sd);
+  }
+  return (legendre_pi(alpha * alpha / (alpha * alpha - 1.0), j.am, m) / c0) - alpha * second;
+}
+
+}  // namespace grtrace

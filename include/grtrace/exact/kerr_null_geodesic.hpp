@@ -1,0 +1,347 @@
+// grtrace/exact/kerr_null_geodesic.hpp
+// A light ray of the Kerr exterior in closed form: from a state (x, k) in Boyer-Lindquist coordinates, where it
+// crosses the equatorial plane (every order n = 0, 1, 2, ...), where it ends (the sky sphere or the horizon guard),
+// its direction at infinity, and its state at any Mino time, with no integration.
+//
+// Takes:   a KerrMetric (any mass, |a| < M), a null state y0 in Boyer-Lindquist coordinates outside r_+ (a camera's
+//          pixel: k past-directed or not, any normalisation), the radius of the sky sphere and of the horizon guard
+//          (the integrating tracers' TraceSettings::escape_radius and (1 + horizon_epsilon) r_+).
+// Returns: supported() false for the rays this form does not cover (below); otherwise the ray's end (escaped or
+//          captured), its Mino time there, the Mino times and states of its equatorial crossings before the end,
+//          and state_at(tau) for any Mino time up to the end: Boyer-Lindquist (x, k) with k in the scale of y0 and
+//          t not followed (NaN), theta in [0, pi], phi continuous (not reduced).
+// Method:  Gralla & Lupsasca, "Null geodesics of the Kerr exterior", Phys. Rev. D 101, 044032 (2020), written for
+//          a camera at any radius. With lambda = L / E, eta = Q / E^2 and Mino time tau (d tau = |E| d(affine) /
+//          Sigma): (dr/dtau)^2 = R(r) = r^4 + (a^2 - eta - lambda^2) r^2 + 2M (eta + (lambda - a)^2) r - a^2 eta and
+//          (d cos(theta) / dtau)^2 = a^2 (u+ - cos^2)(cos^2 - u-).
+//   Polar:  cos(theta) = sqrt(u+) sn(Y | m), Y = Y_o + nu sqrt(A) tau, A = -a^2 u- (> 0; eta + lambda^2 at a = 0),
+//           m = u+ / u- <= 0: the equator is crossed at Y = 2 j K(m), so crossing n is at a Mino time known at
+//           once, and int dtau / sin^2(theta) = Pi(u+; am Y | m) / sqrt(A) (GL eq. 29-31, 67).
+//   Radial: the roots r1..r4 of R (GL eq. 95). Four real roots, r > r4: T(r) = 2 / sqrt(r31 r42) [F(asin sqrt(r31 /
+//           r41)) - F(asin sqrt(r31 (r - r4) / (r41 (r - r3))))], modulus k = r32 r41 / (r31 r42), and r(T) by sn^2
+//           (GL eq. B35-B37, Byrd & Friedman 258.00); r3, r4 complex: the same with cn (GL eq. B57-B58, B&F
+//           260.00). T is the Mino time from infinity on the ingoing leg; the camera's T_o fixes the ray on it,
+//           T = T_o - sign(dr/dtau at the camera) tau, and the turning point r4 is T = J (the first form is even in
+//           T - J). The radial part of phi, int a (2 M r - a lambda) / Delta dtau, splits in 1 / (r - r_+-), which
+//           are Pi(n; am | k) (four real roots: a Moebius function of sn^2) and R1 (complex roots: of cn;
+//           core/jacobi_elliptic.hpp).
+// Not covered (supported() false: a tracer integrates these): eta <= 0 (vortical rays, which never cross the
+//          equator, and the rays along it), all four roots complex (only for eta < 0), a camera inside the
+//          potential's barrier (four real roots, r_o < r4) or on the axis, a radial or polar speed of exactly zero at
+//          the start, a camera at or beyond the sky sphere.
+#pragma once
+
+#include "grtrace/core/host_device.hpp"
+#include "grtrace/core/jacobi_elliptic.hpp"
+#include "grtrace/core/types.hpp"
+#include "grtrace/metric/kerr.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace grtrace {
+
+/// How a ray's radial potential factors (Gralla & Lupsasca's cases): four real roots with the largest outside the
+/// horizon (the ray turns there), four real roots inside it, or two real and a complex pair.
+enum class KerrRadialCase { turning, real_inside, complex_pair, unsupported };
+
+class KerrNullGeodesic {
+ public:
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  /// Rays that pass the axis closer than this fraction of their polar reach are the ray with L = 0 through it,
+  /// as for the Mino-time tracer (trace/kerr_mino_system.hpp).
+  static constexpr double kThroughAxis = 1e-8;
+
+  GRTRACE_HD KerrNullGeodesic(const KerrMetric& metric, const GeodesicState& y0, double escape_radius,
+                              double guard_radius)
+      : mass_(metric.mass), a_(metric.spin), r_escape_(escape_radius), r_guard_(guard_radius) {
+    energy_ = metric.energy(y0);
+    const double l = metric.angular_momentum(y0), q = metric.carter_constant(y0);
+    lambda_ = l / energy_;
+    eta_ = q / (energy_ * energy_);
+    r_o_ = y0[1];
+    theta_o_ = y0[2];
+    phi_o_ = y0[3];
+    const double sr = y0[5], st = y0[6];
+    if (!(eta_ > 0.0) || !(energy_ != 0.0) || sr == 0.0 || !(r_o_ < r_escape_) || !(r_o_ > r_guard_) ||
+        !(std::sin(theta_o_) > 1e-6))
+      return;
+    s_r_ = sr > 0.0 ? 1.0 : -1.0;
+    if (!setup_polar(st) || !setup_radial()) return;
+    supported_ = true;
+  }
+
+  GRTRACE_HD bool supported() const { return supported_; }
+  GRTRACE_HD KerrRadialCase radial_case() const { return case_; }
+  GRTRACE_HD bool escapes() const { return escapes_; }
+  /// lambda = L / E and eta = Q / E^2 of the ray.
+  GRTRACE_HD double lambda() const { return lambda_; }
+  GRTRACE_HD double eta() const { return eta_; }
+  /// The Mino time at which the ray reaches the sky sphere (escapes) or the horizon guard.
+  GRTRACE_HD double end_mino_time() const { return tau_end_; }
+  /// The Mino time to infinity of an escaping ray (past the sky sphere).
+  GRTRACE_HD double infinity_mino_time() const { return tau_infinity_; }
+
+  /// The Mino time of the n-th equatorial crossing (n = 0 the first after the start); it lies before the end
+  /// when crossing_mino_time(n) < end_mino_time().
+  GRTRACE_HD double crossing_mino_time(int n) const { return (2.0 * k_theta_ * (n + j0_) - y_sign_) / sqrt_a_; }
+
+  /// The radius at Mino time tau (0 <= tau, up to the end; beyond the turning point as well).
+  GRTRACE_HD double radius_at(double tau) const { return radius_at_t(t_o_ - s_r_ * tau); }
+
+  /// The state at Mino time tau: (NaN, r, theta, phi, k) with k in y0's scale.
+  GRTRACE_HD GeodesicState state_at(double tau) const {
+    const double y = y_o_ + nu_ * sqrt_a_ * tau;
+    const JacobiValues j = jacobi(y, m_theta_);
+    return make_state(tau, y, j.sn, j.cn, j.dn, j.am);
+  }
+
+  /// The state at the n-th equatorial crossing (theta = pi / 2 exactly; no Jacobi function needed there).
+  GRTRACE_HD GeodesicState crossing_state(int n) const {
+    const double tau = crossing_mino_time(n);
+    const int j = n + j0_;  // Y = nu * 2 j K: sn = 0, cn = (-1)^j, am = nu j pi
+    const double cn = (j % 2 == 0) ? 1.0 : -1.0;
+    return make_state(tau, nu_ * 2.0 * j * k_theta_, 0.0, cn, 1.0, nu_ * j * std::numbers::pi);
+  }
+
+  /// The direction at infinity (theta, phi; phi continuous) of an escaping ray.
+  GRTRACE_HD void direction_at_infinity(double& theta, double& phi) const {
+    const double y = y_o_ + nu_ * sqrt_a_ * tau_infinity_;
+    const JacobiValues j = jacobi(y, m_theta_);
+    theta = std::acos(std::clamp(sqrt_u_plus_ * j.sn, -1.0, 1.0));
+    phi = phi_at(tau_infinity_, y, j.am);
+  }
+
+ private:
+  // ---- polar motion ----------------------------------------------------------------------------------------
+  GRTRACE_HD bool setup_polar(double k_theta) {
+    const double a2 = a_ * a_, l2 = lambda_ * lambda_;
+    // u+- = Delta_theta +- sqrt(Delta_theta^2 + eta / a^2), Delta_theta = (1 - (eta + lambda^2) / a^2) / 2, written
+    // without dividing by a: A = -a^2 u- = (s + sqrt(s^2 + 4 a^2 eta)) / 2, s = eta + lambda^2 - a^2; u+ = eta / A.
+    const double s = eta_ + l2 - a2, root = std::sqrt(s * s + 4.0 * a2 * eta_);
+    const double big_a = s >= 0.0 ? 0.5 * (s + root) : 2.0 * a2 * eta_ / (root - s);
+    if (!(big_a > 0.0)) return false;
+    through_axis_ = l2 <= kThroughAxis * kThroughAxis * (eta_ + l2 + a2);
+    u_plus_ = through_axis_ ? 1.0 : std::min(1.0, eta_ / big_a);
+    sqrt_u_plus_ = std::sqrt(u_plus_);
+    m_theta_ = -a2 * eta_ / (big_a * big_a);
+    sqrt_a_ = std::sqrt(big_a);
+    k_theta_ = complete_f(m_theta_);
+    pi_theta_ = through_axis_ ? 0.0 : complete_pi(u_plus_, m_theta_);
+    const double x = std::clamp(std::cos(theta_o_) / sqrt_u_plus_, -1.0, 1.0);
+    am_o_ = std::asin(x);
+    y_o_ = legendre_f(am_o_, m_theta_);
+    // d cos(theta)/dtau = -sin(theta) dtheta/dtau = sqrt(u+ A) cn dn nu: nu = -sign(k^theta); at a turning point
+    // (k^theta = 0) the ray heads for the equator.
+    nu_ = k_theta != 0.0 ? (k_theta > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
+    y_sign_ = nu_ * y_o_;
+    j0_ = static_cast<int>(std::floor(y_sign_ / (2.0 * k_theta_))) + 1;
+    pi_o_ = through_axis_ ? 0.0 : legendre_pi(u_plus_, am_o_, m_theta_);
+    return std::isfinite(y_o_) && std::isfinite(k_theta_);
+  }
+
+  // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A).
+  GRTRACE_HD double polar_phi_integral(double am) const {
+    return nu_ * (legendre_pi(u_plus_, am, m_theta_) - pi_o_) / sqrt_a_;
+  }
+
+  // Passes by the axis (sn = +-1: Y = (2 j + 1) K) between Y_o and Y, for a ray through it: each adds pi to phi.
+  GRTRACE_HD int axis_passes(double y) const {
+    const double lo = std::min(y, y_o_), hi = std::max(y, y_o_);
+    const double first = std::ceil((lo / k_theta_ - 1.0) / 2.0), last = std::floor((hi / k_theta_ - 1.0) / 2.0);
+    return static_cast<int>(std::max(0.0, last - first + 1.0));
+  }
+
+  // ---- radial motion ---------------------------------------------------------------------------------------
+  GRTRACE_HD bool setup_radial() {
+    const double a2 = a_ * a_, m = mass_;
+    const double ca = a2 - eta_ - lambda_ * lambda_, cb = 2.0 * m * (eta_ + (lambda_ - a_) * (lambda_ - a_));
+    const double cc = -a2 * eta_;
+    // GL eq. 95: the resolvent cubic's root z^2 (the principal cube roots when its discriminant is negative).
+    const double p = -ca * ca / 12.0 - cc, q = -ca / 3.0 * ((ca / 6.0) * (ca / 6.0) - cc) - cb * cb / 8.0;
+    const double disc = (p / 3.0) * (p / 3.0) * (p / 3.0) + 0.25 * q * q;
+    double sum = 0.0;
+    if (disc >= 0.0) {
+      sum = std::cbrt(-0.5 * q + std::sqrt(disc)) + std::cbrt(-0.5 * q - std::sqrt(disc));
+    } else {
+      sum = 2.0 * std::cbrt(std::sqrt(0.25 * q * q - disc)) * std::cos(std::atan2(std::sqrt(-disc), -0.5 * q) / 3.0);
+    }
+    const double z2 = 0.5 * sum - ca / 6.0;
+    if (!(z2 > 0.0)) return false;
+    const double z = std::sqrt(z2);
+    const double inner = -0.5 * ca - z2 + cb / (4.0 * z), outer = -0.5 * ca - z2 - cb / (4.0 * z);
+    if (!(inner >= 0.0)) return false;  // r1, r2 complex: all four are (eta < 0)
+    r1_ = -z - std::sqrt(inner);
+    r2_ = -z + std::sqrt(inner);
+    r_plus_ = m + std::sqrt(m * m - a2);
+    r_minus_ = m - std::sqrt(m * m - a2);
+    if (outer >= 0.0) {
+      r3_ = z - std::sqrt(outer);
+      r4_ = z + std::sqrt(outer);
+      polish(r4_);
+      polish(r3_);
+      case_ = r4_ > r_plus_ ? KerrRadialCase::turning : KerrRadialCase::real_inside;
+      if (case_ == KerrRadialCase::turning && !(r_o_ > r4_)) return false;  // the camera inside the barrier
+      const double r31 = r3_ - r1_, r41 = r4_ - r1_, r32 = r3_ - r2_, r42 = r4_ - r2_;
+      k_r_ = r32 * r41 / (r31 * r42);
+      g_r_ = 2.0 / std::sqrt(r31 * r42);
+      f_inf_ = legendre_f(std::asin(std::sqrt(r31 / r41)), k_r_);
+      if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
+    } else {
+      case_ = KerrRadialCase::complex_pair;
+      re3_ = z;
+      im3_ = std::sqrt(-outer);
+      ca3_ = std::hypot(z - r2_, im3_);  // A = |r3 - r2|
+      cb3_ = std::hypot(z - r1_, im3_);  // B = |r3 - r1|
+      const double r21 = r2_ - r1_;
+      k_r_ = ((ca3_ + cb3_) * (ca3_ + cb3_) - r21 * r21) / (4.0 * ca3_ * cb3_);
+      g_r_ = 1.0 / std::sqrt(ca3_ * cb3_);
+      f_inf_ = legendre_f(std::acos((ca3_ - cb3_) / (ca3_ + cb3_)), k_r_);
+      if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
+    }
+    j_r_ = g_r_ * f_inf_;
+    t_o_ = t_of_radius(r_o_);
+    // The end: an inward ray turns at r4 (T = J) and leaves through the sky sphere at T = 2 J - T(R); without a
+    // turning point it reaches the guard. An outward ray leaves at T = T(R).
+    const double t_sky = t_of_radius(r_escape_);
+    if (s_r_ > 0.0) {
+      escapes_ = true;
+      tau_end_ = t_o_ - t_sky;
+      tau_infinity_ = t_o_;
+    } else if (case_ == KerrRadialCase::turning) {
+      escapes_ = true;
+      tau_end_ = 2.0 * j_r_ - t_sky - t_o_;
+      tau_infinity_ = 2.0 * j_r_ - t_o_;
+    } else {
+      escapes_ = false;
+      tau_end_ = t_of_radius(r_guard_) - t_o_;
+      tau_infinity_ = nan;
+    }
+    // phi's radial part: int a (2 M r - a lambda) / Delta dtau = sum c_+- int dtau / (r - r_+-).
+    const double dr = r_plus_ - r_minus_;
+    c_plus_ = dr > 0.0 ? a_ * (2.0 * m * r_plus_ - a_ * lambda_) / dr : 0.0;
+    c_minus_ = dr > 0.0 ? -a_ * (2.0 * m * r_minus_ - a_ * lambda_) / dr : 0.0;
+    h_o_ = radial_phi_primitive(x_of_t(t_o_));
+    return std::isfinite(t_o_) && std::isfinite(tau_end_) && tau_end_ > 0.0;
+  }
+
+  // One Newton step towards a real root of R where it helps (the closed form loses digits near a double root).
+  GRTRACE_HD void polish(double& r) const {
+    const double a2 = a_ * a_;
+    const double ca = a2 - eta_ - lambda_ * lambda_, cb = 2.0 * mass_ * (eta_ + (lambda_ - a_) * (lambda_ - a_));
+    const double cc = -a2 * eta_;
+    auto R = [&](double x) { return (((x * x + ca) * x) + cb) * x + cc; };
+    const double d = (4.0 * r * r + 2.0 * ca) * r + cb;
+    if (d == 0.0) return;
+    const double next = r - R(r) / d;
+    if (std::abs(R(next)) < std::abs(R(r))) r = next;
+  }
+
+  // The Mino time from infinity to r on the ingoing leg (r >= r4 with four real roots, r > r2 otherwise).
+  GRTRACE_HD double t_of_radius(double r) const {
+    if (case_ == KerrRadialCase::complex_pair) {
+      const double u = ca3_ * (r - r1_), v = cb3_ * (r - r2_);
+      return g_r_ * (f_inf_ - legendre_f(std::acos(std::clamp((u - v) / (u + v), -1.0, 1.0)), k_r_));
+    }
+    const double r31 = r3_ - r1_, r41 = r4_ - r1_;
+    const double s = std::clamp(r31 * (r - r4_) / (r41 * (r - r3_)), 0.0, 1.0);
+    return g_r_ * (f_inf_ - legendre_f(std::asin(std::sqrt(s)), k_r_));
+  }
+
+  GRTRACE_HD double x_of_t(double t) const { return t / g_r_ - f_inf_; }
+
+  GRTRACE_HD double radius_at_t(double t) const {
+    const double x = x_of_t(t);
+    const JacobiValues j = jacobi(x, k_r_);
+    return radius_at_x(j.sn, j.cn);
+  }
+
+  GRTRACE_HD double radius_at_x(double sn, double cn) const {
+    if (case_ == KerrRadialCase::complex_pair) {
+      return ((cb3_ * r2_ - ca3_ * r1_) + (cb3_ * r2_ + ca3_ * r1_) * cn) / ((cb3_ - ca3_) + (cb3_ + ca3_) * cn);
+    }
+    const double r31 = r3_ - r1_, r41 = r4_ - r1_, s = sn * sn;
+    return (r31 * r4_ - r41 * r3_ * s) / (r31 - r41 * s);
+  }
+
+  // H(X) = sum c_+- int_0^X dX' / (r(X') - r_+-), so that phi's radial part between X_a and X_b is
+  // -sign(dr/dtau at the camera) g (H(X_b) - H(X_a)) (dtau = -s_r g dX).
+  GRTRACE_HD double radial_phi_primitive(double x) const {
+    if (a_ == 0.0) return 0.0;
+    double h = 0.0;
+    if (case_ == KerrRadialCase::complex_pair) {
+      const double b0 = cb3_ - ca3_, b1 = cb3_ + ca3_;
+      const double a0 = cb3_ * r2_ - ca3_ * r1_, a1 = cb3_ * r2_ + ca3_ * r1_;
+      for (const auto& [c, rh] : {Pair{c_plus_, r_plus_}, Pair{c_minus_, r_minus_}}) {
+        const double g0 = a0 - rh * b0, g1 = a1 - rh * b1;
+        h += c * (b1 / g1 * x + (b0 * g1 - b1 * g0) / (g0 * g1) * jacobi_r1(g1 / g0, x, k_r_));
+      }
+      return h;
+    }
+    // Four real roots: |X| <= F(asin sqrt(r31 / r41)) < K, so am X = asin(sn X).
+    const double r31 = r3_ - r1_, r41 = r4_ - r1_, q = r41 / r31;
+    const JacobiValues j = jacobi(x, k_r_);
+    const double am = std::asin(std::clamp(j.sn, -1.0, 1.0));
+    for (const auto& [c, rh] : {Pair{c_plus_, r_plus_}, Pair{c_minus_, r_minus_}}) {
+      const double r4h = r4_ - rh, r3h = r3_ - rh, n = q * r3h / r4h;
+      h += c / r4h * (q / n * x + (1.0 - q / n) * legendre_pi(n, am, k_r_));
+    }
+    return h;
+  }
+
+  struct Pair {
+    double c, r;
+  };
+
+  // phi at Mino time tau, the polar phase being Y there with amplitude am.
+  GRTRACE_HD double phi_at(double tau, double y, double am) const {
+    const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau)) - h_o_);
+    const double polar =
+        through_axis_ ? std::numbers::pi * axis_passes(y) * (nu_ > 0.0 ? 1.0 : -1.0) : lambda_ * polar_phi_integral(am);
+    // d phi / dtau = sign(E) (a (2 M r - a lambda) / Delta + lambda / sin^2 theta) (k = dx / d(affine), E = p_t).
+    return phi_o_ + (energy_ > 0.0 ? 1.0 : -1.0) * (radial + polar);
+  }
+
+  GRTRACE_HD GeodesicState make_state(double tau, double y, double sn, double cn, double dn, double am) const {
+    const double t = t_o_ - s_r_ * tau, x = x_of_t(t);
+    const JacobiValues jr = jacobi(x, k_r_);
+    const double r = radius_at_x(jr.sn, jr.cn);
+    const double cos_t = std::clamp(sqrt_u_plus_ * sn, -1.0, 1.0), theta = std::acos(cos_t);
+    const double sin2 = 1.0 - cos_t * cos_t, sin_t = std::sqrt(sin2);
+    const double a2 = a_ * a_, sigma = r * r + a2 * cos_t * cos_t, delta = r * r - 2.0 * mass_ * r + a2;
+    const double e = energy_, abs_e = std::abs(e);
+    const double ca = a2 - eta_ - lambda_ * lambda_, cb = 2.0 * mass_ * (eta_ + (lambda_ - a_) * (lambda_ - a_));
+    const double rr = std::max(0.0, (((r * r + ca) * r) + cb) * r - a2 * eta_);
+    // dr/dtau's sign: four real roots, r grows with |X| and T = T_o - s_r tau; otherwise r falls as T grows.
+    const double radial_sign = case_ == KerrRadialCase::complex_pair ? s_r_ : -s_r_ * (x >= 0.0 ? 1.0 : -1.0);
+    const double dcos = sqrt_u_plus_ * cn * dn * nu_ * sqrt_a_;  // d cos(theta) / dtau
+    const double w = r * r + a2 - a_ * lambda_;
+    GeodesicState out;
+    out[0] = nan;
+    out[1] = r;
+    out[2] = theta;
+    out[3] = phi_at(tau, y, am);
+    out[4] = e * ((r * r + a2) * w / delta - a_ * (a_ * sin2 - lambda_)) / sigma;
+    out[5] = radial_sign * abs_e * std::sqrt(rr) / sigma;
+    out[6] = -dcos / sin_t * abs_e / sigma;
+    out[7] = e * (a_ * w / delta - a_ + lambda_ / sin2) / sigma;
+    return out;
+  }
+
+  double mass_, a_, r_escape_, r_guard_;
+  double energy_ = 0.0, lambda_ = 0.0, eta_ = 0.0, r_o_ = 0.0, theta_o_ = 0.0, phi_o_ = 0.0, s_r_ = 1.0;
+  bool supported_ = false, escapes_ = false, through_axis_ = false;
+  KerrRadialCase case_ = KerrRadialCase::unsupported;
+  // polar
+  double u_plus_ = 0.0, sqrt_u_plus_ = 0.0, m_theta_ = 0.0, sqrt_a_ = 1.0, k_theta_ = 1.0, pi_theta_ = 0.0;
+  double am_o_ = 0.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0, pi_o_ = 0.0;
+  int j0_ = 0;
+  // radial
+  double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, re3_ = 0.0, im3_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
+  double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0, t_o_ = 0.0;
+  double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0, h_o_ = 0.0;
+};
+
+}  // namespace grtrace

@@ -104,15 +104,26 @@ std::unique_ptr<FrameRenderer> make_frame_renderer(const CheckedRequest& checked
       with_standard_scene(checked.scene, [&]<class Scene>(Scene scene) {
         if constexpr (scene_fits_metric<M, Scene>) {
           // On the GPU (device cuda, checked: the GPU's method, no planar tracer) auto means kerr-mino where it
-          // applies and general otherwise; the same call sites as the CPU's, so no tracer is instantiated twice.
+          // applies and general otherwise.
           const bool on_gpu = q.device == "cuda";
+          const bool mino = q.tracer == "kerr-mino" || (on_gpu && kerr_mino_tracer_applies<M, Scene, C>);
           if (q.tracer == "general" || (on_gpu && !kerr_mino_tracer_applies<M, Scene, C>)) {
             out = own_tracer(
                 checked, [&] { return make_general_tracer<T, C>(metric, checked.settings, checked.correction, scene); },
                 on_gpu);
+          } else if (mino && kerr_closed_form_tracer_applies<M, Scene, C>) {
+            // kerr-mino asked for (or on the GPU) where auto's choice is the closed form; elsewhere auto's choice
+            // below is kerr-mino itself where it applies.
+            if constexpr (kerr_mino_tracer_applies<M, Scene, C>) {
+              out = own_tracer(
+                  checked,
+                  [&] { return make_kerr_mino_tracer<T, C>(metric, checked.settings, checked.correction, scene); },
+                  on_gpu);
+            }
           } else {
             // check_tracer refused a reduced tracer the metric or control cannot have; this is the scene's part.
             if ((q.tracer == "kerr-mino" && !kerr_mino_tracer_applies<M, Scene, C>) ||
+                (q.tracer == "kerr-closed-form" && !kerr_closed_form_tracer_applies<M, Scene, C>) ||
                 (q.tracer == "planar" && !planar_tracer_applies<M, Scene, C>))
               throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene + "; use auto or general");
             with_auto_tracer_maker<T, C>(metric, checked.settings, checked.camera, checked.correction, scene,

@@ -202,13 +202,15 @@ void check_tracer(const RenderRequest& q) {
     throw RequestError(
         "--tracer planar needs a static spherically symmetric metric with a horizon "
         "(--metric schwarzschild or rn); use general");
-  if (q.tracer == "kerr-mino" && !kerr_mino_tracer_metric(q.metric))
-    throw RequestError(
-        "--tracer kerr-mino needs --metric kerr --chart bl (Kerr's separated equations in "
-        "Boyer-Lindquist coordinates); use general");
-  if ((q.tracer == "planar" || q.tracer == "kerr-mino") && q.method.control == "fixed")
+  if ((q.tracer == "kerr-mino" || q.tracer == "kerr-closed-form") && !kerr_mino_tracer_metric(q.metric))
+    throw RequestError("--tracer " + q.tracer +
+                       " needs --metric kerr --chart bl (Kerr's separated equations in "
+                       "Boyer-Lindquist coordinates); use general");
+  if ((q.tracer == "planar" || q.tracer == "kerr-mino" || q.tracer == "kerr-closed-form") &&
+      q.method.control == "fixed")
     throw RequestError("--tracer " + q.tracer + " integrates in " +
                        (q.tracer == "planar" ? "swept angle" : "Mino time") +
+                       (q.tracer == "kerr-closed-form" ? " (the rays its closed form does not cover)" : "") +
                        ", where a fixed --step would mean something else; use --control i, pi or doubling, or "
                        "--tracer general");
 }

@@ -65,12 +65,13 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"angle-correction", "exact", "escaped rays: none | flat (seed eq. 7-8) | exact (bending to infinity)"});
   o.push_back({"max-steps", "100000", "step budget per ray"});
   o.push_back({"tracer", "auto",
-               "auto | general | planar | kerr-mino | straight-line. planar: one table of rays for the frame, "
-               "every scene of a Schwarzschild or Reissner-Nordstrom hole, disk included (auto's choice there with an "
-               "adaptive --control); kerr-mino: every pixel "
-               "on Kerr's separated equations in Mino time, 3x cheaper per ray than general (auto's choice for "
-               "--metric kerr --chart bl with an adaptive --control); straight-line: flat space (auto's choice "
-               "for --metric minkowski); general: every pixel integrated (any curved metric)"});
+               "auto | general | planar | kerr-mino | kerr-closed-form | straight-line. planar: one table of rays for "
+               "the frame, every scene of a Schwarzschild or Reissner-Nordstrom hole, disk included (auto's choice "
+               "there with an adaptive --control); kerr-closed-form: every pixel from Kerr's geodesics in closed "
+               "form, nothing integrated (auto's choice for --metric kerr --chart bl with an adaptive --control); "
+               "kerr-mino: every pixel on Kerr's separated equations in Mino time, 3x cheaper per ray than general "
+               "(what the GPU runs for Kerr); straight-line: flat space (auto's choice for --metric minkowski); "
+               "general: every pixel integrated (any curved metric)"});
   o.push_back({"device", "auto",
                "auto | cpu | cuda. cuda: rays traced on the GPU (a build with the CUDA backend and a CUDA device; "
                "--tableau rkf78 --control i; every pixel integrated: --tracer general, or auto = kerr-mino for "

@@ -12,7 +12,7 @@ dashes (``camera_r`` for ``--camera-r``), and a bad value raises ``ValueError`` 
     >>> frame["redshift"].shape                   # a numpy view of the frame's own memory
     (256, 256)
     >>> frame.report["tracer"], frame.report["status_counts"]["hit"] > 0
-    ('kerr-mino', True)
+    ('kerr-closed-form', True)
     >>> ray = grtrace.trace_ray(pixel=(128, 100), metric="kerr", spin=0.9, scene="disk", camera_r=50,
     ...                         camera_theta=80, fov=30, width=256, height=256)
     >>> ray.x.shape[1], ray.outcome["object"]

@@ -26,7 +26,7 @@ def test_lists_are_the_librarys():
     assert grtrace.scenes() == ["checker", "sky", "redshift", "disk", "accretion", "riaf", "torus"]
     assert {"tableau": "rkf78", "control": "i"}.items() <= grtrace.methods()[0].items()
     assert len(grtrace.methods()) == 6
-    assert grtrace.tracers() == ["auto", "general", "planar", "kerr-mino", "straight-line"]
+    assert grtrace.tracers() == ["auto", "general", "planar", "kerr-mino", "kerr-closed-form", "straight-line"]
     assert grtrace.devices() == ["auto", "cpu", "cuda"]
     gpu = grtrace.gpu()
     assert set(gpu) == {"built", "present", "name", "why_not"}
@@ -85,7 +85,7 @@ def test_the_readmes_example_runs_and_says_what_it_shows(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     scope = {}
     exec(compile(code.replace("progress=True", "progress=None"), "README.md", "exec"), scope)
-    assert scope["frame"].report["tracer"] == "kerr-mino"
+    assert scope["frame"].report["tracer"] == "kerr-closed-form"
     assert scope["g"].shape == (256, 256)
     assert scope["ray"].outcome["status"] == "hit" and scope["ray"].outcome["object"] == "disk"
     assert (tmp_path / "disk.exr").exists() and (tmp_path / "disk.png").exists()

@@ -27,6 +27,10 @@
 //                                        (radians, escaped and hit pixels, against the same frame traced with
 //                                        rkf78/i at rtol 1e-12 after the timed loop), mismatches (end object
 //                                        differs from the reference's), failures.
+//   frame/metric/kerr_bl_disk_mino/...   the Kerr disk frame through the reduced Kerr tracer (Mino time)
+//   frame/metric/kerr_bl_disk_closed_form/...   the same through the closed-form tracer (nothing integrated but its
+//                                        fallback rays: counter fallback_rays); at 1024 both, for their ratio in one
+//                                        run (us_per_ray_core: processor time per ray; no reference above 256).
 #include "../../examples/work_precision/work_precision.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
@@ -40,6 +44,7 @@
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/all_tableaux.hpp"
+#include "grtrace/trace/kerr_closed_form_tracer.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
 #include "grtrace/trace/symmetric_scene_tracer.hpp"
@@ -248,7 +253,8 @@ struct MetricAnswers {
   }
 };
 
-/// One row: the frame traced by `tracer` (a scene tracer for metric and scene), judged against the general tracer.
+/// One row: the frame traced by `tracer` (a scene tracer for metric and scene), judged against the general tracer
+/// (frames up to 256 pixels a side: the reference of a 1024 frame at rtol 1e-12 takes minutes).
 template <class Tracer, class Metric, class SceneT>
 void frame_metric_with(benchmark::State& state, const Tracer& tracer, const Metric& metric, const SceneT& scene, int n) {
   const Camera cam = metric_camera(metric, n);
@@ -264,6 +270,17 @@ void frame_metric_with(benchmark::State& state, const Tracer& tracer, const Metr
   const double cpu_seconds =
       static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC / static_cast<double>(state.iterations());
   seconds /= static_cast<double>(state.iterations());
+  const double rays = static_cast<double>(n) * n;
+  state.counters["rays_per_second"] = rays / seconds;
+  state.counters["threads"] = stats.threads;
+  state.counters["us_per_ray_core"] = cpu_seconds * 1e6 / rays;  // processor time: all threads together
+  if (stats.total_steps > 0) {
+    state.counters["ns_per_step"] = seconds * stats.threads * 1e9 / static_cast<double>(stats.total_steps);
+    state.counters["cpu_ns_per_step"] = cpu_seconds * 1e9 / static_cast<double>(stats.total_steps);
+    state.counters["steps_per_ray"] = static_cast<double>(stats.total_steps) / rays;
+  }
+  state.counters["failures"] = static_cast<double>(stats.failures());
+  if (n > 256) return;
   // Judged against a much tighter trace of the same frame (not timed).
   const auto reference_tracer =
       make_general_tracer<Fehlberg78, IController>(metric, settings_for(1e-12), AngleCorrection::flat, scene);
@@ -295,16 +312,9 @@ void frame_metric_with(benchmark::State& state, const Tracer& tracer, const Metr
   };
   state.counters["p99_error"] = quantile(0.99);
   state.counters["p999_error"] = quantile(0.999);
-  const double rays = static_cast<double>(n) * n;
-  state.counters["rays_per_second"] = rays / seconds;
-  state.counters["threads"] = stats.threads;
-  state.counters["ns_per_step"] = seconds * stats.threads * 1e9 / static_cast<double>(stats.total_steps);
-  state.counters["cpu_ns_per_step"] = cpu_seconds * 1e9 / static_cast<double>(stats.total_steps);
-  state.counters["steps_per_ray"] = static_cast<double>(stats.total_steps) / rays;
   state.counters["max_error"] = summary.max;
   state.counters["median_error"] = summary.median;
   state.counters["mismatches"] = static_cast<double>(mismatches);
-  state.counters["failures"] = static_cast<double>(stats.failures());
 }
 
 template <class T, class C, class Metric, class SceneT>
@@ -318,6 +328,15 @@ template <class T, class C, class SceneT>
 void frame_mino(benchmark::State& state, const KerrMetric& metric, const SceneT& scene, int n, double rtol) {
   frame_metric_with(state, make_kerr_mino_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene),
                     metric, scene, n);
+}
+
+/// The same frame in closed form (trace/kerr_closed_form_tracer.hpp): nothing integrated but its fallback rays.
+template <class T, class C, class SceneT>
+void frame_closed_form(benchmark::State& state, const KerrMetric& metric, const SceneT& scene, int n, double rtol) {
+  const auto tracer =
+      make_kerr_closed_form_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene);
+  frame_metric_with(state, tracer, metric, scene, n);
+  state.counters["fallback_rays"] = static_cast<double>(tracer.fallback_rays()) / static_cast<double>(state.iterations());
 }
 
 /// The Kerr disk frame (a = 0.9, prograde disk from the ISCO to 20 M, ZAMO camera at r = 50 M, 80 degrees,
@@ -357,6 +376,8 @@ void register_metric_frames(const std::string& method, double rtol, int n) {
   });
   add("kerr_bl_mino", [=](benchmark::State& s) { frame_mino<T, C>(s, KerrMetric{1.0, 0.9}, background_scene({}), n, rtol); });
   add("kerr_bl_disk_mino", [=](benchmark::State& s) { frame_mino<T, C>(s, KerrMetric{1.0, 0.9}, kerr_disk(), n, rtol); });
+  add("kerr_bl_disk_closed_form",
+      [=](benchmark::State& s) { frame_closed_form<T, C>(s, KerrMetric{1.0, 0.9}, kerr_disk(), n, rtol); });
 }
 
 
@@ -388,6 +409,19 @@ const bool registered = [] {
     benchmark::RegisterBenchmark(name, [=](benchmark::State& s) {
       frame_metric<Tsitouras54, IController>(s, KerrMetric{1.0, 0.9}, kerr_disk(), 128, rtol);
     })->Unit(benchmark::kMillisecond)->UseRealTime();
+  }
+  // The Kerr disk frame at 1024 x 1024, reduced tracer against closed form (read the ratio in one run).
+  for (const auto& [name, closed] : {std::pair{"kerr_bl_disk_mino", false}, std::pair{"kerr_bl_disk_closed_form", true}}) {
+    benchmark::RegisterBenchmark(("frame/metric/" + std::string(name) + "/tsit5/i/2e-9/1024").c_str(),
+                                 [closed = closed](benchmark::State& s) {
+                                   if (closed)
+                                     frame_closed_form<Tsitouras54, IController>(s, KerrMetric{1.0, 0.9}, kerr_disk(),
+                                                                                 1024, 2e-9);
+                                   else
+                                     frame_mino<Tsitouras54, IController>(s, KerrMetric{1.0, 0.9}, kerr_disk(), 1024, 2e-9);
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
   }
   return true;
 }();

@@ -71,7 +71,7 @@ Frame app_frame(const app::CheckedRequest& c) {
 TEST(GpuNvccHostPass, DrawsTheCpuBuildsFrameBitForBit) {
   const KerrMetric kerr{1.0, 0.9};
   const Camera camera = probe_camera(kerr, 50.0, 80.0, 60.0, 24);
-  const app::CheckedRequest q = request("kerr", "disk", "auto", camera);
+  const app::CheckedRequest q = request("kerr", "disk", "kerr-mino", camera);
   const auto tracer = make_kerr_mino_tracer<Fehlberg78, IController>(kerr, q.settings, q.correction, disk_scene(q.scene));
   const Frame here = render_frame_traced_by(camera, tracer, [&](int width, int height) {
     return testing_support::trace_quietly_here(camera, tracer, width, height);
@@ -321,7 +321,7 @@ TEST(GpuDevice, OutcomesMatchTheCpusTrace) {
 TEST(GpuDevice, TheApplicationLayersGpuFrameIsTheCpusFrame) {
   GRTRACE_NEED_GPU();
   const std::vector<app::CheckedRequest> cases = {
-      request("kerr", "disk", "auto", probe_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0, 60.0, 128)),
+      request("kerr", "disk", "kerr-mino", probe_camera(KerrMetric{1.0, 0.9}, 50.0, 80.0, 60.0, 128)),
       request("schwarzschild", "disk", "general", probe_camera(SchwarzschildMetric{1.0}, 30.0, 80.0, 60.0, 128))};
   for (app::CheckedRequest q : cases) {
     const Frame cpu = app_frame(q);

@@ -109,10 +109,11 @@ TEST(AppLayer, KerrAndFlatFramesAreTheCoresBitForBit) {
   const KerrMetric metric{1.0, 0.9};
   const app::CheckedRequest k = app::check_request(request("kerr", "disk", "rkf78", "i", "auto", 50.0));
   const app::RenderResult erased = app::FrameRenderer::create(k)->render();
-  expect_same_channels(erased.image, render_frame(k.camera, make_kerr_mino_tracer<Fehlberg78, IController>(
-                                                                metric, k.settings, k.correction, disk_scene(k.scene)))
-                                         .image);
-  EXPECT_EQ(erased.report.tracer, "kerr-mino");
+  expect_same_channels(erased.image,
+                       render_frame(k.camera, make_kerr_closed_form_tracer<Fehlberg78, IController>(
+                                                  metric, k.settings, k.correction, disk_scene(k.scene)))
+                           .image);
+  EXPECT_EQ(erased.report.tracer, "kerr-closed-form");
   EXPECT_EQ(erased.report.device, "cpu");
   EXPECT_EQ(erased.image.metadata.at("device"), "cpu");
   // The ZAMO carries a Kerr camera unless another observer is named; the disk's edge is the prograde ISCO.
@@ -283,7 +284,7 @@ TEST(AppLayer, RefusesWhatItsTracersCannotDrawBeforeAnyWork) {
       {request("kerr", "checker", "rkf78", "i", "planar"), "--tracer planar needs"},
       {request("schwarzschild", "checker", "rkf78", "i", "symmetric"), "use --tracer planar"},
       {request("schwarzschild", "checker", "rkf78", "i", "teapot"),
-       "choose auto, general, planar, kerr-mino or straight-line"},
+       "choose auto, general, planar, kerr-mino, kerr-closed-form or straight-line"},
       {request("schwarzschild", "checker", "rkf78", "i", "kerr-mino"), "--tracer kerr-mino needs --metric kerr"},
       {request("kerr", "checker", "rkf78", "i", "straight-line"), "--tracer straight-line draws flat space only"},
       {request("minkowski", "disk", "rkf78", "i", "auto"), "--scene disk needs a metric with a mass"},

@@ -114,9 +114,9 @@ TEST_F(KerrCli, DiskDefaultsToTheIscoOfItsSenseAndTheHeaderSaysSo) {
   };
   using grtrace::exact::Orbit;
   const std::vector<Case> cases = {
-      {{"--spin", "0.9"}, 0.9, Orbit::prograde, "prograde", "zamo", "bl", "kerr-mino"},
+      {{"--spin", "0.9"}, 0.9, Orbit::prograde, "prograde", "zamo", "bl", "kerr-closed-form"},
       {{"--spin", "0.9", "--disk-retrograde", "--observer", "static"}, 0.9, Orbit::retrograde, "retrograde", "static",
-       "bl", "kerr-mino"},
+       "bl", "kerr-closed-form"},
       {{"--spin", "-0.5", "--tracer", "general"}, -0.5, Orbit::prograde, "prograde", "zamo", "bl", "general"},
       {{"--spin", "0.9", "--chart", "ks"}, 0.9, Orbit::prograde, "prograde", "zamo", "ks", "general"},  // KS disk too
       {{"--spin", "0.5", "--tableau", "rk4", "--control", "fixed", "--step", "0.5"}, 0.5, Orbit::prograde, "prograde",
@@ -158,14 +158,14 @@ TEST_F(KerrCli, EveryTracerTheReportNamesCanBeAskedForByName) {
   const std::vector<std::string> disk = {"--scene", "disk", "--spin", "0.9", "--camera-r", "40", "--camera-theta",
                                          "80", "--fov", "50"};
   std::vector<std::string> named = disk;
-  named.insert(named.end(), {"--tracer", "kerr-mino"});
+  named.insert(named.end(), {"--tracer", "kerr-closed-form"});
   const ToolRun picked = run(kerr(disk, out("auto.exr").string()));
   const ToolRun asked = run(kerr(named, out("mino.exr").string()));
   ASSERT_EQ(picked.status, 0) << picked.err;
   ASSERT_EQ(asked.status, 0) << asked.err;
-  EXPECT_NE(asked.out.find("\"tracer\":\"kerr-mino\""), std::string::npos) << asked.out;
+  EXPECT_NE(asked.out.find("\"tracer\":\"kerr-closed-form\""), std::string::npos) << asked.out;
   const grtrace::Image a = grtrace::read_exr(out("auto.exr")), b = grtrace::read_exr(out("mino.exr"));
-  EXPECT_EQ(a.metadata.at("tracer"), "kerr-mino");
+  EXPECT_EQ(a.metadata.at("tracer"), "kerr-closed-form");
   for (const std::string& channel : a.channel_names()) {  // bit for bit (NaN where a pixel has no sky direction)
     const auto &x = a.channel(channel), &y = b.channel(channel);
     EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << channel;
@@ -185,7 +185,7 @@ TEST_F(KerrCli, EveryTracerTheReportNamesCanBeAskedForByName) {
        "--tracer kerr-mino integrates in Mino time, where a fixed --step would mean something else"},
       {{"--metric", "kerr", "--tracer", "planar"}, "--tracer planar needs a static spherically symmetric metric"},
       {{"--metric", "schwarzschild", "--tracer", "straight-line"}, "--tracer straight-line draws flat space only"},
-      {{"--tracer", "mino"}, "unknown --tracer 'mino'; choose auto, general, planar, kerr-mino or straight-line"},
+      {{"--tracer", "mino"}, "unknown --tracer 'mino'; choose auto, general, planar, kerr-mino, kerr-closed-form or straight-line"},
   };
   for (const BadCase& c : refused) {
     std::vector<std::string> args = c.args;

@@ -19,8 +19,9 @@
 //  (c'') a camera on the axis (theta = 0 and pi, placed 1e-9 rad off it) draws the disk frame Kerr-Schild's general
 //      tracer draws (no ray fails, the same objects, sky within 3e-7 rad, redshift within 3e-7), and cameras 1e-7
 //      and 1e-6 rad off the axis draw it moved by about their offset: the axis camera is their limit;
-//  (d) auto picks it for Kerr (Boyer-Lindquist) scenes of stationary objects with an adaptive controller, and the
-//      general tracer otherwise (Kerr-Schild, a fixed step, an object that may depend on t).
+//  (d) auto picks it for Kerr (Boyer-Lindquist) scenes of stationary objects with an adaptive controller (the closed
+//      form where every object is equatorial), and the general tracer otherwise (Kerr-Schild, a fixed step, an object
+//      that may depend on t).
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
@@ -410,6 +411,15 @@ struct DriftingBall {
   Rgb colour(const SurfaceHit&) const { return {1.0f, 0.0f, 0.0f}; }
 };
 
+/// A sphere at rest: stationary, not equatorial.
+struct StillBall {
+  static constexpr std::string_view kind = "ball";
+  static constexpr bool stationary = true;
+  double operator()(const GeodesicState& y) const { return y[1] - 10.0; }
+  Vec4 emitter_velocity(const KerrMetric& m, const Vec4& x) const { return rest_emitter_velocity(m, x); }
+  Rgb colour(const SurfaceHit&) const { return {1.0f, 0.0f, 0.0f}; }
+};
+
 template <class C, class Metric, class SceneT>
 std::string auto_choice(const Metric& metric, const SceneT& scene) {
   CameraSpec cs;
@@ -428,9 +438,13 @@ TEST(KerrMino, AutoPicksItWhereItsAssumptionsHold) {
   const DiskScene disk = disk_scene(spec);
   const BackgroundScene sky = background_scene(spec);
   const KerrMetric kerr{1.0, 0.9};
-  EXPECT_EQ(auto_choice<IController>(kerr, disk), "kerr-mino");
-  EXPECT_EQ(auto_choice<PIController>(kerr, sky), "kerr-mino");
-  EXPECT_EQ(auto_choice<StepDoubling>(kerr, disk), "kerr-mino");
+  // Equatorial objects (and the sky alone): the closed form (trace/kerr_closed_form_tracer.hpp); other stationary
+  // objects: the reduced tracer.
+  EXPECT_EQ(auto_choice<IController>(kerr, disk), "kerr-closed-form");
+  EXPECT_EQ(auto_choice<PIController>(kerr, sky), "kerr-closed-form");
+  EXPECT_EQ(auto_choice<StepDoubling>(kerr, disk), "kerr-closed-form");
+  const auto ring = make_scene(AnySky{}, HorizonPaint{}, StillBall{});
+  EXPECT_EQ(auto_choice<IController>(kerr, ring), "kerr-mino");
   EXPECT_EQ(auto_choice<FixedStep>(kerr, disk), "general") << "a fixed step means something else in Mino time";
   EXPECT_EQ(auto_choice<IController>(kerr_schild_for_camera_rays(1.0, 0.9), disk), "general") << "another chart";
   const auto ball = make_scene(AnySky{}, HorizonPaint{}, DriftingBall{});

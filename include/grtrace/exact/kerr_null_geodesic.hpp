@@ -130,8 +130,13 @@ class KerrNullGeodesic {
     sqrt_a_ = std::sqrt(big_a);
     k_theta_ = complete_f(m_theta_);
     pi_theta_ = through_axis_ ? 0.0 : complete_pi(u_plus_, m_theta_);
-    const double x = std::clamp(std::cos(theta_o_) / sqrt_u_plus_, -1.0, 1.0);
-    am_o_ = std::asin(x);
+    // The start's phase: sn = cos(theta_o) / sqrt(u+), and cn from the start's own polar speed, (d cos / dtau)^2 =
+    // (u+ - cos^2)(a^2 cos^2 + A): near the ray's polar turning point u+ - cos^2 from eta and lambda is a difference
+    // of nearly equal numbers (a camera looking along a parallel), and asin(sn) would magnify its rounding there.
+    const double c = std::cos(theta_o_), s_o = std::sin(theta_o_), sigma = r_o_ * r_o_ + a2 * c * c;
+    const double dcos = s_o * sigma * k_theta / std::abs(energy_);
+    const double x = std::clamp(c / sqrt_u_plus_, -1.0, 1.0);
+    am_o_ = through_axis_ ? std::asin(x) : std::atan2(x, std::sqrt(dcos * dcos / ((a2 * c * c + big_a) * u_plus_)));
     y_o_ = legendre_f(am_o_, m_theta_);
     // d cos(theta)/dtau = -sin(theta) dtheta/dtau = sqrt(u+ A) cn dn nu: nu = -sign(k^theta); at a turning point
     // (k^theta = 0) the ray heads for the equator.

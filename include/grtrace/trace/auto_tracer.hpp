@@ -7,6 +7,9 @@
 //   planar         a static spherically symmetric metric with a horizon (StaticSphericalMetric), a scene whose
 //                  objects lie in the equatorial plane (planar_supports_scene), an adaptive step controller:
 //                  one table of rays for the frame (trace/planar_scene_tracer.hpp)
+//   kerr-closed-form  KerrMetric (Boyer-Lindquist), a scene whose objects lie in the equatorial plane
+//                  (planar_supports_scene; the sky alone too), an adaptive step controller: every pixel from the
+//                  ray's separated integrals, nothing integrated (trace/kerr_closed_form_tracer.hpp)
 //   kerr-mino      KerrMetric (Boyer-Lindquist), a scene of stationary objects (kerr_mino_supports_scene), an
 //                  adaptive step controller: every pixel integrated on Kerr's separated equations in Mino time
 //                  (trace/kerr_mino_tracer.hpp)
@@ -22,6 +25,7 @@
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/observer/camera.hpp"
+#include "grtrace/trace/kerr_closed_form_tracer.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/planar_scene_tracer.hpp"
 #include "grtrace/trace/scene_tracer.hpp"
@@ -36,6 +40,12 @@ namespace grtrace {
 template <class Metric, class SceneT, class C>
 inline constexpr bool kerr_mino_tracer_applies =
     std::is_same_v<Metric, KerrMetric> && kerr_mino_supports_scene<SceneT> && C::estimate != ErrorEstimate::none;
+
+/// True when the closed-form Kerr tracer can draw this scene in this metric with this controller (the
+/// controller is its fallback's: trace/kerr_closed_form_tracer.hpp).
+template <class Metric, class SceneT, class C>
+inline constexpr bool kerr_closed_form_tracer_applies =
+    std::is_same_v<Metric, KerrMetric> && planar_supports_scene<SceneT> && C::estimate != ErrorEstimate::none;
 
 /// True when the planar tracer can draw this scene in this metric with this controller (its run-time condition,
 /// a horizon, is checked by with_auto_tracer).
@@ -60,7 +70,9 @@ decltype(auto) with_auto_tracer_maker(const Metric& metric, const TraceSettings&
           return PlanarSceneTracer<Metric, T, C, SceneT>(metric, settings, camera, correction, scene, table_rays);
         });
     }
-    if constexpr (kerr_mino_tracer_applies<Metric, SceneT, C>) {
+    if constexpr (kerr_closed_form_tracer_applies<Metric, SceneT, C>) {
+      return f([&] { return make_kerr_closed_form_tracer<T, C>(metric, settings, correction, scene); });
+    } else if constexpr (kerr_mino_tracer_applies<Metric, SceneT, C>) {
       return f([&] { return make_kerr_mino_tracer<T, C>(metric, settings, correction, scene); });
     } else {
       return f([&] { return make_general_tracer<T, C>(metric, settings, correction, scene); });

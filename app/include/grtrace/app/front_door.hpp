@@ -121,7 +121,7 @@ struct RenderRequest {
   MethodRequest method;
   double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
   std::string angle_correction = "exact";  ///< escaped rays' continuation: none | flat | exact
-  std::string tracer = "auto";             ///< auto | general | planar | kerr-mino | straight-line (kTracerNames)
+  std::string tracer = "auto";  ///< auto | general | planar | kerr-mino | kerr-closed-form | straight-line (kTracerNames)
   int table_rays = 0;  ///< planar tracer: table rays per side of the critical angle (0: default; a medium's, 512)
   std::string device = "auto";             ///< auto | cpu | cuda (choose_device)
   int threads = 0;                         ///< OpenMP threads (0: all cores)
@@ -179,7 +179,7 @@ struct RenderReport {
   double setup_seconds = 0.0;    ///< building the tracer (the planar tracer's table)
   double rays_per_second = 0.0;  ///< stats.rays / seconds
   double mean_steps = 0.0;       ///< accepted steps a pixel (the planar tracer: its table's steps over the pixels)
-  std::string tracer;            ///< the tracer that ran: planar, kerr-mino, general, straight-line
+  std::string tracer;            ///< the tracer that ran: planar, kerr-closed-form, kerr-mino, general, straight-line
   std::string device;            ///< "cpu", or the GPU's model
   std::optional<double> gpu_trace_seconds, gpu_seconds;  ///< the GPU kernel's time, and the GPU's whole share
   std::string mirrors;                                   ///< the reflections used ("" none; render/mirror_symmetry.hpp)
@@ -382,8 +382,8 @@ std::vector<double> option_numbers(const OptionSource& options, const std::strin
 
 /// The tracers a request can name: auto (the fastest whose assumptions hold) and each one a report names
 /// (trace/auto_tracer.hpp); check_request refuses one that cannot draw the request, saying why.
-inline constexpr std::array<std::string_view, 5> kTracerNames = {"auto", "general", "planar", "kerr-mino",
-                                                                 "straight-line"};
+inline constexpr std::array<std::string_view, 6> kTracerNames = {"auto",      "general",          "planar",
+                                                                 "kerr-mino", "kerr-closed-form", "straight-line"};
 inline constexpr std::array<std::string_view, 3> kDeviceNames = {"auto", "cpu", "cuda"};
 
 /// The scenes of emitting media (RenderRequest::accretion_gas), beside the surfaces' (kStandardSceneNames).

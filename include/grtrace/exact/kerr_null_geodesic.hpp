@@ -111,7 +111,17 @@ class KerrNullGeodesic {
     const double y = y_o_ + nu_ * sqrt_a_ * tau_infinity_;
     const JacobiValues j = jacobi(y, m_theta_);
     theta = std::acos(std::clamp(sqrt_u_plus_ * j.sn, -1.0, 1.0));
-    phi = phi_at(tau_infinity_, y, j.am);
+    // At infinity X = -+F(asin sqrt(r31 / r41)): its amplitude is that asin.
+    const double x = x_of_t(t_o_ - s_r_ * tau_infinity_);
+    const double am_r = case_ == KerrRadialCase::complex_pair
+                            ? 0.0
+                            : (x < 0.0 ? -1.0 : 1.0) * std::asin(std::sqrt((r3_ - r1_) / (r4_ - r1_)));
+    phi = phi_at(tau_infinity_, y, j.am, am_r);
+  }
+
+  /// theta at Mino time tau (one Jacobi function: what the sky sphere's redshift needs of the state there).
+  GRTRACE_HD double theta_at(double tau) const {
+    return std::acos(std::clamp(sqrt_u_plus_ * jacobi(y_o_ + nu_ * sqrt_a_ * tau, m_theta_).sn, -1.0, 1.0));
   }
 
  private:
@@ -129,7 +139,6 @@ class KerrNullGeodesic {
     m_theta_ = -a2 * eta_ / (big_a * big_a);
     sqrt_a_ = std::sqrt(big_a);
     k_theta_ = complete_f(m_theta_);
-    pi_theta_ = through_axis_ ? 0.0 : complete_pi(u_plus_, m_theta_);
     // The start's phase: sn = cos(theta_o) / sqrt(u+), and cn from the start's own polar speed, (d cos / dtau)^2 =
     // (u+ - cos^2)(a^2 cos^2 + A): near the ray's polar turning point u+ - cos^2 from eta and lambda is a difference
     // of nearly equal numbers (a camera looking along a parallel), and asin(sn) would magnify its rounding there.
@@ -143,13 +152,12 @@ class KerrNullGeodesic {
     nu_ = k_theta != 0.0 ? (k_theta > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
     y_sign_ = nu_ * y_o_;
     j0_ = static_cast<int>(std::floor(y_sign_ / (2.0 * k_theta_))) + 1;
-    pi_o_ = through_axis_ ? 0.0 : legendre_pi(u_plus_, am_o_, m_theta_);
     return std::isfinite(y_o_) && std::isfinite(k_theta_);
   }
 
   // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A).
   GRTRACE_HD double polar_phi_integral(double am) const {
-    return nu_ * (legendre_pi(u_plus_, am, m_theta_) - pi_o_) / sqrt_a_;
+    return nu_ * (legendre_pi(u_plus_, am, m_theta_) - legendre_pi(u_plus_, am_o_, m_theta_)) / sqrt_a_;
   }
 
   // Passes by the axis (sn = +-1: Y = (2 j + 1) K) between Y_o and Y, for a ray through it: each adds pi to phi.
@@ -228,7 +236,6 @@ class KerrNullGeodesic {
     const double dr = r_plus_ - r_minus_;
     c_plus_ = dr > 0.0 ? a_ * (2.0 * m * r_plus_ - a_ * lambda_) / dr : 0.0;
     c_minus_ = dr > 0.0 ? -a_ * (2.0 * m * r_minus_ - a_ * lambda_) / dr : 0.0;
-    h_o_ = radial_phi_primitive(x_of_t(t_o_));
     return std::isfinite(t_o_) && std::isfinite(tau_end_) && tau_end_ > 0.0;
   }
 
@@ -273,7 +280,8 @@ class KerrNullGeodesic {
 
   // H(X) = sum c_+- int_0^X dX' / (r(X') - r_+-), so that phi's radial part between X_a and X_b is
   // -sign(dr/dtau at the camera) g (H(X_b) - H(X_a)) (dtau = -s_r g dX).
-  GRTRACE_HD double radial_phi_primitive(double x) const {
+  // am: the amplitude of X for four real roots (|X| < K there: am = asin(sn X), known from r at the ends).
+  GRTRACE_HD double radial_phi_primitive(double x, double am) const {
     if (a_ == 0.0) return 0.0;
     double h = 0.0;
     if (case_ == KerrRadialCase::complex_pair) {
@@ -285,10 +293,7 @@ class KerrNullGeodesic {
       }
       return h;
     }
-    // Four real roots: |X| <= F(asin sqrt(r31 / r41)) < K, so am X = asin(sn X).
     const double r31 = r3_ - r1_, r41 = r4_ - r1_, q = r41 / r31;
-    const JacobiValues j = jacobi(x, k_r_);
-    const double am = std::asin(std::clamp(j.sn, -1.0, 1.0));
     for (const auto& [c, rh] : {Pair{c_plus_, r_plus_}, Pair{c_minus_, r_minus_}}) {
       const double r4h = r4_ - rh, r3h = r3_ - rh, n = q * r3h / r4h;
       h += c / r4h * (q / n * x + (1.0 - q / n) * legendre_pi(n, am, k_r_));
@@ -300,9 +305,21 @@ class KerrNullGeodesic {
     double c, r;
   };
 
-  // phi at Mino time tau, the polar phase being Y there with amplitude am.
-  GRTRACE_HD double phi_at(double tau, double y, double am) const {
-    const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau)) - h_o_);
+  // The amplitude of the radial phase X where the radius is r, for four real roots: sin^2 am = r31 (r - r4) /
+  // (r41 (r - r3)) (|X| < K: am = asin(sn X)), the sign of X's (negative on the ingoing leg).
+  GRTRACE_HD double radial_amplitude(double r, double x) const {
+    const double s = (r3_ - r1_) * (r - r4_) / ((r4_ - r1_) * (r - r3_));
+    const double am = std::asin(std::sqrt(std::clamp(s, 0.0, 1.0)));
+    return x < 0.0 ? -am : am;
+  }
+
+  // phi at Mino time tau, the polar phase being Y there with amplitude am, the radial phase X with amplitude am_r
+  // (read only for four real roots).
+  GRTRACE_HD double phi_at(double tau, double y, double am, double am_r) const {
+    const double x_o = x_of_t(t_o_);
+    const double start = radial_phi_primitive(
+        x_o, case_ == KerrRadialCase::complex_pair ? 0.0 : radial_amplitude(r_o_, x_o));
+    const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau), am_r) - start);
     const double polar =
         through_axis_ ? std::numbers::pi * axis_passes(y) * (nu_ > 0.0 ? 1.0 : -1.0) : lambda_ * polar_phi_integral(am);
     // d phi / dtau = sign(E) (a (2 M r - a lambda) / Delta + lambda / sin^2 theta) (k = dx / d(affine), E = p_t).
@@ -327,7 +344,7 @@ class KerrNullGeodesic {
     out[0] = nan;
     out[1] = r;
     out[2] = theta;
-    out[3] = phi_at(tau, y, am);
+    out[3] = phi_at(tau, y, am, case_ == KerrRadialCase::complex_pair ? 0.0 : radial_amplitude(r, x));
     out[4] = e * ((r * r + a2) * w / delta - a_ * (a_ * sin2 - lambda_)) / sigma;
     out[5] = radial_sign * abs_e * std::sqrt(rr) / sigma;
     out[6] = -dcos / sin_t * abs_e / sigma;
@@ -340,13 +357,13 @@ class KerrNullGeodesic {
   bool supported_ = false, escapes_ = false, through_axis_ = false;
   KerrRadialCase case_ = KerrRadialCase::unsupported;
   // polar
-  double u_plus_ = 0.0, sqrt_u_plus_ = 0.0, m_theta_ = 0.0, sqrt_a_ = 1.0, k_theta_ = 1.0, pi_theta_ = 0.0;
-  double am_o_ = 0.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0, pi_o_ = 0.0;
+  double u_plus_ = 0.0, sqrt_u_plus_ = 0.0, m_theta_ = 0.0, sqrt_a_ = 1.0, k_theta_ = 1.0;
+  double am_o_ = 0.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
   int j0_ = 0;
   // radial
   double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, re3_ = 0.0, im3_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
   double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0, t_o_ = 0.0;
-  double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0, h_o_ = 0.0;
+  double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0;
 };
 
 }  // namespace grtrace

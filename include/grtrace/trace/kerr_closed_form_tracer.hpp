@@ -64,21 +64,33 @@ class KerrClosedFormTracer {
       if (std::optional<RayOutcome> hit = hit_at(y)) return *hit;
     }
     RayOutcome out;
-    out.status = ray.escapes() ? RayStatus::escaped : RayStatus::captured;
-    out.object = ray.escapes() ? kSkyObject : kHorizonObject;
     out.steps = 0;
-    out.state = ray.state_at(end);
-    out.radius = out.state[1];
-    out.redshift = redshift_at(metric_, rest_emitter_velocity(metric_, out.state.template head<4>()), out.state);
-    if (!ray.escapes()) {
-      out.where = position_direction(metric_, out.state.template head<4>());
-    } else if (correction_ == AngleCorrection::exact) {
-      double theta = 0.0, phi = 0.0;
-      ray.direction_at_infinity(theta, phi);
-      out.where = SkyDirection{theta, azimuth_in_range(phi)};
-    } else {
-      out.where = continued_direction(metric_, out.state, out.state, correction_);
+    if (!ray.escapes() || correction_ != AngleCorrection::exact) {
+      out.state = ray.state_at(end);
+      out.radius = out.state[1];
+      out.redshift = redshift_at(metric_, rest_emitter_velocity(metric_, out.state.template head<4>()), out.state);
     }
+    if (!ray.escapes()) {
+      out.status = RayStatus::captured;
+      out.object = kHorizonObject;
+      out.where = position_direction(metric_, out.state.template head<4>());
+      return out;
+    }
+    out.status = RayStatus::escaped;
+    out.object = kSkyObject;
+    if (correction_ != AngleCorrection::exact) {
+      out.where = continued_direction(metric_, out.state, out.state, correction_);
+      return out;
+    }
+    // The direction at infinity needs no state on the sky sphere (NaN, as the table tracers leave it); the sphere's
+    // redshift, against an emitter at rest there (static: far outside the ergosphere), only its theta:
+    // -1 / (u . k) = -sqrt(g_tt) / E with E = p_t of y0's k.
+    double theta = 0.0, phi = 0.0;
+    ray.direction_at_infinity(theta, phi);
+    out.where = SkyDirection{theta, azimuth_in_range(phi)};
+    out.radius = escape_radius_;
+    const double g_tt = metric_.terms(Vec4(0.0, escape_radius_, ray.theta_at(end), 0.0)).g_tt;
+    out.redshift = -std::sqrt(g_tt) / metric_.energy(y0);
     return out;
   }
 

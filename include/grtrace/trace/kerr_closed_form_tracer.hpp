@@ -17,6 +17,10 @@
 // Assumes: rays the closed form does not cover (exact/kerr_null_geodesic.hpp: vortical rays, a camera inside the
 //          potential's barrier or on the axis) are traced by the reduced Kerr tracer instead: exact to its
 //          tolerance, slower; fallback_rays() counts them.
+// The tracer's type names the scene only: the fallback's method (tableau, controller) is held behind a small
+// interface, called for those few rays alone (136 of a 1024^2 disk frame). So a program that offers several methods
+// (the tools' declared list) instantiates this tracer, and the frame loop around it, once per scene, not once per
+// method; the hot path has no virtual call.
 // trace/auto_tracer.hpp picks it for KerrMetric scenes whose objects are all equatorial.
 #pragma once
 
@@ -30,12 +34,14 @@
 #include "grtrace/trace/scene_tracer.hpp"
 
 #include <atomic>
+#include <memory>
 #include <optional>
+#include <type_traits>
 #include <utility>
 
 namespace grtrace {
 
-template <ExplicitTableau T, StepController C, class SceneT>
+template <class SceneT>
 class KerrClosedFormTracer {
   static_assert(planar_supports_scene<SceneT>,
                 "the closed-form Kerr tracer intersects objects that lie in the equatorial plane (declare "
@@ -46,17 +52,24 @@ class KerrClosedFormTracer {
   using MetricType = KerrMetric;
   using SceneType = SceneT;
 
+  /// The tracer of the rays the closed form does not cover: a KerrMinoSceneTracer of some method.
+  struct Fallback {
+    virtual ~Fallback() = default;
+    virtual RayOutcome trace(const GeodesicState& y0) const = 0;
+  };
+
+  template <ExplicitTableau T, StepController C>
   KerrClosedFormTracer(KerrMetric metric, const TraceSettings& settings, C controller, AngleCorrection correction,
-                       SceneT scene)
+                       SceneT scene, std::type_identity<T>)
       : metric_(metric), correction_(correction), escape_radius_(settings.escape_radius),
-        guard_radius_((1.0 + settings.horizon_epsilon) * metric.horizon_radius()),
-        fallback_(metric, settings, controller, correction, std::move(scene)) {}
+        guard_radius_((1.0 + settings.horizon_epsilon) * metric.horizon_radius()), scene_(scene),
+        fallback_(std::make_unique<const FallbackOf<T, C>>(metric, settings, controller, correction, std::move(scene))) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
     const KerrNullGeodesic ray(metric_, y0, escape_radius_, guard_radius_);
     if (!ray.supported()) {
       fallbacks_.fetch_add(1, std::memory_order_relaxed);
-      return fallback_.trace(y0);
+      return fallback_->trace(y0);
     }
     const double end = ray.end_mino_time();
     for (int n = 0; ray.crossing_mino_time(n) < end; ++n) {
@@ -94,7 +107,7 @@ class KerrClosedFormTracer {
     return out;
   }
 
-  const SceneT& scene() const { return fallback_.scene(); }  // the fallback tracer holds the one copy
+  const SceneT& scene() const { return scene_; }
   const KerrMetric& metric() const { return metric_; }
   /// Which continuation escaped rays get: the closed form's direction at infinity under AngleCorrection::exact.
   SkyContinuation sky_continuation() const { return sky_continuation_of<KerrMetric>(correction_); }
@@ -102,6 +115,15 @@ class KerrClosedFormTracer {
   long fallback_rays() const { return fallbacks_.load(std::memory_order_relaxed); }
 
  private:
+  template <ExplicitTableau T, StepController C>
+  struct FallbackOf final : Fallback {
+    KerrMinoSceneTracer<T, C, SceneT> mino;
+    FallbackOf(KerrMetric metric, const TraceSettings& settings, C controller, AngleCorrection correction,
+               SceneT scene)
+        : mino(metric, settings, controller, correction, std::move(scene)) {}
+    RayOutcome trace(const GeodesicState& y0) const override { return mino.trace(y0); }
+  };
+
   // The outcome of the first object (in scene order) that accepts the crossing state y, if any.
   std::optional<RayOutcome> hit_at(const GeodesicState& y) const {
     std::optional<RayOutcome> hit;
@@ -130,16 +152,18 @@ class KerrClosedFormTracer {
   KerrMetric metric_;
   AngleCorrection correction_;
   double escape_radius_, guard_radius_;
-  KerrMinoSceneTracer<T, C, SceneT> fallback_;
+  SceneT scene_;
+  std::unique_ptr<const Fallback> fallback_;
   mutable std::atomic<long> fallbacks_{0};
 };
 
-/// Deduces the scene: make_kerr_closed_form_tracer<RKF78, IController>(metric, settings, correction, scene).
+/// Deduces the scene; T and C are the fallback's method: make_kerr_closed_form_tracer<RKF78, IController>(metric,
+/// settings, correction, scene).
 template <ExplicitTableau T, StepController C, class SceneT>
-KerrClosedFormTracer<T, C, SceneT> make_kerr_closed_form_tracer(KerrMetric metric, const TraceSettings& settings,
-                                                                AngleCorrection correction, SceneT scene,
-                                                                C controller = {}) {
-  return {metric, settings, controller, correction, std::move(scene)};
+KerrClosedFormTracer<SceneT> make_kerr_closed_form_tracer(KerrMetric metric, const TraceSettings& settings,
+                                                          AngleCorrection correction, SceneT scene, C controller = {}) {
+  return KerrClosedFormTracer<SceneT>(metric, settings, controller, correction, std::move(scene),
+                                      std::type_identity<T>{});
 }
 
 }  // namespace grtrace

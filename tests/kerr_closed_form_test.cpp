@@ -13,6 +13,7 @@
 //      library's system: its time is slowed near the axis);
 //  (d) whole disk frames equal to the reduced Kerr tracer's: the same object at every pixel but silhouettes
 //      (counted), hit radius and redshift within 1e-8 relative, sky directions within 1e-8 rad (rtol 1e-12).
+#include "common/trace_settings.hpp"
 #include "grtrace/core/jacobi_elliptic.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/kerr_null_geodesic.hpp"
@@ -24,8 +25,6 @@
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/kerr_closed_form_tracer.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
-
-#include "common/trace_settings.hpp"
 
 #include <gtest/gtest.h>
 
@@ -58,12 +57,13 @@ TEST(JacobiElliptic, CarlsonIntegralsEqualTheirDefinitions) {
     return std::sqrt(x) * quadrature([&](double v) { return 1.0 / (x + (y - x) * v * v); }, 0.0, 1.0, 4000);
   };
   auto rj = [](double x, double y, double z, double p) {
-    return 3.0 * std::sqrt(x) * quadrature(
-                                    [&](double v) {
-                                      const double v2 = v * v;
-                                      return v2 / ((x + (p - x) * v2) * std::sqrt((x + (y - x) * v2) * (x + (z - x) * v2)));
-                                    },
-                                    0.0, 1.0);
+    return 3.0 * std::sqrt(x) *
+           quadrature(
+               [&](double v) {
+                 const double v2 = v * v;
+                 return v2 / ((x + (p - x) * v2) * std::sqrt((x + (y - x) * v2) * (x + (z - x) * v2)));
+               },
+               0.0, 1.0);
   };
   for (const auto& [x, y] : {std::pair{2.0, 1.0}, std::pair{1.0, 2.0}, std::pair{0.3, 0.3000001}, std::pair{4.0, 0.01}})
     EXPECT_NEAR(carlson_rc(x, y) / rc(x, y), 1.0, 1e-13) << x << " " << y;
@@ -166,7 +166,7 @@ struct CountingDisk : ThinDisk {
 
 const std::vector<CameraCase>& camera_cases() {
   static const std::vector<CameraCase> cases = {
-      {0.9, 1000.0, 1.3, 2.2},  {0.9, 30.0, 0.5, 60.0}, {0.0, 50.0, 1.2, 40.0},     {0.5, 6.0, 1.5707963, 120.0},
+      {0.9, 1000.0, 1.3, 2.2}, {0.9, 30.0, 0.5, 60.0},   {0.0, 50.0, 1.2, 40.0},  {0.5, 6.0, 1.5707963, 120.0},
       {-0.9, 20.0, 2.4, 70.0}, {0.998, 200.0, 0.3, 8.0}, {0.9, 300.0, 0.06, 5.0},
   };
   return cases;
@@ -198,7 +198,8 @@ TEST(KerrClosedForm, CrossingsOfOrdersZeroOneTwoEqualTheReducedTracers) {
           const auto scene = make_scene(StarFieldSky{}, HorizonPaint{}, disk);
           const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, scene);
           const RayOutcome o = mino.trace(y0);
-          ASSERT_EQ(o.status, RayStatus::hit) << describe(c) << " pixel " << col << "," << row << " n " << n << " r " << r;
+          ASSERT_EQ(o.status, RayStatus::hit)
+              << describe(c) << " pixel " << col << "," << row << " n " << n << " r " << r;
           EXPECT_EQ(offered, n + 1) << "order; " << describe(c) << " pixel " << col << "," << row;
           radius_err = std::max(radius_err, std::abs(o.radius - r) / r);
           EXPECT_NEAR(o.radius, r, 1e-9 * r) << describe(c) << " n " << n;
@@ -338,9 +339,9 @@ TEST(KerrClosedForm, DiskFramesEqualTheReducedTracers) {
           ++captured;
         }
       }
-    std::printf("%s: %d hits, %d sky, %d captured, %d differ, %ld fallbacks; radius %.1e, redshift %.1e, sky %.1e rad\n",
-                describe(c).c_str(), hits, sky, captured, differ, closed.fallback_rays(), radius_err, redshift_err,
-                sky_err);
+    std::printf(
+        "%s: %d hits, %d sky, %d captured, %d differ, %ld fallbacks; radius %.1e, redshift %.1e, sky %.1e rad\n",
+        describe(c).c_str(), hits, sky, captured, differ, closed.fallback_rays(), radius_err, redshift_err, sky_err);
     EXPECT_LE(differ, pixels * pixels / 400) << describe(c);
     EXPECT_LT(radius_err, 1e-8) << describe(c);
     EXPECT_LT(redshift_err, 1e-8) << describe(c);

@@ -53,9 +53,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <initializer_list>
 #include <numbers>
 #include <optional>
@@ -333,10 +333,10 @@ void frame_mino(benchmark::State& state, const KerrMetric& metric, const SceneT&
 /// The same frame in closed form (trace/kerr_closed_form_tracer.hpp): nothing integrated but its fallback rays.
 template <class T, class C, class SceneT>
 void frame_closed_form(benchmark::State& state, const KerrMetric& metric, const SceneT& scene, int n, double rtol) {
-  const auto tracer =
-      make_kerr_closed_form_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene);
+  const auto tracer = make_kerr_closed_form_tracer<T, C>(metric, settings_for(rtol), AngleCorrection::flat, scene);
   frame_metric_with(state, tracer, metric, scene, n);
-  state.counters["fallback_rays"] = static_cast<double>(tracer.fallback_rays()) / static_cast<double>(state.iterations());
+  state.counters["fallback_rays"] =
+      static_cast<double>(tracer.fallback_rays()) / static_cast<double>(state.iterations());
 }
 
 /// The Kerr disk frame (a = 0.9, prograde disk from the ISCO to 20 M, ZAMO camera at r = 50 M, 80 degrees,
@@ -376,8 +376,9 @@ void register_metric_frames(const std::string& method, double rtol, int n) {
   });
   add("kerr_bl_mino", [=](benchmark::State& s) { frame_mino<T, C>(s, KerrMetric{1.0, 0.9}, background_scene({}), n, rtol); });
   add("kerr_bl_disk_mino", [=](benchmark::State& s) { frame_mino<T, C>(s, KerrMetric{1.0, 0.9}, kerr_disk(), n, rtol); });
-  add("kerr_bl_disk_closed_form",
-      [=](benchmark::State& s) { frame_closed_form<T, C>(s, KerrMetric{1.0, 0.9}, kerr_disk(), n, rtol); });
+  add("kerr_bl_disk_closed_form", [=](benchmark::State& s) {
+    frame_closed_form<T, C>(s, KerrMetric{1.0, 0.9}, kerr_disk(), n, rtol);
+  });
 }
 
 
@@ -411,15 +412,14 @@ const bool registered = [] {
     })->Unit(benchmark::kMillisecond)->UseRealTime();
   }
   // The Kerr disk frame at 1024 x 1024, reduced tracer against closed form (read the ratio in one run).
-  for (const auto& [name, closed] : {std::pair{"kerr_bl_disk_mino", false}, std::pair{"kerr_bl_disk_closed_form", true}}) {
-    benchmark::RegisterBenchmark(("frame/metric/" + std::string(name) + "/tsit5/i/2e-9/1024").c_str(),
-                                 [closed = closed](benchmark::State& s) {
-                                   if (closed)
-                                     frame_closed_form<Tsitouras54, IController>(s, KerrMetric{1.0, 0.9}, kerr_disk(),
-                                                                                 1024, 2e-9);
-                                   else
-                                     frame_mino<Tsitouras54, IController>(s, KerrMetric{1.0, 0.9}, kerr_disk(), 1024, 2e-9);
-                                 })
+  for (const auto& [name, closed] :
+       {std::pair{"kerr_bl_disk_mino", false}, std::pair{"kerr_bl_disk_closed_form", true}}) {
+    benchmark::RegisterBenchmark(
+        ("frame/metric/" + std::string(name) + "/tsit5/i/2e-9/1024").c_str(),
+        [closed = closed](benchmark::State& s) {
+          if (closed) frame_closed_form<Tsitouras54, IController>(s, KerrMetric{1.0, 0.9}, kerr_disk(), 1024, 2e-9);
+          else frame_mino<Tsitouras54, IController>(s, KerrMetric{1.0, 0.9}, kerr_disk(), 1024, 2e-9);
+        })
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   }

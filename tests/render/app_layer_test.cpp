@@ -109,10 +109,9 @@ TEST(AppLayer, KerrAndFlatFramesAreTheCoresBitForBit) {
   const KerrMetric metric{1.0, 0.9};
   const app::CheckedRequest k = app::check_request(request("kerr", "disk", "rkf78", "i", "auto", 50.0));
   const app::RenderResult erased = app::FrameRenderer::create(k)->render();
-  expect_same_channels(erased.image,
-                       render_frame(k.camera, make_kerr_closed_form_tracer<Fehlberg78, IController>(
-                                                  metric, k.settings, k.correction, disk_scene(k.scene)))
-                           .image);
+  expect_same_channels(erased.image, render_frame(k.camera, make_kerr_closed_form_tracer<Fehlberg78, IController>(
+                                                                metric, k.settings, k.correction, disk_scene(k.scene)))
+                                         .image);
   EXPECT_EQ(erased.report.tracer, "kerr-closed-form");
   EXPECT_EQ(erased.report.device, "cpu");
   EXPECT_EQ(erased.image.metadata.at("device"), "cpu");

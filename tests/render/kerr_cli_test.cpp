@@ -185,7 +185,8 @@ TEST_F(KerrCli, EveryTracerTheReportNamesCanBeAskedForByName) {
        "--tracer kerr-mino integrates in Mino time, where a fixed --step would mean something else"},
       {{"--metric", "kerr", "--tracer", "planar"}, "--tracer planar needs a static spherically symmetric metric"},
       {{"--metric", "schwarzschild", "--tracer", "straight-line"}, "--tracer straight-line draws flat space only"},
-      {{"--tracer", "mino"}, "unknown --tracer 'mino'; choose auto, general, planar, kerr-mino, kerr-closed-form or straight-line"},
+      {{"--tracer", "mino"},
+       "unknown --tracer 'mino'; choose auto, general, planar, kerr-mino, kerr-closed-form or straight-line"},
   };
   for (const BadCase& c : refused) {
     std::vector<std::string> args = c.args;

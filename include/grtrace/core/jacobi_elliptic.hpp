@@ -52,8 +52,8 @@ inline GRTRACE_HD CarlsonPair carlson_rf_rj(double x, double y, double z, double
   const double x0 = x, y0 = y, z0 = z, a0 = (x + y + z + 2.0 * p) / 5.0;
   const double delta = (p - x) * (p - y) * (p - z);
   // Carlson's stopping rule: 4^-j Q < |A_j| with Q = (4 / eps)^(1/6) max |A0 - v|; eps = 1e-17 gives (4e17)^(1/6).
-  const double q = 860.0 * std::max(std::max(std::abs(a0 - x), std::abs(a0 - y)),
-                                    std::max(std::abs(a0 - z), std::abs(a0 - p)));
+  const double q =
+      860.0 * std::max(std::max(std::abs(a0 - x), std::abs(a0 - y)), std::max(std::abs(a0 - z), std::abs(a0 - p)));
   double a = a0, scale = 1.0, sum = 0.0, cube = 1.0;  // scale = 4^-j, cube = 4^-3j
   for (int j = 0; j < 64 && !(scale * q < std::abs(a)); ++j) {
     const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z), sp = std::sqrt(p);

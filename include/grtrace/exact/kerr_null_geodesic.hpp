@@ -317,8 +317,8 @@ class KerrNullGeodesic {
   // (read only for four real roots).
   GRTRACE_HD double phi_at(double tau, double y, double am, double am_r) const {
     const double x_o = x_of_t(t_o_);
-    const double start = radial_phi_primitive(
-        x_o, case_ == KerrRadialCase::complex_pair ? 0.0 : radial_amplitude(r_o_, x_o));
+    const double start =
+        radial_phi_primitive(x_o, case_ == KerrRadialCase::complex_pair ? 0.0 : radial_amplitude(r_o_, x_o));
     const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau), am_r) - start);
     const double polar =
         through_axis_ ? std::numbers::pi * axis_passes(y) * (nu_ > 0.0 ? 1.0 : -1.0) : lambda_ * polar_phi_integral(am);

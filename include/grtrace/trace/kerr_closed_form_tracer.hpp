@@ -61,9 +61,13 @@ class KerrClosedFormTracer {
   template <ExplicitTableau T, StepController C>
   KerrClosedFormTracer(KerrMetric metric, const TraceSettings& settings, C controller, AngleCorrection correction,
                        SceneT scene, std::type_identity<T>)
-      : metric_(metric), correction_(correction), escape_radius_(settings.escape_radius),
-        guard_radius_((1.0 + settings.horizon_epsilon) * metric.horizon_radius()), scene_(scene),
-        fallback_(std::make_unique<const FallbackOf<T, C>>(metric, settings, controller, correction, std::move(scene))) {}
+      : metric_(metric),
+        correction_(correction),
+        escape_radius_(settings.escape_radius),
+        guard_radius_((1.0 + settings.horizon_epsilon) * metric.horizon_radius()),
+        scene_(scene),
+        fallback_(
+            std::make_unique<const FallbackOf<T, C>>(metric, settings, controller, correction, std::move(scene))) {}
 
   RayOutcome trace(const GeodesicState& y0) const {
     const KerrNullGeodesic ray(metric_, y0, escape_radius_, guard_radius_);
@@ -118,8 +122,7 @@ class KerrClosedFormTracer {
   template <ExplicitTableau T, StepController C>
   struct FallbackOf final : Fallback {
     KerrMinoSceneTracer<T, C, SceneT> mino;
-    FallbackOf(KerrMetric metric, const TraceSettings& settings, C controller, AngleCorrection correction,
-               SceneT scene)
+    FallbackOf(KerrMetric metric, const TraceSettings& settings, C controller, AngleCorrection correction, SceneT scene)
         : mino(metric, settings, controller, correction, std::move(scene)) {}
     RayOutcome trace(const GeodesicState& y0) const override { return mino.trace(y0); }
   };

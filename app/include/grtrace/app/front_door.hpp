@@ -121,7 +121,7 @@ struct RenderRequest {
   MethodRequest method;
   double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
   std::string angle_correction = "exact";  ///< escaped rays' continuation: none | flat | exact
-  std::string tracer = "auto";  ///< auto | general | planar | kerr-mino | kerr-closed-form | straight-line (kTracerNames)
+  std::string tracer = "auto";             ///< auto | general | planar | kerr-mino | kerr-closed-form | straight-line
   int table_rays = 0;  ///< planar tracer: table rays per side of the critical angle (0: default; a medium's, 512)
   std::string device = "auto";             ///< auto | cpu | cuda (choose_device)
   int threads = 0;                         ///< OpenMP threads (0: all cores)

@@ -105,6 +105,21 @@ inline GRTRACE_HD double legendre_f(double phi, double m) {
   return j == 0.0 ? f : f + 2.0 * j * complete_f(m);
 }
 
+/// F(phi | m) from sin(phi) = s and cos(phi) = c, for phi in [-pi/2, pi] (s >= 0 where c < 0), k = K(m) (read only
+/// where c < 0): what a caller that knows the amplitude's sine and cosine calls instead of F(asin s) or F(acos c),
+/// which would take them back through two more functions.
+inline GRTRACE_HD double legendre_f_sc(double s, double c, double m, double k) {
+  const double f = s * carlson_rf(c * c, 1.0 - m * s * s, 1.0);
+  return c >= 0.0 ? f : 2.0 * k - f;  // beyond pi/2: F(phi) = 2K - F(pi - phi)
+}
+
+/// Pi(n; phi | m) from sin(phi) = s and cos(phi) = c >= 0 (|phi| <= pi/2), where 1 - n s^2 > 0 (n < 1, or before
+/// the pole).
+inline GRTRACE_HD double legendre_pi_sc(double n, double s, double c, double m) {
+  const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s * s, 1.0, 1.0 - n * s * s);
+  return s * cp.rf + n / 3.0 * s * s * s * cp.rj;
+}
+
 /// Legendre's Pi(n; phi | m) = int_0^phi dt / ((1 - n sin^2 t) sqrt(1 - m sin^2 t)) for any real phi, m < 1, n < 1
 /// (no pole), or n > 1 as the Cauchy principal value: an antiderivative on each interval between poles
 /// (sin^2 phi = 1 / n), which is what a difference over a path that avoids them needs.

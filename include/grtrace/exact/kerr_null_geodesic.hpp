@@ -145,8 +145,13 @@ class KerrNullGeodesic {
     const double c = std::cos(theta_o_), s_o = std::sin(theta_o_), sigma = r_o_ * r_o_ + a2 * c * c;
     const double dcos = s_o * sigma * k_theta / std::abs(energy_);
     const double x = std::clamp(c / sqrt_u_plus_, -1.0, 1.0);
-    am_o_ = through_axis_ ? std::asin(x) : std::atan2(x, std::sqrt(dcos * dcos / ((a2 * c * c + big_a) * u_plus_)));
-    y_o_ = legendre_f(am_o_, m_theta_);
+    const double cn = through_axis_ ? std::sqrt(std::max(0.0, 1.0 - x * x))
+                                    : std::sqrt(dcos * dcos / ((a2 * c * c + big_a) * u_plus_));
+    const double norm = std::hypot(x, cn);
+    sin_o_ = norm > 0.0 ? x / norm : 0.0;
+    cos_o_ = norm > 0.0 ? cn / norm : 1.0;
+    am_o_ = std::atan2(sin_o_, cos_o_);
+    y_o_ = legendre_f_sc(sin_o_, cos_o_, m_theta_, k_theta_);
     // d cos(theta)/dtau = -sin(theta) dtheta/dtau = sqrt(u+ A) cn dn nu: nu = -sign(k^theta); at a turning point
     // (k^theta = 0) the ray heads for the equator.
     nu_ = k_theta != 0.0 ? (k_theta > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
@@ -157,7 +162,7 @@ class KerrNullGeodesic {
 
   // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A).
   GRTRACE_HD double polar_phi_integral(double am) const {
-    return nu_ * (legendre_pi(u_plus_, am, m_theta_) - legendre_pi(u_plus_, am_o_, m_theta_)) / sqrt_a_;
+    return nu_ * (legendre_pi(u_plus_, am, m_theta_) - legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_)) / sqrt_a_;
   }
 
   // Passes by the axis (sn = +-1: Y = (2 j + 1) K) between Y_o and Y, for a ray through it: each adds pi to phi.
@@ -200,7 +205,7 @@ class KerrNullGeodesic {
       const double r31 = r3_ - r1_, r41 = r4_ - r1_, r32 = r3_ - r2_, r42 = r4_ - r2_;
       k_r_ = r32 * r41 / (r31 * r42);
       g_r_ = 2.0 / std::sqrt(r31 * r42);
-      f_inf_ = legendre_f(std::asin(std::sqrt(r31 / r41)), k_r_);
+      f_inf_ = legendre_f_sc(std::sqrt(r31 / r41), std::sqrt((r4_ - r3_) / r41), k_r_, 0.0);
       if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
     } else {
       case_ = KerrRadialCase::complex_pair;
@@ -211,7 +216,9 @@ class KerrNullGeodesic {
       const double r21 = r2_ - r1_;
       k_r_ = ((ca3_ + cb3_) * (ca3_ + cb3_) - r21 * r21) / (4.0 * ca3_ * cb3_);
       g_r_ = 1.0 / std::sqrt(ca3_ * cb3_);
-      f_inf_ = legendre_f(std::acos((ca3_ - cb3_) / (ca3_ + cb3_)), k_r_);
+      k_complete_r_ = complete_f(k_r_);
+      f_inf_ = legendre_f_sc(2.0 * std::sqrt(ca3_ * cb3_) / (ca3_ + cb3_), (ca3_ - cb3_) / (ca3_ + cb3_), k_r_,
+                             k_complete_r_);
       if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
     }
     j_r_ = g_r_ * f_inf_;
@@ -255,11 +262,11 @@ class KerrNullGeodesic {
   GRTRACE_HD double t_of_radius(double r) const {
     if (case_ == KerrRadialCase::complex_pair) {
       const double u = ca3_ * (r - r1_), v = cb3_ * (r - r2_);
-      return g_r_ * (f_inf_ - legendre_f(std::acos(std::clamp((u - v) / (u + v), -1.0, 1.0)), k_r_));
+      return g_r_ * (f_inf_ - legendre_f_sc(2.0 * std::sqrt(u * v) / (u + v), (u - v) / (u + v), k_r_, k_complete_r_));
     }
     const double r31 = r3_ - r1_, r41 = r4_ - r1_;
     const double s = std::clamp(r31 * (r - r4_) / (r41 * (r - r3_)), 0.0, 1.0);
-    return g_r_ * (f_inf_ - legendre_f(std::asin(std::sqrt(s)), k_r_));
+    return g_r_ * (f_inf_ - legendre_f_sc(std::sqrt(s), std::sqrt(1.0 - s), k_r_, 0.0));
   }
 
   GRTRACE_HD double x_of_t(double t) const { return t / g_r_ - f_inf_; }
@@ -358,11 +365,12 @@ class KerrNullGeodesic {
   KerrRadialCase case_ = KerrRadialCase::unsupported;
   // polar
   double u_plus_ = 0.0, sqrt_u_plus_ = 0.0, m_theta_ = 0.0, sqrt_a_ = 1.0, k_theta_ = 1.0;
-  double am_o_ = 0.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
+  double am_o_ = 0.0, sin_o_ = 0.0, cos_o_ = 1.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
   int j0_ = 0;
   // radial
   double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, re3_ = 0.0, im3_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
-  double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0, t_o_ = 0.0;
+  double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, k_complete_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0;
+  double t_o_ = 0.0;
   double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0;
 };
 

@@ -79,6 +79,8 @@ class KerrNullGeodesic {
   /// lambda = L / E and eta = Q / E^2 of the ray.
   GRTRACE_HD double lambda() const { return lambda_; }
   GRTRACE_HD double eta() const { return eta_; }
+  /// E = p_t of y0's k (its scale: what the redshifts are measured against).
+  GRTRACE_HD double energy() const { return energy_; }
   /// The Mino time at which the ray reaches the sky sphere (escapes) or the horizon guard.
   GRTRACE_HD double end_mino_time() const { return tau_end_; }
   /// The Mino time to infinity of an escaping ray (past the sky sphere).
@@ -175,8 +177,9 @@ class KerrNullGeodesic {
   // ---- radial motion ---------------------------------------------------------------------------------------
   GRTRACE_HD bool setup_radial() {
     const double a2 = a_ * a_, m = mass_;
-    const double ca = a2 - eta_ - lambda_ * lambda_, cb = 2.0 * m * (eta_ + (lambda_ - a_) * (lambda_ - a_));
-    const double cc = -a2 * eta_;
+    ca_ = a2 - eta_ - lambda_ * lambda_;
+    cb_ = 2.0 * m * (eta_ + (lambda_ - a_) * (lambda_ - a_));
+    const double ca = ca_, cb = cb_, cc = -a2 * eta_;
     // GL eq. 95: the resolvent cubic's root z^2 (the principal cube roots when its discriminant is negative).
     const double p = -ca * ca / 12.0 - cc, q = -ca / 3.0 * ((ca / 6.0) * (ca / 6.0) - cc) - cb * cb / 8.0;
     const double disc = (p / 3.0) * (p / 3.0) * (p / 3.0) + 0.25 * q * q;
@@ -209,10 +212,9 @@ class KerrNullGeodesic {
       if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
     } else {
       case_ = KerrRadialCase::complex_pair;
-      re3_ = z;
-      im3_ = std::sqrt(-outer);
-      ca3_ = std::hypot(z - r2_, im3_);  // A = |r3 - r2|
-      cb3_ = std::hypot(z - r1_, im3_);  // B = |r3 - r1|
+      const double im3 = std::sqrt(-outer);  // r3 = z - i im3, r4 = z + i im3
+      ca3_ = std::hypot(z - r2_, im3);       // A = |r3 - r2|
+      cb3_ = std::hypot(z - r1_, im3);       // B = |r3 - r1|
       const double r21 = r2_ - r1_;
       k_r_ = ((ca3_ + cb3_) * (ca3_ + cb3_) - r21 * r21) / (4.0 * ca3_ * cb3_);
       g_r_ = 1.0 / std::sqrt(ca3_ * cb3_);
@@ -248,15 +250,14 @@ class KerrNullGeodesic {
 
   // One Newton step towards a real root of R where it helps (the closed form loses digits near a double root).
   GRTRACE_HD void polish(double& r) const {
-    const double a2 = a_ * a_;
-    const double ca = a2 - eta_ - lambda_ * lambda_, cb = 2.0 * mass_ * (eta_ + (lambda_ - a_) * (lambda_ - a_));
-    const double cc = -a2 * eta_;
-    auto R = [&](double x) { return (((x * x + ca) * x) + cb) * x + cc; };
-    const double d = (4.0 * r * r + 2.0 * ca) * r + cb;
+    const double d = (4.0 * r * r + 2.0 * ca_) * r + cb_;
     if (d == 0.0) return;
-    const double next = r - R(r) / d;
-    if (std::abs(R(next)) < std::abs(R(r))) r = next;
+    const double next = r - radial_potential(r) / d;
+    if (std::abs(radial_potential(next)) < std::abs(radial_potential(r))) r = next;
   }
+
+  // R(r) = r^4 + ca r^2 + cb r - a^2 eta (E = 1).
+  GRTRACE_HD double radial_potential(double r) const { return (((r * r + ca_) * r) + cb_) * r - a_ * a_ * eta_; }
 
   // The Mino time from infinity to r on the ingoing leg (r >= r4 with four real roots, r > r2 otherwise).
   GRTRACE_HD double t_of_radius(double r) const {
@@ -341,8 +342,7 @@ class KerrNullGeodesic {
     const double sin2 = 1.0 - cos_t * cos_t, sin_t = std::sqrt(sin2);
     const double a2 = a_ * a_, sigma = r * r + a2 * cos_t * cos_t, delta = r * r - 2.0 * mass_ * r + a2;
     const double e = energy_, abs_e = std::abs(e);
-    const double ca = a2 - eta_ - lambda_ * lambda_, cb = 2.0 * mass_ * (eta_ + (lambda_ - a_) * (lambda_ - a_));
-    const double rr = std::max(0.0, (((r * r + ca) * r) + cb) * r - a2 * eta_);
+    const double rr = std::max(0.0, radial_potential(r));
     // dr/dtau's sign: four real roots, r grows with |X| and T = T_o - s_r tau; otherwise r falls as T grows.
     const double radial_sign = case_ == KerrRadialCase::complex_pair ? s_r_ : -s_r_ * (x >= 0.0 ? 1.0 : -1.0);
     const double dcos = sqrt_u_plus_ * cn * dn * nu_ * sqrt_a_;  // d cos(theta) / dtau
@@ -368,7 +368,8 @@ class KerrNullGeodesic {
   double am_o_ = 0.0, sin_o_ = 0.0, cos_o_ = 1.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
   int j0_ = 0;
   // radial
-  double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, re3_ = 0.0, im3_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
+  double ca_ = 0.0, cb_ = 0.0;  ///< R's r^2 and r coefficients
+  double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
   double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, k_complete_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0;
   double t_o_ = 0.0;
   double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0;

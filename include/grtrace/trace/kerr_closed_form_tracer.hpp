@@ -107,7 +107,7 @@ class KerrClosedFormTracer {
     out.where = SkyDirection{theta, azimuth_in_range(phi)};
     out.radius = escape_radius_;
     const double g_tt = metric_.terms(Vec4(0.0, escape_radius_, ray.theta_at(end), 0.0)).g_tt;
-    out.redshift = -std::sqrt(g_tt) / metric_.energy(y0);
+    out.redshift = -std::sqrt(g_tt) / ray.energy();
     return out;
   }
 

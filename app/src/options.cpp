@@ -8,6 +8,7 @@
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <algorithm>
+#include <array>
 #include <deque>
 #include <stdexcept>
 #include <string>
@@ -93,6 +94,24 @@ std::vector<OptionInfo> make_render_options() {
                "disk scene: the gas turns against the hole's rotation (default: with it; towards +phi for a "
                "non-rotating hole)",
                true});
+  o.push_back({"spectrum", "",
+               "line: instead of a frame, the disk's line profile seen from afar at --camera-theta (a CSV at --out "
+               "NAME.csv and its plot NAME.png): the flux per energy bin, in total and by image order n = 0, 1, 2, "
+               ">= 3, for --metric kerr or schwarzschild, every ray in closed form on an adaptive image-plane mesh"});
+  o.push_back({"line-energy", "6.4", "--spectrum line: the line's energy in the gas's frame (the bins' unit: keV)"});
+  o.push_back({"emissivity-index", "3", "--spectrum line: the gas's line emissivity falls as r^-index"});
+  o.push_back({"emissivity-index-outer", "",
+               "--spectrum line: the index beyond --emissivity-break (a broken power law; default: the same)"});
+  o.push_back({"emissivity-break", "", "--spectrum line: the radius (M) where the emissivity's index changes"});
+  o.push_back({"energy-range", "",
+               "--spectrum line: lo,hi of the bins (default: around the energies the disk's light arrives at)"});
+  o.push_back({"energy-bins", "200", "--spectrum line: the number of energy bins, 1 .. 100000"});
+  o.push_back({"line-finest", "0.015625",
+               "--spectrum line: the image-plane mesh's finest cell (M); 1e-3 of the peak per bin at the default"});
+  o.push_back({"disk-transparent", "",
+               "--spectrum line: every crossing of the disk shines and the ray goes on (default: an opaque disk, "
+               "the first crossing only)",
+               true});
   o.push_back({"accretion-gas", "free-fall",
                "accretion scene: free-fall (from rest at infinity, Narayan, Johnson & Gammie 2019) | rest"});
   o.push_back({"accretion-power", "2", "accretion scene: the emissivity falls as r^-power, power in [0, 10]"});
@@ -154,7 +173,53 @@ Vec3 triple(const OptionSource& s, const std::string& name) {
   return {v[0], v[1], v[2]};
 }
 
+/// The options only --spectrum line reads.
+constexpr std::array<const char*, 9> kLineProfileOptions = {
+    "spectrum",        "line-energy",  "emissivity-index", "emissivity-index-outer", "emissivity-break",
+    "energy-range",    "energy-bins",  "line-finest",      "disk-transparent"};
+
 }  // namespace
+
+LineProfileRequest read_line_profile_request(const OptionSource& s) {
+  if (text_of(s, "spectrum") != "line")
+    throw RequestError("--spectrum must be line (the disk's line profile), got '" + text_of(s, "spectrum") + "'");
+  // What a line profile reads; every other option describes a frame.
+  static const std::vector<std::string> reads = [] {
+    std::vector<std::string> r{kLineProfileOptions.begin(), kLineProfileOptions.end()};
+    for (const char* o : {"scene", "metric", "mass", "chart", "camera-theta", "disk-inner", "disk-outer",
+                          "disk-retrograde", "threads"})
+      r.emplace_back(o);
+    for (const NamedMetricParameter& p : named_metric_parameters()) r.emplace_back(p.parameter.option);
+    return r;
+  }();
+  for (const OptionInfo& o : render_options())
+    if (s.given(std::string(o.name)) && std::find(reads.begin(), reads.end(), o.name) == reads.end())
+      throw RequestError("--" + std::string(o.name) +
+                         " describes a frame; --spectrum line is a distant observer's spectrum of the disk (at "
+                         "--camera-theta, every ray in closed form): leave --" +
+                         std::string(o.name) + " out");
+  if (text_of(s, "scene") != "disk")
+    throw RequestError("--spectrum line is the disk's spectrum: add --scene disk");
+  LineProfileRequest q;
+  q.metric = read_metric(s, {"kerr", "schwarzschild"});
+  q.inclination_degrees = option_number(s, "camera-theta");
+  if (s.given("disk-inner")) q.disk_inner = option_number(s, "disk-inner");
+  q.disk_outer = option_number(s, "disk-outer");
+  q.disk_retrograde = s.given("disk-retrograde");
+  q.transparent = s.given("disk-transparent");
+  q.line_energy = option_number(s, "line-energy");
+  q.emissivity_index = option_number(s, "emissivity-index");
+  if (s.given("emissivity-index-outer")) q.emissivity_index_outer = option_number(s, "emissivity-index-outer");
+  if (s.given("emissivity-break")) q.emissivity_break = option_number(s, "emissivity-break");
+  if (s.given("energy-range")) {
+    const std::vector<double> r = option_numbers(s, "energy-range", 2);
+    q.energy_range = std::array<double, 2>{r[0], r[1]};
+  }
+  q.bins = integer_in(s, "energy-bins", 1, 100'000, "--energy-bins must be in 1 .. 100000");
+  q.finest_cell = option_number(s, "line-finest");
+  q.threads = integer_in(s, "threads", 0, 1024, "--threads must be 0 (all cores) .. 1024");
+  return q;
+}
 
 const std::vector<OptionInfo>& render_options() {
   static const std::vector<OptionInfo> table = make_render_options();
@@ -223,6 +288,8 @@ MethodRequest read_method(const OptionSource& s, const std::string& prefix) {
 }
 
 void check_scene_options(const OptionSource& s, const std::string& scene) {
+  for (const char* line_option : kLineProfileOptions)
+    if (std::string_view(line_option) != "spectrum") refuse_unless(s, line_option, false, "--spectrum line");
   for (const char* disk_option : {"disk-inner", "disk-outer", "disk-retrograde"})
     refuse_unless(s, disk_option, scene == "disk", "--scene disk");
   refuse_unless(s, "checker-squares", scene == "checker", "--scene checker");
@@ -242,6 +309,9 @@ RenderRequest read_render_request(const OptionSource& s) {
   q.scene = text_of(s, "scene");
   if (!is_standard_scene(q.scene) && !is_medium_scene(q.scene))
     throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(scene_names()));
+  if (s.given("spectrum"))
+    throw RequestError("--spectrum asks for the disk's line profile, not a frame (app::line_profile; grtrace-render "
+                       "computes it when --spectrum is given)");
   q.metric = read_metric(s, {kMetricNames.begin(), kMetricNames.end()});
   check_scene_options(s, q.scene);
   q.method = read_method(s, "");

@@ -17,6 +17,7 @@
 #include "grtrace/render/png_preview.hpp"
 #include "json_writer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -370,12 +371,54 @@ int run_flight(Request& q, const CommandLine& cli, int argc, char** argv, const 
   return 0;
 }
 
+/// --spectrum line: the disk's line profile (app::line_profile) as --out NAME.csv and its plot NAME.png (both new or
+/// both as they were), and one line of JSON with the request's totals. A frame's options are refused (the library
+/// refuses the render options; the tool's own, such as --status-map or --flight, here).
+int run_line_profile(CommandLine& cli) {
+  const tools::CommandLineOptions options(cli);
+  const app::LineProfileRequest request =
+      tools::as_usage_error([&] { return app::read_line_profile_request(options); });
+  for (const auto& [name, value] : cli.values()) {
+    const bool render_option = std::any_of(app::render_options().begin(), app::render_options().end(),
+                                           [&](const app::OptionInfo& o) { return o.name == name; });
+    if (!render_option && name != "out" && cli.given(name))
+      throw UsageError("--" + name + " is for frames; --spectrum line writes a CSV and its plot: leave it out");
+  }
+  const std::string out = cli.text("out");
+  if (out.size() < 5 || out.substr(out.size() - 4) != ".csv")
+    throw UsageError("--spectrum line writes a table: give --out NAME.csv (its plot goes beside it as NAME.png), got '" +
+                     out + "'");
+  const std::string png = out.substr(0, out.size() - 4) + ".png";
+  for (const std::string& path : {out, png}) tools::check_command_output(cli, "out", path, {});
+  if (cli.write_config_if_asked()) return 0;
+  const app::LineProfileResult result = tools::as_usage_error([&] { return app::line_profile(request); });
+  OutputSet outputs;
+  TemporaryOutput& csv = outputs.add(out);
+  csv.write(result.csv.data(), result.csv.size());
+  csv.finish();
+  write_png_rgb8(outputs, png, result.chart.width, result.chart.height, result.chart.rgb);
+  outputs.commit();
+  JsonObject json;
+  for (const app::ReportEntry& e : result.report)
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, std::string>) json.add(e.key, std::string_view(v));
+          else if constexpr (!std::is_same_v<V, app::ReportEntry::Counts>) json.add(e.key, v);
+        },
+        e.value);
+  json.add("out", out).add("png", png);
+  std::cout << json.str() << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   PhaseTimer phase;
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
+    if (cli.given("spectrum")) return run_line_profile(cli);
     Request q = read_request(cli);
     const ExrWriteOptions exr = exr_options(cli, q.checked.request.threads);
     if (cli.write_config_if_asked()) return 0;  // checked as for a run: saved, nothing traced

@@ -226,6 +226,26 @@ def trace_ray(
     return Ray(_grtrace._trace_ray(pixel, position, momentum, samples_per_step, scene_objects, options))
 
 
+def line_profile(**options: Any) -> Dict[str, Any]:
+    """The line profile of a thin disk around a Kerr (or Schwarzschild) hole as a distant observer sees it: the flux
+    per energy bin of a line emitted at ``line_energy`` by the disk's gas, in total and by image order n = 0, 1, 2,
+    >= 3, every ray in closed form on an adaptive image-plane mesh (grtrace-render ``--spectrum line``).
+
+    Keywords are grtrace-render's (``scene`` and ``spectrum`` default to disk and line here): ``metric`` (kerr or
+    schwarzschild), ``spin``, ``mass``, ``camera_theta`` (the inclination, degrees), ``disk_inner`` (default: the
+    ISCO), ``disk_outer``, ``disk_retrograde``, ``disk_transparent``, ``line_energy``, ``emissivity_index``,
+    ``emissivity_index_outer``, ``emissivity_break``, ``energy_range`` ((lo, hi); default: around the light's
+    energies), ``energy_bins``, ``line_finest``, ``threads``; a frame's options raise ValueError.
+
+    Returns a dict: ``edges`` (bins + 1 energies), ``flux`` (F_E, energy flux per unit energy, in eps(r = M) M^2:
+    a distant observer's flux times D^2 / M^2), ``flux_by_order`` (four arrays that sum to ``flux``), ``report``
+    (seconds, rays, the totals by order, the bins' range, the disk's radii) and ``csv`` (the table as text).
+    """
+    options.setdefault("spectrum", "line")
+    options.setdefault("scene", "disk")
+    return _grtrace._line_profile(options)
+
+
 def read_exr(path: str) -> Frame:
     """Reads an OpenEXR file (a frame grtrace-render or :meth:`Frame.write_exr` wrote, or any float image) as a
     :class:`Frame`: its channels as numpy arrays and its header. ValueError for a file that is not a readable EXR

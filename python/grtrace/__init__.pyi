@@ -83,6 +83,15 @@ def render(
     disk_inner: Optional[Number] = None,
     disk_outer: Number = 20,
     disk_retrograde: bool = False,
+    spectrum: str = "",
+    line_energy: Number = 6.4,
+    emissivity_index: Number = 3,
+    emissivity_index_outer: Optional[Number] = None,
+    emissivity_break: Optional[Number] = None,
+    energy_range: Optional[Sequence[Number]] = None,
+    energy_bins: int = 200,
+    line_finest: Number = 0.015625,
+    disk_transparent: bool = False,
     accretion_gas: str = "free-fall",
     accretion_power: float = 2,
     source: str = "m87",
@@ -136,6 +145,15 @@ def trace_ray(
     disk_inner: Optional[Number] = None,
     disk_outer: Number = 20,
     disk_retrograde: bool = False,
+    spectrum: str = "",
+    line_energy: Number = 6.4,
+    emissivity_index: Number = 3,
+    emissivity_index_outer: Optional[Number] = None,
+    emissivity_break: Optional[Number] = None,
+    energy_range: Optional[Sequence[Number]] = None,
+    energy_bins: int = 200,
+    line_finest: Number = 0.015625,
+    disk_transparent: bool = False,
     accretion_gas: str = "free-fall",
     accretion_power: float = 2,
     source: str = "m87",
@@ -148,6 +166,7 @@ def trace_ray(
     error_map: bool = False,
     no_mirrors: bool = False,
 ) -> Ray: ...
+def line_profile(**options: Any) -> Dict[str, Any]: ...
 def read_exr(path: str) -> Frame: ...
 def frame(channels: Dict[str, Any], header: Optional[Dict[str, str]] = None) -> Frame: ...
 def options() -> List[Dict[str, Any]]: ...

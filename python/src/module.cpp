@@ -31,6 +31,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace py = pybind11;
@@ -404,6 +405,39 @@ py::dict trace_ray(const py::object& pixel, const py::object& position, const py
   return d;
 }
 
+// ---- line profiles ----------------------------------------------------------------------------------------
+
+/// grtrace.line_profile: the library's reader and checks (app::read_line_profile_request, app::line_profile), the
+/// profile computed with the GIL released; numpy copies of the bins (the result is small).
+py::dict line_profile_of(const py::dict& kwargs) {
+  const KeywordOptions options(kwargs);
+  const app::LineProfileRequest request = app::read_line_profile_request(options);
+  app::LineProfileResult r;
+  {
+    py::gil_scoped_release release;
+    r = app::line_profile(request);
+  }
+  const LineProfile& p = r.profile;
+  auto array = [](const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); };
+  py::dict d;
+  d["edges"] = array(p.edges);
+  d["flux"] = array(p.flux);
+  py::list orders;
+  for (const auto& o : p.flux_by_order) orders.append(array(o));
+  d["flux_by_order"] = orders;
+  py::dict report;
+  for (const app::ReportEntry& e : r.report)
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (!std::is_same_v<V, app::ReportEntry::Counts>) report[py::str(e.key)] = v;
+        },
+        e.value);
+  d["report"] = report;
+  d["csv"] = r.csv;
+  return d;
+}
+
 // ---- files ------------------------------------------------------------------------------------------------
 
 PyFrame read_frame(const std::string& path) {
@@ -524,6 +558,7 @@ PYBIND11_MODULE(_grtrace, m) {
   m.def("_trace_ray", &trace_ray, py::arg("pixel"), py::arg("position"), py::arg("momentum"),
         py::arg("samples_per_step"), py::arg("scene_objects"), py::arg("options"));
   m.def("_read_exr", &read_frame, py::arg("path"));
+  m.def("_line_profile", &line_profile_of, py::arg("options"));
   m.def("_frame", &frame_of, py::arg("channels"), py::arg("header"));
   m.def("_options", [] {
     py::list out;

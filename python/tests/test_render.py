@@ -63,6 +63,28 @@ def test_an_accretion_frame_is_the_tools_with_its_light_and_flux(run_tool):
     assert intensity[20, 20] < 0.5 * intensity.max()
 
 
+def test_a_line_profile_is_the_tools_and_its_orders_sum_to_it(run_tool):
+    options = dict(metric="schwarzschild", camera_theta=60, disk_outer=15, energy_bins=30, line_finest=0.0625,
+                   disk_transparent=True)
+    profile = grtrace.line_profile(**options)
+    code, out, err, csv = run_tool(dict(options, spectrum="line", scene="disk"), "line.csv")
+    assert code == 0, err
+    lines = [row for row in csv.read_text().splitlines() if not row.startswith("#")]
+    columns = lines[0].split(",")
+    table = np.array([[float(x) for x in row.split(",")] for row in lines[1:]])
+    assert np.allclose(table[:, columns.index("flux")], profile["flux"], rtol=1e-9, atol=0)
+    assert np.allclose(table[:, columns.index("energy_low")], profile["edges"][:-1], rtol=1e-9)
+    assert len(profile["edges"]) == 31 and len(profile["flux_by_order"]) == 4
+    assert np.allclose(sum(profile["flux_by_order"]), profile["flux"], rtol=1e-12, atol=0)
+    line = json.loads(out.strip().splitlines()[-1])
+    assert line["total_flux"] == profile["report"]["total_flux"] > 0
+    assert profile["report"]["total_flux_n1"] > 0 and profile["report"]["disk_inner"] == 6
+    with pytest.raises(ValueError, match="--fov describes a frame"):
+        grtrace.line_profile(fov=30)
+    with pytest.raises(ValueError, match="--spectrum asks for the disk's line profile"):
+        grtrace.render(spectrum="line", scene="disk")
+
+
 def test_a_riaf_frame_is_the_tools_in_physical_units(run_tool):
     options = dict(scene="riaf", metric="kerr", spin=0.9, source="sgr-a", camera_r=1000, camera_theta=17,
                    fov=2.3, width=12, height=12, sky_radius=2000, rtol=1e-8)

@@ -7,6 +7,7 @@
 // <build>/examples/render/grtrace-render next to this test's <build>/tests/render/.
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/render/exr_io.hpp"
+#include "grtrace/spectra/line_profile.hpp"
 
 #include "../common/tool_run.hpp"
 
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -323,6 +325,96 @@ TEST_F(KerrCli, ACameraOnTheAxisDrawsTheDiskFaceOn) {
     EXPECT_NE(r.err.find("--camera-theta must lie in [0, 180] degrees"), std::string::npos) << r.err;
     EXPECT_TRUE(out_empty());
   }
+}
+
+/// The CSV's rows after its comments and header: each a row of numbers.
+std::vector<std::vector<double>> csv_rows(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("energy_low", 0) == 0) continue;
+    std::vector<double> row;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// --spectrum line: the disk's line profile as a CSV and its plot, the library's numbers to the CSV's 10 digits (the
+// tool is a thin client of app::line_profile, itself of spectra/line_profile.hpp), the orders summing to the total;
+// a frame's options and bad values refused before any work, leaving no file.
+TEST_F(KerrCli, LineProfileIsTheLibrarysAndRefusesFrameOptions) {
+  const fs::path csv = out("line.csv");
+  const std::vector<std::string> base = {"--spectrum", "line", "--scene", "disk", "--metric", "kerr", "--spin", "0.9",
+                                         "--camera-theta", "40", "--energy-bins", "40", "--line-finest", "0.0625",
+                                         "--disk-outer", "15"};
+  std::vector<std::string> args = base;
+  for (const std::string& a : std::vector<std::string>{"--disk-transparent", "--out", csv.string()}) args.push_back(a);
+  const ToolRun r = run(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"total_flux\":", "\"total_flux_n1\":", "\"rays\":", "\"png\":"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+  EXPECT_TRUE(fs::exists(out("line.png")));
+  const auto rows = csv_rows(csv);
+  ASSERT_EQ(rows.size(), 40u);
+
+  grtrace::KerrMetric metric;
+  metric.spin = 0.9;
+  const grtrace::KerrDiskMap map(metric, 1e7, 40.0 * std::numbers::pi / 180.0,
+                                 grtrace::exact::isco_radius(0.9, grtrace::exact::Orbit::prograde), 15.0);
+  grtrace::LineProfileSpec spec;
+  spec.bins = 40;
+  spec.transparent = true;
+  grtrace::LineSampling sampling;
+  sampling.finest_cell = 0.0625;
+  const grtrace::LineProfile expected = grtrace::line_profile(map, spec, sampling);
+  double n1 = 0.0;
+  for (std::size_t b = 0; b < rows.size(); ++b) {
+    ASSERT_EQ(rows[b].size(), 7u);
+    EXPECT_NEAR(rows[b][0], expected.edges[b], 1e-9 * expected.edges[b]);
+    EXPECT_NEAR(rows[b][2], expected.flux[b], 1e-9 * expected.flux[b] + 1e-300);
+    EXPECT_NEAR(rows[b][3] + rows[b][4] + rows[b][5] + rows[b][6], rows[b][2], 1e-9 * rows[b][2] + 1e-300);
+    n1 += rows[b][4];
+  }
+  EXPECT_GT(n1, 0.0);  // a transparent disk shows its n = 1 image
+  for (const auto& entry : fs::directory_iterator(base_ / "out")) fs::remove(entry.path());
+
+  const std::vector<BadCase> bad = {
+      {{"--fov", "30"}, "--fov describes a frame"},
+      {{"--width", "64"}, "--width describes a frame"},
+      {{"--status-map"}, "--status-map is for frames"},
+      {{"--camera-theta", "0"}, "inclination"},
+      {{"--metric", "rn"}, "--metric must be"},
+      {{"--chart", "ks"}, "Boyer-Lindquist"},
+      {{"--energy-bins", "0"}, "--energy-bins"},
+      {{"--energy-range", "7,6"}, "energy range"},
+      {{"--line-energy", "-1"}, "line energy"},
+      {{"--disk-inner", "2"}, "ISCO"},
+      {{"--scene", "checker"}, "--scene disk"},
+      {{"--spectrum", "continuum"}, "--spectrum must be line"},
+  };
+  for (const auto& c : bad) {
+    std::vector<std::string> a = base;
+    for (const auto& x : c.args) a.push_back(x);
+    for (const std::string& x : std::vector<std::string>{"--out", csv.string()}) a.push_back(x);
+    const ToolRun refused = run(a);
+    std::string shown;
+    for (const auto& x : c.args) shown += x + " ";
+    EXPECT_EQ(refused.status, 2) << shown << "\n" << refused.err;
+    EXPECT_NE(refused.err.find(c.says), std::string::npos) << shown << ": should say '" << c.says << "':\n"
+                                                           << refused.err;
+    EXPECT_TRUE(out_empty()) << shown;
+  }
+  // The CSV's name, and a line option without --spectrum.
+  std::vector<std::string> exr = base;
+  for (const std::string& x : std::vector<std::string>{"--out", out("line.exr").string()}) exr.push_back(x);
+  EXPECT_EQ(run(exr).status, 2);
+  const ToolRun stray = run({"--line-energy", "6", "--out", out("frame.exr").string()});
+  EXPECT_EQ(stray.status, 2);
+  EXPECT_NE(stray.err.find("--line-energy applies only with --spectrum line"), std::string::npos) << stray.err;
+  EXPECT_TRUE(out_empty());
 }
 
 }  // namespace

@@ -38,6 +38,7 @@
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/render/progress_bar.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
+#include "grtrace/spectra/line_profile_output.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 #include "grtrace/trace/traced_path.hpp"
@@ -427,5 +428,46 @@ bool cpu_table_tracer_draws(const RenderRequest& request);
 /// gpu_refusal refuses); auto: cuda where kAutoPicksGpu, the CPU's table tracer does not draw it and gpu_refusal has
 /// nothing against it, else cpu. Refuses names outside kDeviceNames. check_request calls it with request.device.
 std::string choose_device(std::string_view asked, const RenderRequest& request);
+
+// ---- a disk's line profile ----------------------------------------------------------------------------------
+
+/// A thin disk's line profile (spectra/line_profile.hpp): the flux per energy bin that a distant observer receives
+/// from a line emitted at one energy by the disk's gas, in total and by image order n = 0, 1, 2, >= 3, each ray
+/// in closed form (a Kerr hole in Boyer-Lindquist coordinates, or Schwarzschild's as spin 0). What
+/// grtrace-render --spectrum line reads.
+struct LineProfileRequest {
+  MetricSpec metric;                  ///< kerr (chart bl) or schwarzschild
+  double inclination_degrees = 90.0;  ///< the observer's theta (--camera-theta), strictly between 0 and 180
+  std::optional<double> disk_inner;   ///< nothing: 6 M, or for kerr the ISCO of the disk's sense (as for frames)
+  double disk_outer = 20.0;
+  bool disk_retrograde = false;
+  bool transparent = false;  ///< --disk-transparent: every crossing inside the radii shines (else the first only)
+  double line_energy = 6.4;  ///< --line-energy: in the gas's frame, the bins' unit (keV for iron K-alpha)
+  double emissivity_index = 3.0;                ///< --emissivity-index q: eps ~ r^-q
+  std::optional<double> emissivity_index_outer;  ///< --emissivity-index-outer: beyond --emissivity-break
+  std::optional<double> emissivity_break;        ///< --emissivity-break (M)
+  std::optional<std::array<double, 2>> energy_range;  ///< --energy-range lo,hi; nothing: around the light's
+  int bins = 200;                                     ///< --energy-bins
+  double finest_cell = 1.0 / 64.0;  ///< --line-finest: the mesh's finest cell on the screen (M)
+  int threads = 0;                  ///< OpenMP threads (0: all cores)
+};
+
+/// The options --spectrum line reads: the metric (kerr or schwarzschild), --camera-theta as the inclination, the
+/// disk's, the line's, the bins', --threads. Any other option given (a frame's camera distance, size, method,
+/// tracer, ...) is refused: the profile is a distant observer's and its rays are not integrated. RequestError
+/// saying what to change, before any work.
+LineProfileRequest read_line_profile_request(const OptionSource& options);
+
+struct LineProfileResult {
+  LineProfileRequest request;  ///< as checked: disk_inner filled in
+  LineProfile profile;
+  double seconds = 0.0;
+  std::string csv;                  ///< spectra/line_profile_output.hpp's table, the request in its comments
+  LineChart chart;                  ///< and its plot
+  std::vector<ReportEntry> report;  ///< the JSON line's entries: seconds, rays, totals by order, the bins' range
+};
+
+/// Checks the request (RequestError), then computes the profile.
+LineProfileResult line_profile(const LineProfileRequest& request);
 
 }  // namespace grtrace::app

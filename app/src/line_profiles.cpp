@@ -31,14 +31,17 @@ LineProfileResult line_profile(const LineProfileRequest& in) {
   out.request = in;
   LineProfileRequest& q = out.request;
   if (q.metric.name != "kerr" && q.metric.name != "schwarzschild")
-    throw RequestError("--spectrum line needs --metric kerr or schwarzschild (its rays are Kerr's in closed form), "
-                       "got --metric " + q.metric.name);
+    throw RequestError(
+        "--spectrum line needs --metric kerr or schwarzschild (its rays are Kerr's in closed form), "
+        "got --metric " +
+        q.metric.name);
   if (q.metric.name == "kerr" && q.metric.chart != "bl")
     throw RequestError("--spectrum line traces Kerr in Boyer-Lindquist coordinates: leave --chart out or use bl");
   if (!(q.inclination_degrees > 0.01 && q.inclination_degrees < 179.99))
-    throw RequestError("--spectrum line needs an inclination --camera-theta strictly between 0.01 and 179.99 degrees "
-                       "(on the axis the closed form is not defined), got " +
-                       shortest_number_text(q.inclination_degrees));
+    throw RequestError(
+        "--spectrum line needs an inclination --camera-theta strictly between 0.01 and 179.99 degrees "
+        "(on the axis the closed form is not defined), got " +
+        shortest_number_text(q.inclination_degrees));
   // The disk as a frame of the disk scene has it (inner edge, ISCO, sense), with that frame's refusals.
   RenderRequest frame;
   frame.metric = q.metric;

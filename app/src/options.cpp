@@ -175,8 +175,8 @@ Vec3 triple(const OptionSource& s, const std::string& name) {
 
 /// The options only --spectrum line reads.
 constexpr std::array<const char*, 9> kLineProfileOptions = {
-    "spectrum",        "line-energy",  "emissivity-index", "emissivity-index-outer", "emissivity-break",
-    "energy-range",    "energy-bins",  "line-finest",      "disk-transparent"};
+    "spectrum",     "line-energy", "emissivity-index", "emissivity-index-outer", "emissivity-break",
+    "energy-range", "energy-bins", "line-finest",      "disk-transparent"};
 
 }  // namespace
 
@@ -186,8 +186,8 @@ LineProfileRequest read_line_profile_request(const OptionSource& s) {
   // What a line profile reads; every other option describes a frame.
   static const std::vector<std::string> reads = [] {
     std::vector<std::string> r{kLineProfileOptions.begin(), kLineProfileOptions.end()};
-    for (const char* o : {"scene", "metric", "mass", "chart", "camera-theta", "disk-inner", "disk-outer",
-                          "disk-retrograde", "threads"})
+    for (const char* o :
+         {"scene", "metric", "mass", "chart", "camera-theta", "disk-inner", "disk-outer", "disk-retrograde", "threads"})
       r.emplace_back(o);
     for (const NamedMetricParameter& p : named_metric_parameters()) r.emplace_back(p.parameter.option);
     return r;
@@ -198,8 +198,7 @@ LineProfileRequest read_line_profile_request(const OptionSource& s) {
                          " describes a frame; --spectrum line is a distant observer's spectrum of the disk (at "
                          "--camera-theta, every ray in closed form): leave --" +
                          std::string(o.name) + " out");
-  if (text_of(s, "scene") != "disk")
-    throw RequestError("--spectrum line is the disk's spectrum: add --scene disk");
+  if (text_of(s, "scene") != "disk") throw RequestError("--spectrum line is the disk's spectrum: add --scene disk");
   LineProfileRequest q;
   q.metric = read_metric(s, {"kerr", "schwarzschild"});
   q.inclination_degrees = option_number(s, "camera-theta");
@@ -310,8 +309,9 @@ RenderRequest read_render_request(const OptionSource& s) {
   if (!is_standard_scene(q.scene) && !is_medium_scene(q.scene))
     throw RequestError("unknown scene '" + q.scene + "'; choose " + choice_list(scene_names()));
   if (s.given("spectrum"))
-    throw RequestError("--spectrum asks for the disk's line profile, not a frame (app::line_profile; grtrace-render "
-                       "computes it when --spectrum is given)");
+    throw RequestError(
+        "--spectrum asks for the disk's line profile, not a frame (app::line_profile; grtrace-render "
+        "computes it when --spectrum is given)");
   q.metric = read_metric(s, {kMetricNames.begin(), kMetricNames.end()});
   check_scene_options(s, q.scene);
   q.method = read_method(s, "");

@@ -386,8 +386,8 @@ int run_line_profile(CommandLine& cli) {
   }
   const std::string out = cli.text("out");
   if (out.size() < 5 || out.substr(out.size() - 4) != ".csv")
-    throw UsageError("--spectrum line writes a table: give --out NAME.csv (its plot goes beside it as NAME.png), got '" +
-                     out + "'");
+    throw UsageError(
+        "--spectrum line writes a table: give --out NAME.csv (its plot goes beside it as NAME.png), got '" + out + "'");
   const std::string png = out.substr(0, out.size() - 4) + ".png";
   for (const std::string& path : {out, png}) tools::check_command_output(cli, "out", path, {});
   if (cli.write_config_if_asked()) return 0;

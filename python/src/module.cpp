@@ -418,7 +418,9 @@ py::dict line_profile_of(const py::dict& kwargs) {
     r = app::line_profile(request);
   }
   const LineProfile& p = r.profile;
-  auto array = [](const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); };
+  auto array = [](const std::vector<double>& v) {
+    return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+  };
   py::dict d;
   d["edges"] = array(p.edges);
   d["flux"] = array(p.flux);

@@ -441,15 +441,15 @@ struct LineProfileRequest {
   std::optional<double> disk_inner;   ///< nothing: 6 M, or for kerr the ISCO of the disk's sense (as for frames)
   double disk_outer = 20.0;
   bool disk_retrograde = false;
-  bool transparent = false;  ///< --disk-transparent: every crossing inside the radii shines (else the first only)
-  double line_energy = 6.4;  ///< --line-energy: in the gas's frame, the bins' unit (keV for iron K-alpha)
-  double emissivity_index = 3.0;                ///< --emissivity-index q: eps ~ r^-q
-  std::optional<double> emissivity_index_outer;  ///< --emissivity-index-outer: beyond --emissivity-break
-  std::optional<double> emissivity_break;        ///< --emissivity-break (M)
+  bool transparent = false;       ///< --disk-transparent: every crossing inside the radii shines (else the first only)
+  double line_energy = 6.4;       ///< --line-energy: in the gas's frame, the bins' unit (keV for iron K-alpha)
+  double emissivity_index = 3.0;  ///< --emissivity-index q: eps ~ r^-q
+  std::optional<double> emissivity_index_outer;       ///< --emissivity-index-outer: beyond --emissivity-break
+  std::optional<double> emissivity_break;             ///< --emissivity-break (M)
   std::optional<std::array<double, 2>> energy_range;  ///< --energy-range lo,hi; nothing: around the light's
   int bins = 200;                                     ///< --energy-bins
-  double finest_cell = 1.0 / 64.0;  ///< --line-finest: the mesh's finest cell on the screen (M)
-  int threads = 0;                  ///< OpenMP threads (0: all cores)
+  double finest_cell = 1.0 / 64.0;                    ///< --line-finest: the mesh's finest cell on the screen (M)
+  int threads = 0;                                    ///< OpenMP threads (0: all cores)
 };
 
 /// The options --spectrum line reads: the metric (kerr or schwarzschild), --camera-theta as the inclination, the

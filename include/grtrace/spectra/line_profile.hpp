@@ -65,7 +65,7 @@ struct LineEmissivity {
 /// What to compute: the line, the bins and the disk's opacity.
 struct LineProfileSpec {
   double line_energy = 6.4;  ///< in the gas's frame (any unit: the bins are in the same, keV for iron K-alpha)
-  double energy_min = 0.0;   ///< the bins' range; both 0: the range of g seen on the start grid, 10 % wider
+  double energy_min = 0.0;   ///< the bins' range; both 0: around the energies the light arrives at
   double energy_max = 0.0;
   int bins = 200;
   LineEmissivity emissivity;
@@ -95,11 +95,11 @@ struct LineProfile {
   std::array<std::vector<double>, kOrderChannels> flux_by_order;
   std::array<double, kOrderChannels> total_by_order{};  ///< int F_E dE over the bins, per order
   double total = 0.0;                                   ///< int F_E dE over the bins
-  double outside = 0.0;                                 ///< int F_E dE of the light whose energy fell outside the bins
-  double half_width = 0.0;                              ///< the image square's half width (M)
-  long rays = 0, triangles = 0;
-  long unresolved = 0;  ///< triangles left mixed at the finest cell (partial, first-order)
-  long uncovered = 0;   ///< rays the map could not follow (KerrDiskMap: exact/kerr_null_geodesic.hpp's limits)
+  double outside = 0.0;          ///< int F_E dE of the light that fell outside the bins asked for (automatic bins: 0)
+  double half_width = 0.0;       ///< the image square's half width (M)
+  long rays = 0, triangles = 0;  ///< all traced (automatic bins made again where light fell outside: both meshes)
+  long unresolved = 0;           ///< triangles left mixed at the finest cell (partial, first-order)
+  long uncovered = 0;            ///< rays the map could not follow (KerrDiskMap: exact/kerr_null_geodesic.hpp's limits)
 };
 
 /// One ray's crossings of the equatorial plane, as a disk sees them.
@@ -240,6 +240,7 @@ inline double clipped_weight(const std::array<double, 3>& g, const std::array<do
 struct Sums {
   std::array<std::vector<double>, LineProfile::kOrderChannels> bins;
   double outside = 0.0;
+  double e_min = std::numeric_limits<double>::infinity(), e_max = 0.0;  ///< the energies that carried light
   long rays = 0, triangles = 0, unresolved = 0, uncovered = 0;
   explicit Sums(int n) {
     for (auto& b : bins) b.assign(static_cast<std::size_t>(n), 0.0);
@@ -396,15 +397,17 @@ class Mesher {
         g[i] = v[i]->lit[n] ? v[i]->s.redshift[n] : g_sum / lit;
         w[i] = v[i]->lit[n] ? v[i]->weight[n] : 0.0;
       }
-      deposit(g, w, area, sums.bins[order_channel(n)], sums.outside);
+      deposit(g, w, area, sums.bins[order_channel(n)], sums);
     }
   }
 
   void deposit(std::array<double, 3> g, const std::array<double, 3>& w, double area, std::vector<double>& bins,
-               double& outside) const {
+               Sums& sums) const {
     for (double& x : g) x *= spec_.line_energy;  // energies from here on
     const double lo = std::min({g[0], g[1], g[2]}), hi = std::max({g[0], g[1], g[2]});
     const double whole = area * (w[0] + w[1] + w[2]) / 3.0;
+    if (whole > 0.0) sums.e_min = std::min(sums.e_min, lo), sums.e_max = std::max(sums.e_max, hi);
+    double& outside = sums.outside;
     const auto nb = static_cast<long>(bins.size());
     const long first = bin_of(lo), last = bin_of(hi);
     if (first == last) {
@@ -510,42 +513,62 @@ LineProfile line_profile(const Map& map, const LineProfileSpec& spec, const Line
   while (cell / std::ldexp(1.0, depth) > sampling.finest_cell * mass && depth < 24) ++depth;
   const long step = 1L << depth;
 
-  // The bins: as asked, or around the range of g the start grid's corners see.
+  // The bins: as asked, or around the range of g the start grid's corners and the centre's (the inner edge's
+  // image) see; if light still arrives outside them, the mesh is made again over the range it arrived in.
   double e_lo = spec.energy_min, e_hi = spec.energy_max;
-  if (e_lo == 0.0 && e_hi == 0.0) {
+  const bool automatic = e_lo == 0.0 && e_hi == 0.0;
+  if (automatic) {
     double g_lo = std::numeric_limits<double>::infinity(), g_hi = 0.0;
+    auto look = [&](double a, double b) {
+      const DiskRaySample d = map.sample(a, b);
+      for (std::size_t n = 0; n < DiskRaySample::kOrders; ++n)
+        if (d.where[n] == DiskRaySample::on_disk)
+          g_lo = std::min(g_lo, d.redshift[n]), g_hi = std::max(g_hi, d.redshift[n]);
+    };
     for (int j = 0; j <= base; ++j)
-      for (int i = 0; i <= base; ++i) {
-        const DiskRaySample d = map.sample(-half + cell * i, -half + cell * j);
-        for (std::size_t n = 0; n < DiskRaySample::kOrders; ++n)
-          if (d.where[n] == DiskRaySample::on_disk)
-            g_lo = std::min(g_lo, d.redshift[n]), g_hi = std::max(g_hi, d.redshift[n]);
-      }
+      for (int i = 0; i <= base; ++i) look(-half + cell * i, -half + cell * j);
+    constexpr int kCentre = 96;  // 0.25 M apart over the central 24 M
+    for (int j = 0; j <= kCentre; ++j)
+      for (int i = 0; i <= kCentre; ++i) look(mass * (-12.0 + 24.0 * i / kCentre), mass * (-12.0 + 24.0 * j / kCentre));
     if (!(g_hi > 0.0)) g_lo = 0.5, g_hi = 1.5;  // nothing seen: any range
     e_lo = std::max(0.0, g_lo - 0.1 * (g_hi - g_lo)) * spec.line_energy;
     e_hi = (g_hi + 0.1 * (g_hi - g_lo)) * spec.line_energy;
   }
-  const double bin_width = (e_hi - e_lo) / spec.bins;
-  out.edges.resize(static_cast<std::size_t>(spec.bins) + 1);
-  for (int i = 0; i <= spec.bins; ++i) out.edges[static_cast<std::size_t>(i)] = e_lo + bin_width * i;
-  out.edges.back() = e_hi;
 
-  line_detail::Mesher<Map> mesher(map, spec, sampling, out.edges, flux_scale);
-  mesher.set_lattice(-half, cell / static_cast<double>(step));
-  mesher.set_bin_width(bin_width);
-
-  std::vector<line_detail::Sums> rows(static_cast<std::size_t>(base), line_detail::Sums(spec.bins));
+  std::vector<line_detail::Sums> rows;
+  double bin_width = 0.0;
+  auto mesh = [&] {
+    bin_width = (e_hi - e_lo) / spec.bins;
+    out.edges.resize(static_cast<std::size_t>(spec.bins) + 1);
+    for (int i = 0; i <= spec.bins; ++i) out.edges[static_cast<std::size_t>(i)] = e_lo + bin_width * i;
+    out.edges.back() = e_hi;
+    line_detail::Mesher<Map> mesher(map, spec, sampling, out.edges, flux_scale);
+    mesher.set_lattice(-half, cell / static_cast<double>(step));
+    mesher.set_bin_width(bin_width);
+    rows.assign(static_cast<std::size_t>(base), line_detail::Sums(spec.bins));
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)
 #endif
-  for (int j = 0; j < base; ++j) {
-    line_detail::Sums& sums = rows[static_cast<std::size_t>(j)];
-    std::unordered_map<std::uint64_t, line_detail::Vertex> cache;
-    for (int i = 0; i < base; ++i) {
-      cache.clear();
-      const long x0 = i * step, y0 = j * step, x1 = x0 + step, y1 = y0 + step;
-      mesher.triangle({{{x0, y0}, {x1, y0}, {x1, y1}}}, cache, sums);
-      mesher.triangle({{{x0, y0}, {x1, y1}, {x0, y1}}}, cache, sums);
+    for (int j = 0; j < base; ++j) {
+      line_detail::Sums& sums = rows[static_cast<std::size_t>(j)];
+      std::unordered_map<std::uint64_t, line_detail::Vertex> cache;
+      for (int i = 0; i < base; ++i) {
+        cache.clear();
+        const long x0 = i * step, y0 = j * step, x1 = x0 + step, y1 = y0 + step;
+        mesher.triangle({{{x0, y0}, {x1, y0}, {x1, y1}}}, cache, sums);
+        mesher.triangle({{{x0, y0}, {x1, y1}, {x0, y1}}}, cache, sums);
+      }
+    }
+  };
+  mesh();
+  if (automatic) {
+    double outside = 0.0, lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (const auto& r : rows) outside += r.outside, lo = std::min(lo, r.e_min), hi = std::max(hi, r.e_max);
+    if (outside > 0.0) {
+      for (const auto& r : rows) out.rays += r.rays, out.triangles += r.triangles;  // the first mesh's cost
+      const double margin = 1e-6 * (hi - lo);
+      e_lo = std::max(0.0, lo - margin), e_hi = hi + margin;
+      mesh();
     }
   }
 

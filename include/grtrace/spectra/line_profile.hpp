@@ -31,6 +31,7 @@
 #pragma once
 
 #include "grtrace/core/types.hpp"
+#include "grtrace/spectra/line_profile_result.hpp"
 #include "grtrace/exact/kerr_null_geodesic.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/observer/camera_spec.hpp"
@@ -88,19 +89,6 @@ struct LineSampling {
   double edge_tolerance = 1e-7;
 };
 
-struct LineProfile {
-  static constexpr int kOrderChannels = 4;  ///< n = 0, 1, 2 and >= 3
-  std::vector<double> edges;                ///< bins + 1 energies
-  std::vector<double> flux;                 ///< per bin: F_E (see the top of this file)
-  std::array<std::vector<double>, kOrderChannels> flux_by_order;
-  std::array<double, kOrderChannels> total_by_order{};  ///< int F_E dE over the bins, per order
-  double total = 0.0;                                   ///< int F_E dE over the bins
-  double outside = 0.0;          ///< int F_E dE of the light that fell outside the bins asked for (automatic bins: 0)
-  double half_width = 0.0;       ///< the image square's half width (M)
-  long rays = 0, triangles = 0;  ///< all traced (automatic bins made again where light fell outside: both meshes)
-  long unresolved = 0;           ///< triangles left mixed at the finest cell (partial, first-order)
-  long uncovered = 0;            ///< rays the map could not follow (KerrDiskMap: exact/kerr_null_geodesic.hpp's limits)
-};
 
 /// One ray's crossings of the equatorial plane, as a disk sees them.
 struct DiskRaySample {

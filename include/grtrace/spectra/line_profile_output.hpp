@@ -95,10 +95,6 @@ struct Plot {
 
 }  // namespace line_chart_detail
 
-struct LineChart {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;  ///< 3 * width * height bytes, the top row first
-};
 
 inline LineChart line_profile_chart(const LineProfile& p, double line_energy) {
   using line_chart_detail::Plot;

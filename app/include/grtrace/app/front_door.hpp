@@ -38,7 +38,7 @@
 #include "grtrace/render/parallel_render.hpp"
 #include "grtrace/render/progress_bar.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
-#include "grtrace/spectra/line_profile_output.hpp"
+#include "grtrace/spectra/line_profile_result.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 #include "grtrace/trace/traced_path.hpp"

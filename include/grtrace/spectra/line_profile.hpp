@@ -31,10 +31,10 @@
 #pragma once
 
 #include "grtrace/core/types.hpp"
-#include "grtrace/spectra/line_profile_result.hpp"
 #include "grtrace/exact/kerr_null_geodesic.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/spectra/line_profile_result.hpp"
 
 #include <algorithm>
 #include <array>
@@ -88,7 +88,6 @@ struct LineSampling {
   /// this fraction of the disk's Newtonian flux 2 pi int eps r dr
   double edge_tolerance = 1e-7;
 };
-
 
 /// One ray's crossings of the equatorial plane, as a disk sees them.
 struct DiskRaySample {

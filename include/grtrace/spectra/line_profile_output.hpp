@@ -95,7 +95,6 @@ struct Plot {
 
 }  // namespace line_chart_detail
 
-
 inline LineChart line_profile_chart(const LineProfile& p, double line_energy) {
   using line_chart_detail::Plot;
   Plot plot;

@@ -413,6 +413,7 @@ TEST(LineProfile, OrdersAndTransparentDisk) {
 TEST(LineProfile, RefusesBadInput) {
   KerrMetric metric;
   EXPECT_THROW(KerrDiskMap(metric, 1e4, 1.0, 1.5, 20.0), std::invalid_argument);    // inside the horizon
+  EXPECT_THROW(KerrDiskMap(metric, 1e4, 1.0, 2.9, 20.0), std::invalid_argument);  // inside the photon orbit (3 M)
   EXPECT_THROW(KerrDiskMap(metric, 1e4, 1.0, 10.0, 8.0), std::invalid_argument);    // r_out < r_in
   EXPECT_THROW(KerrDiskMap(metric, 100.0, 1.0, 6.0, 20.0), std::invalid_argument);  // camera too near
   EXPECT_THROW(KerrDiskMap(metric, 1e4, 0.0, 6.0, 20.0), std::invalid_argument);    // on the axis

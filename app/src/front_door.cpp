@@ -777,8 +777,6 @@ LineProfileResult line_profile(const LineProfileRequest& in) {
   LineSampling sampling;
   sampling.finest_cell = q.finest_cell;
   refusal_as_request_error("", [&] { check_line_profile(spec, sampling); });
-  if (q.emissivity_break && !(*q.emissivity_break > 0.0))
-    throw RequestError("--emissivity-break must be a positive radius");
 
   KerrMetric metric;
   metric.mass = q.metric.mass;

@@ -257,9 +257,10 @@ JsonObject status_counts_json(const std::array<long, kRayStatusCount>& counts) {
   return json;
 }
 
-/// The report's entries (app::report_entries: the same list as the Python module's dict) as JSON.
-void add_report(JsonObject& json, const app::RenderReport& report, const app::CheckedRequest& checked) {
-  for (const app::ReportEntry& e : app::report_entries(report, checked)) {
+/// Report entries (app::report_entries, app::LineProfileResult::report: the same lists as the Python module's dicts)
+/// as JSON.
+void add_entries(JsonObject& json, const std::vector<app::ReportEntry>& entries) {
+  for (const app::ReportEntry& e : entries) {
     std::visit(
         [&](const auto& v) {
           using V = std::decay_t<decltype(v)>;
@@ -399,14 +400,7 @@ int run_line_profile(CommandLine& cli) {
   write_png_rgb8(outputs, png, result.chart.width, result.chart.height, result.chart.rgb);
   outputs.commit();
   JsonObject json;
-  for (const app::ReportEntry& e : result.report)
-    std::visit(
-        [&](const auto& v) {
-          using V = std::decay_t<decltype(v)>;
-          if constexpr (std::is_same_v<V, std::string>) json.add(e.key, std::string_view(v));
-          else if constexpr (!std::is_same_v<V, app::ReportEntry::Counts>) json.add(e.key, v);
-        },
-        e.value);
+  add_entries(json, result.report);
   json.add("out", out).add("png", png);
   std::cout << json.str() << std::endl;
   return 0;
@@ -442,7 +436,7 @@ int main(int argc, char** argv) {
     phase("maps+commit");
 
     JsonObject json;
-    add_report(json, result.report, q.checked);
+    add_entries(json, app::report_entries(result.report, q.checked));
     json.add("out", q.out).add("png", png);
     if (status_map) json.add("status_map", status_map_path(q.out));
     if (q.checked.request.error_map) json.add("error_map", error_map_path(q.out));

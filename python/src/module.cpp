@@ -159,10 +159,10 @@ py::array channel_array(py::object frame_object, const std::string& name) {
                    frame_object);
 }
 
-py::dict report_dict(const PyFrame& frame) {
+/// Report entries (app::report_entries, app::LineProfileResult::report) as a dict: the tool's JSON line's keys.
+py::dict entries_dict(const std::vector<app::ReportEntry>& entries) {
   py::dict d;
-  if (!frame.report || !frame.checked) return d;
-  for (const app::ReportEntry& e : app::report_entries(*frame.report, *frame.checked)) {
+  for (const app::ReportEntry& e : entries) {
     std::visit(
         [&](const auto& v) {
           using V = std::decay_t<decltype(v)>;
@@ -176,6 +176,12 @@ py::dict report_dict(const PyFrame& frame) {
         },
         e.value);
   }
+  return d;
+}
+
+py::dict report_dict(const PyFrame& frame) {
+  if (!frame.report || !frame.checked) return py::dict();
+  py::dict d = entries_dict(app::report_entries(*frame.report, *frame.checked));
   d["setup_seconds"] = frame.report->setup_seconds;
   return d;
 }
@@ -427,15 +433,7 @@ py::dict line_profile_of(const py::dict& kwargs) {
   py::list orders;
   for (const auto& o : p.flux_by_order) orders.append(array(o));
   d["flux_by_order"] = orders;
-  py::dict report;
-  for (const app::ReportEntry& e : r.report)
-    std::visit(
-        [&](const auto& v) {
-          using V = std::decay_t<decltype(v)>;
-          if constexpr (!std::is_same_v<V, app::ReportEntry::Counts>) report[py::str(e.key)] = v;
-        },
-        e.value);
-  d["report"] = report;
+  d["report"] = entries_dict(r.report);
   d["csv"] = r.csv;
   return d;
 }

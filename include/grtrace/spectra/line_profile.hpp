@@ -31,6 +31,7 @@
 #pragma once
 
 #include "grtrace/core/types.hpp"
+#include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/kerr_null_geodesic.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/observer/camera_spec.hpp"
@@ -110,17 +111,24 @@ concept DiskMap = requires(const M& map, double alpha, double beta) {
 
 /// The disk map of a Kerr hole (Boyer-Lindquist; spin 0: Schwarzschild) seen by a static camera at (r_o, theta_o):
 /// each screen point's ray in closed form, its crossings' radii by one Jacobi function each and the redshift
-/// against gas on Keplerian circular orbits (Bardeen, Press & Teukolsky 1972 eq. 2.12, 2.16; sense +1 towards +phi)
-/// from the ray's conserved k_t and k_phi: g = -1 / (u^t (k_t + Omega k_phi)), k scaled to unit energy at the camera.
+/// against gas on Keplerian circular orbits (exact/kerr_exact.hpp's u^t and Omega: Bardeen, Press & Teukolsky 1972;
+/// sense +1 towards +phi) from the ray's conserved k_t and k_phi: g = -1 / (u^t (k_t + Omega k_phi)), k scaled to
+/// unit energy at the camera.
 class KerrDiskMap {
  public:
-  /// Throws std::invalid_argument (what to change) for a disk not outside the horizon, r_out <= r_in, a camera not
-  /// outside the disk or on the axis (theta_o within 1e-4 rad of it).
+  /// Throws std::invalid_argument (what to change) for a disk not outside the photon orbit of its sense (no
+  /// circular orbit inside it), r_out <= r_in, a camera not outside the disk or on the axis (theta_o within 1e-4
+  /// rad of it).
   KerrDiskMap(KerrMetric metric, double camera_r, double camera_theta, double r_in, double r_out, int sense = +1)
-      : metric_(metric), r_in_(r_in), r_out_(r_out), sense_(sense >= 0 ? 1.0 : -1.0) {
-    if (!(r_in > metric.horizon_radius()) || !(r_out > r_in) || !std::isfinite(r_out))
-      throw std::invalid_argument("line profile: the disk needs horizon < r_in < r_out (finite), got r_in = " +
-                                  std::to_string(r_in) + ", r_out = " + std::to_string(r_out));
+      : metric_(metric),
+        r_in_(r_in),
+        r_out_(r_out),
+        orbit_((sense >= 0) == (metric.spin >= 0.0) ? exact::Orbit::prograde : exact::Orbit::retrograde) {
+    const double photon_orbit = exact::photon_orbit_radius(metric.spin, orbit_, metric.mass);
+    if (!(r_in > photon_orbit) || !(r_out > r_in) || !std::isfinite(r_out))
+      throw std::invalid_argument("line profile: the disk needs photon orbit (" + std::to_string(photon_orbit) +
+                                  " M for its sense) < r_in < r_out (finite), got r_in = " + std::to_string(r_in) +
+                                  ", r_out = " + std::to_string(r_out));
     if (!(camera_r > 10.0 * r_out) || !std::isfinite(camera_r))
       throw std::invalid_argument("line profile: the camera must be far from the disk (r_o > 10 r_out); got r_o = " +
                                   std::to_string(camera_r));
@@ -176,17 +184,17 @@ class KerrDiskMap {
     return s;
   }
 
-  /// g of gas on the prograde (sense +1) or retrograde circular orbit at r, for a ray of lowered momentum k_low.
+  /// g of the disk's gas on its circular orbit at r, for a ray of lowered momentum k_low.
   double redshift(double r, const Vec4& k_low) const {
-    const double sm = std::sqrt(metric_.mass), r32 = r * std::sqrt(r), sa = sense_ * metric_.spin * sm;
-    const double omega = sense_ * sm / (r32 + sa);
-    const double ut = (r32 + sa) / (std::sqrt(r32) * std::sqrt(r32 - 3.0 * metric_.mass * std::sqrt(r) + 2.0 * sa));
+    const double ut = exact::keplerian_ut(r, metric_.spin, orbit_, metric_.mass);
+    const double omega = exact::keplerian_omega(r, metric_.spin, orbit_, metric_.mass);
     return -1.0 / (ut * (k_low[0] + omega * k_low[3]));
   }
 
  private:
   KerrMetric metric_;
-  double r_in_, r_out_, sense_;
+  double r_in_, r_out_;
+  exact::Orbit orbit_;
   Vec4 x0_;
   Tetrad tetrad_;
   double r_o_ = 0.0, sky_ = 0.0, guard_ = 0.0;
@@ -196,7 +204,6 @@ namespace line_detail {
 
 /// A vertex of the mesh: its screen point and its ray's crossings, with the weight g^4 eps J of each lit order.
 struct Vertex {
-  double alpha = 0.0, beta = 0.0;
   DiskRaySample s;
   std::array<double, DiskRaySample::kOrders> weight{};
   std::array<bool, DiskRaySample::kOrders> lit{};  ///< this order emits light that reaches the camera
@@ -237,14 +244,20 @@ struct Sums {
 template <DiskMap Map>
 class Mesher {
  public:
+  /// The lattice: corner (i, j) at (origin + h i, origin + h j); `edges`: bins of width `bin_width`.
   Mesher(const Map& map, const LineProfileSpec& spec, const LineSampling& sampling, const std::vector<double>& edges,
-         double flux_scale)
-      : map_(map), spec_(spec), sampling_(sampling), edges_(edges), flux_scale_(flux_scale) {}
+         double bin_width, double flux_scale, double origin, double h)
+      : map_(map),
+        spec_(spec),
+        sampling_(sampling),
+        edges_(edges),
+        flux_scale_(flux_scale),
+        origin_(origin),
+        h_(h),
+        bin_width_(bin_width) {}
 
   Vertex vertex(double alpha, double beta, Sums& sums) const {
     Vertex v;
-    v.alpha = alpha;
-    v.beta = beta;
     v.s = map_.sample(alpha, beta);
     ++sums.rays;
     if (!v.s.covered) ++sums.uncovered;
@@ -299,11 +312,6 @@ class Mesher {
       for (std::size_t i = 0; i < 3; ++i) cv[i] = &at(child[i], cache, sums);
       integrate(cv, 0.25 * area, sums);
     }
-  }
-
-  void set_lattice(double origin, double h) {
-    origin_ = origin;
-    h_ = h;
   }
 
   std::size_t order_channel(std::size_t n) const { return std::min<std::size_t>(n, LineProfile::kOrderChannels - 1); }
@@ -422,16 +430,13 @@ class Mesher {
     return std::min(nb - 1, static_cast<long>((e - edges_.front()) / bin_width_));
   }
 
- public:
-  void set_bin_width(double w) { bin_width_ = w; }
-
  private:
   const Map& map_;
   const LineProfileSpec& spec_;
   const LineSampling& sampling_;
   const std::vector<double>& edges_;
   double flux_scale_;
-  double origin_ = 0.0, h_ = 1.0, bin_width_ = 1.0;
+  double origin_, h_, bin_width_;
 };
 
 }  // namespace line_detail
@@ -529,9 +534,8 @@ LineProfile line_profile(const Map& map, const LineProfileSpec& spec, const Line
     out.edges.resize(static_cast<std::size_t>(spec.bins) + 1);
     for (int i = 0; i <= spec.bins; ++i) out.edges[static_cast<std::size_t>(i)] = e_lo + bin_width * i;
     out.edges.back() = e_hi;
-    line_detail::Mesher<Map> mesher(map, spec, sampling, out.edges, flux_scale);
-    mesher.set_lattice(-half, cell / static_cast<double>(step));
-    mesher.set_bin_width(bin_width);
+    const line_detail::Mesher<Map> mesher(map, spec, sampling, out.edges, bin_width, flux_scale, -half,
+                                          cell / static_cast<double>(step));
     rows.assign(static_cast<std::size_t>(base), line_detail::Sums(spec.bins));
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)

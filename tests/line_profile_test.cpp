@@ -300,7 +300,7 @@ TEST(LineProfile, SchwarzschildMapPointByPoint) {
           const auto& e = *expected[n];
           EXPECT_EQ(got.where[n], e[0] < 6.0     ? DiskRaySample::inside_edge
                                   : e[0] <= 30.0 ? DiskRaySample::on_disk
-                                                 : DiskRaySample::nothing);
+                                                 : DiskRaySample::beyond_edge);
           EXPECT_NEAR(got.radius[n], e[0], 2e-6 * e[0] * e[0]) << b << " " << psi << " order " << n;
           if (got.where[n] == DiskRaySample::on_disk) {
             EXPECT_NEAR(got.redshift[n], e[1], 1e-6) << b << " " << psi << " order " << n;

@@ -35,6 +35,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -165,6 +166,46 @@ inline double equatorial_critical_impact(double spin, double s, double mass = 1.
   if (spin == 0.0) return (s < 0.0 ? -1.0 : 1.0) * 3.0 * std::sqrt(3.0) * mass;
   const Orbit orbit = s * spin > 0.0 ? Orbit::prograde : Orbit::retrograde;
   return spherical_photon_orbit(photon_orbit_radius(spin, orbit, mass), spin, mass).first;
+}
+
+/// The Lyapunov exponent gamma of the spherical photon orbit at radius r: a ray that starts near the orbit departs
+/// from it by e^gamma per half orbit (per crossing of the equator), so the (n+1)-th image of a source is e^-gamma
+/// times as wide as the n-th where they lie near the critical curve point of that orbit (Johnson et al., Sci. Adv. 6,
+/// eaaz1310 (2020), eq. 7; Gralla & Lupsasca, Phys. Rev. D 101, 044031 (2020)):
+///   gamma = 4 r sqrt(chi) K(m) / sqrt(A),  chi = 1 - M Delta(r) / (r (r - M)^2),  A = -a^2 u- ,  m = u+ / u- <= 0,
+/// with u+- = D +- sqrt(D^2 + eta / a^2), D = (1 - (eta + xi^2) / a^2) / 2 the roots of the polar potential of the
+/// orbit's xi, eta (spherical_photon_orbit) and K the complete elliptic integral of the first kind (parameter m).
+/// A and m are written without the 1 / a^2 that cancels (A = sqrt((a^2 D)^2 + a^2 eta) - a^2 D, m = -a^2 eta / A^2),
+/// so a -> 0 is smooth: gamma = pi at r = 3M (A = 27 M^2, m = 0, chi = 3/4). Takes r in [r_ph,pro, r_ph,retro] (for
+/// a = 0: r = 3M); throws std::invalid_argument outside.
+inline double photon_orbit_lyapunov(double r, double spin, double mass = 1.0) {
+  kerr_detail::check_hole(spin, mass, "photon_orbit_lyapunov");
+  kerr_detail::check_finite(r, "photon_orbit_lyapunov", "r");
+  const double r_lo = photon_orbit_radius(spin, Orbit::prograde, mass);
+  const double r_hi = photon_orbit_radius(spin, Orbit::retrograde, mass);
+  const double slack = 1e-9 * mass;
+  if (!(r >= std::min(r_lo, r_hi) - slack && r <= std::max(r_lo, r_hi) + slack))
+    throw std::invalid_argument("photon_orbit_lyapunov: r = " + std::to_string(r) +
+                                " is not a spherical photon orbit radius; give r in [" + std::to_string(r_lo) + ", " +
+                                std::to_string(r_hi) + "] M");
+  const double a2 = spin * spin;
+  double eta = 27.0 * mass * mass, xi = 0.0;  // a = 0: xi^2 + eta = 27 M^2 (any split: only the sum enters)
+  if (spin != 0.0) std::tie(xi, eta) = spherical_photon_orbit(r, spin, mass);
+  eta = std::max(0.0, eta);  // the ends of the range, where eta = 0 up to rounding
+  const double a2d = 0.5 * (a2 - eta - xi * xi);
+  const double big_a = std::sqrt(a2d * a2d + a2 * eta) - a2d;
+  const double m = -a2 * eta / (big_a * big_a);
+  // K(m) = pi / (2 AGM(1, sqrt(1 - m))), for any m < 1
+  double x = 1.0, y = std::sqrt(1.0 - m);
+  for (int it = 0; it < 64 && std::abs(x - y) > 1e-16 * x; ++it) {
+    const double xn = 0.5 * (x + y);
+    y = std::sqrt(x * y);
+    x = xn;
+  }
+  const double k = std::numbers::pi / (x + y);
+  const double delta = r * r - 2.0 * mass * r + a2, rm = r - mass;
+  const double chi = 1.0 - mass * delta / (r * rm * rm);
+  return 4.0 * r * std::sqrt(chi) * k / std::sqrt(big_a);
 }
 
 struct CelestialPoint {

@@ -101,6 +101,8 @@ struct DiskLight {
   /// false: the first crossing inside the disk's radii emits and ends the ray (an opaque disk); true: every
   /// crossing inside them emits and the ray goes on (an optically thin disk: AART's model).
   bool transparent = false;
+  /// The orders that emit, from n = 0 (the ring image meshes order 0 alone and takes the rings along radial cuts)
+  int orders = DiskRaySample::kOrders;
 };
 
 namespace disk_mesh {
@@ -122,6 +124,25 @@ struct Vertex {
   std::array<signed char, DiskRaySample::kOrders> view{};
   std::array<double, DiskRaySample::kOrders> redshift{}, weight{};
 };
+
+/// The views of a ray's orders (Vertex::view; 1: lit); orders from `orders` on are dark (0).
+inline std::array<signed char, DiskRaySample::kOrders> views(const DiskRaySample& s, bool transparent,
+                                                             int orders = DiskRaySample::kOrders) {
+  std::array<signed char, DiskRaySample::kOrders> v{};
+  bool seen = false;
+  for (std::size_t n = 0; n < static_cast<std::size_t>(std::clamp(orders, 0, DiskRaySample::kOrders)); ++n) {
+    switch (s.where[n]) {
+      case DiskRaySample::inside_edge: v[n] = 0; break;
+      case DiskRaySample::beyond_edge: v[n] = 2; break;
+      case DiskRaySample::nothing: v[n] = s.escaped ? 2 : 0; break;
+      case DiskRaySample::on_disk:
+        v[n] = (seen && !transparent) ? 2 : 1;
+        seen = true;
+        break;
+    }
+  }
+  return v;
+}
 
 /// The Newtonian flux of the disk face-on, 2 pi int eps r dr: the scale of edge_tolerance.
 inline double newtonian_flux(const DiskEmissivity& e, double r_in, double r_out) {
@@ -218,23 +239,11 @@ class Mesher {
     if (!s.covered) ++counts.uncovered;
     const double x = alpha / map_.camera_radius(), y = beta / map_.camera_radius();
     const double q = 1.0 + x * x + y * y, jacobian = 1.0 / (q * std::sqrt(q));
-    bool seen = false;
+    v.view = views(s, light_.transparent, light_.orders);
     for (std::size_t n = 0; n < DiskRaySample::kOrders; ++n) {
-      switch (s.where[n]) {
-        case DiskRaySample::inside_edge: v.view[n] = 0; break;
-        case DiskRaySample::beyond_edge: v.view[n] = 2; break;
-        case DiskRaySample::nothing: v.view[n] = s.escaped ? 2 : 0; break;
-        case DiskRaySample::on_disk:
-          if (seen && !light_.transparent) {
-            v.view[n] = 2;
-            break;
-          }
-          seen = true;
-          v.view[n] = 1;
-          v.redshift[n] = s.redshift[n];
-          v.weight[n] = std::pow(s.redshift[n], light_.redshift_power) * light_.emissivity(s.radius[n]) * jacobian;
-          break;
-      }
+      if (v.view[n] != 1) continue;
+      v.redshift[n] = s.redshift[n];
+      v.weight[n] = std::pow(s.redshift[n], light_.redshift_power) * light_.emissivity(s.radius[n]) * jacobian;
     }
     return v;
   }
@@ -397,7 +406,7 @@ class Mesher {
                         {v[0]->weight[n], v[1]->weight[n], v[2]->weight[n]}, row);
         continue;
       }
-      if (n >= static_cast<std::size_t>(kOrderChannels) || !(sampling_.edge_precision > 0.0)) {
+      if (!(sampling_.edge_precision > 0.0)) {
         std::array<double, 3> g{}, w{};
         int lit = 0;
         double g_sum = 0.0;

@@ -18,6 +18,9 @@
 #include "grtrace/scene/thin_disk.hpp"
 #include "grtrace/spectra/line_profile.hpp"
 #include "grtrace/spectra/line_profile_output.hpp"
+#include "grtrace/spectra/ring_image.hpp"
+#include "grtrace/spectra/ring_image_output.hpp"
+#include "grtrace/core/physical_units.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <algorithm>
@@ -725,34 +728,36 @@ FlightStats render_flight(const CheckedRequest& checked, const std::vector<Camer
       [&](int i, RenderResult&& r) { sink(i, std::move(r)); }, options);
 }
 
-// ---- a disk's line profile ------------------------------------------------------------------------------------
+// ---- a disk seen from afar: its line profile and its photon ring by order ------------------------------------
 // The request checked as a frame of the disk scene would be (the same disk: its inner edge, the ISCO by default for
-// Kerr, and its sense), then spectra/line_profile.hpp on the closed-form Kerr disk map seen from 1e7 M. Here rather
-// than in a unit of its own: the front door's header alone is ~10 s of a compile.
+// Kerr, and its sense), then spectra/line_profile.hpp or spectra/ring_image.hpp on the closed-form Kerr disk map
+// seen from 1e7 M. Here rather than in a unit of its own: the front door's header alone is ~10 s of a compile.
 
 namespace {
 
 /// The observer's distance: far enough that the profile is the one at infinity to ~1e-7 (tests/line_profile_test).
 constexpr double kObserverDistance = 1e7;
 
-}  // namespace
+/// A distant disk checked: its map, the disk as the disk scene has it, its emissivity and a line describing it.
+struct CheckedDistantDisk {
+  ThinDisk disk;
+  KerrDiskMap map;
+  DiskEmissivity emissivity;
+  std::string description;
+};
 
-LineProfileResult line_profile(const LineProfileRequest& in) {
-  LineProfileResult out;
-  out.request = in;
-  LineProfileRequest& q = out.request;
+/// Checks the disk and observer (RequestError naming `what`), fills in q.disk_inner.
+CheckedDistantDisk check_distant_disk(DistantDisk& q, const std::string& what) {
   if (q.metric.name != "kerr" && q.metric.name != "schwarzschild")
-    throw RequestError(
-        "--spectrum line needs --metric kerr or schwarzschild (its rays are Kerr's in closed form), "
-        "got --metric " +
-        q.metric.name);
+    throw RequestError(what + " needs --metric kerr or schwarzschild (its rays are Kerr's in closed form), got --metric " +
+                       q.metric.name);
   if (q.metric.name == "kerr" && q.metric.chart != "bl")
-    throw RequestError("--spectrum line traces Kerr in Boyer-Lindquist coordinates: leave --chart out or use bl");
+    throw RequestError(what + " traces Kerr in Boyer-Lindquist coordinates: leave --chart out or use bl");
   if (!(q.inclination_degrees > 0.01 && q.inclination_degrees < 179.99))
-    throw RequestError(
-        "--spectrum line needs an inclination --camera-theta strictly between 0.01 and 179.99 degrees "
-        "(on the axis the closed form is not defined), got " +
-        shortest_number_text(q.inclination_degrees));
+    throw RequestError(what +
+                       " needs an inclination --camera-theta strictly between 0.01 and 179.99 degrees (on the axis "
+                       "the closed form is not defined), got " +
+                       shortest_number_text(q.inclination_degrees));
   // The disk as a frame of the disk scene has it (inner edge, ISCO, sense), with that frame's refusals.
   RenderRequest frame;
   frame.metric = q.metric;
@@ -765,51 +770,86 @@ LineProfileResult line_profile(const LineProfileRequest& in) {
   const CheckedRequest checked = check_request(frame);
   const ThinDisk& disk = checked.scene.disk;
   q.disk_inner = disk.r_in;
+  DiskEmissivity emissivity;
+  emissivity.index_inner = q.emissivity_index;
+  emissivity.index_outer = q.emissivity_index_outer.value_or(q.emissivity_index);
+  if (q.emissivity_break) emissivity.r_break = *q.emissivity_break;
+  if (!std::isfinite(emissivity.index_inner) || !std::isfinite(emissivity.index_outer) || !(emissivity.r_break > 0.0))
+    throw RequestError(what + " needs finite emissivity indices and a positive --emissivity-break");
+  KerrMetric metric;
+  metric.mass = q.metric.mass;
+  metric.spin = q.metric.name == "kerr" ? q.metric.spin : 0.0;
+  const double inclination = q.inclination_degrees * std::numbers::pi / 180.0;
+  const std::string spin = q.metric.name == "kerr" ? shortest_number_text(q.metric.spin) : "0";
+  return CheckedDistantDisk{
+      disk,
+      refusal_as_request_error("",
+                               [&] {
+                                 return KerrDiskMap(metric, kObserverDistance * metric.mass, inclination, disk.r_in,
+                                                    disk.r_out, disk.sense);
+                               }),
+      emissivity,
+      "--metric " + q.metric.name + " (spin " + spin + ", mass " + shortest_number_text(q.metric.mass) +
+          "), inclination " + shortest_number_text(q.inclination_degrees) + " deg, disk " +
+          shortest_number_text(disk.r_in) + " .. " + shortest_number_text(disk.r_out) + " M, " +
+          (disk.sense > 0 ? "gas towards +phi" : "gas towards -phi") + ", " +
+          (q.transparent ? "transparent" : "opaque") + ", emissivity r^-" +
+          shortest_number_text(emissivity.index_inner) +
+          (q.emissivity_break ? " inside " + shortest_number_text(*q.emissivity_break) + " M, r^-" +
+                                    shortest_number_text(emissivity.index_outer) + " beyond"
+                              : "")};
+}
+
+/// Runs `work` on `threads` OpenMP threads (0: as many as there are), the setting restored after; its seconds.
+template <class F>
+double timed_on_threads(int threads, F&& work) {
+#ifdef _OPENMP
+  const int threads_before = omp_get_max_threads();
+  if (threads > 0) omp_set_num_threads(threads);
+#else
+  (void)threads;
+#endif
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+#ifdef _OPENMP
+  omp_set_num_threads(threads_before);
+#endif
+  return seconds;
+}
+
+/// The report entries both commands end with: the disk and the tracer.
+void add_disk_entries(std::vector<ReportEntry>& report, const DistantDisk& q, const ThinDisk& disk) {
+  report.push_back({"inclination_degrees", q.inclination_degrees});
+  report.push_back({"disk_inner", disk.r_in});
+  report.push_back({"disk_outer", disk.r_out});
+  report.push_back({"disk", std::string(q.transparent ? "transparent" : "opaque")});
+  report.push_back({"tracer", std::string("kerr-closed-form")});
+}
+
+}  // namespace
+
+LineProfileResult line_profile(const LineProfileRequest& in) {
+  LineProfileResult out;
+  out.request = in;
+  LineProfileRequest& q = out.request;
+  const CheckedDistantDisk d = check_distant_disk(q.disk, "--spectrum line");
 
   LineProfileSpec spec;
   spec.line_energy = q.line_energy;
   spec.bins = q.bins;
   if (q.energy_range) spec.energy_min = (*q.energy_range)[0], spec.energy_max = (*q.energy_range)[1];
-  spec.emissivity.index_inner = q.emissivity_index;
-  spec.emissivity.index_outer = q.emissivity_index_outer.value_or(q.emissivity_index);
-  if (q.emissivity_break) spec.emissivity.r_break = *q.emissivity_break;
-  spec.transparent = q.transparent;
+  spec.emissivity = d.emissivity;
+  spec.transparent = q.disk.transparent;
   LineSampling sampling;
   sampling.finest_cell = q.finest_cell;
   refusal_as_request_error("", [&] { check_line_profile(spec, sampling); });
 
-  KerrMetric metric;
-  metric.mass = q.metric.mass;
-  metric.spin = q.metric.name == "kerr" ? q.metric.spin : 0.0;
-  const double inclination = q.inclination_degrees * std::numbers::pi / 180.0;
-  const KerrDiskMap map = refusal_as_request_error("", [&] {
-    return KerrDiskMap(metric, kObserverDistance * metric.mass, inclination, disk.r_in, disk.r_out, disk.sense);
-  });
-
-#ifdef _OPENMP
-  const int threads_before = omp_get_max_threads();
-  if (q.threads > 0) omp_set_num_threads(q.threads);
-#endif
-  const auto start = std::chrono::steady_clock::now();
-  out.profile = line_profile(map, spec, sampling);
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-#ifdef _OPENMP
-  omp_set_num_threads(threads_before);
-#endif
+  out.seconds = timed_on_threads(q.disk.threads, [&] { out.profile = line_profile(d.map, spec, sampling); });
 
   const LineProfile& p = out.profile;
-  const std::string spin = q.metric.name == "kerr" ? shortest_number_text(q.metric.spin) : "0";
   out.csv = line_profile_csv(
-      p, {"line profile of a thin disk: --metric " + q.metric.name + " (spin " + spin + ", mass " +
-              shortest_number_text(q.metric.mass) + "), inclination " + shortest_number_text(q.inclination_degrees) +
-              " deg, disk " + shortest_number_text(disk.r_in) + " .. " + shortest_number_text(disk.r_out) + " M, " +
-              (disk.sense > 0 ? "gas towards +phi" : "gas towards -phi") + ", " +
-              (q.transparent ? "transparent" : "opaque"),
-          "line energy " + shortest_number_text(q.line_energy) + ", emissivity r^-" +
-              shortest_number_text(spec.emissivity.index_inner) +
-              (q.emissivity_break ? " inside " + shortest_number_text(*q.emissivity_break) + " M, r^-" +
-                                        shortest_number_text(spec.emissivity.index_outer) + " beyond"
-                                  : ""),
+      p, {"line profile of a thin disk: " + d.description, "line energy " + shortest_number_text(q.line_energy),
           "flux: F_E per unit energy, in eps(r = M) M^2 (a distant observer's flux times D^2 / M^2); orders n = 0, "
           "1, 2, >= 3 sum to it",
           std::to_string(p.rays) + " rays, " + std::to_string(p.triangles) + " triangles"});
@@ -833,11 +873,72 @@ LineProfileResult line_profile(const LineProfileRequest& in) {
   add_number("energy_min", p.edges.front());
   add_number("energy_max", p.edges.back());
   add("energy_bins", static_cast<long>(q.bins));
-  add_number("inclination_degrees", q.inclination_degrees);
-  add_number("disk_inner", disk.r_in);
-  add_number("disk_outer", disk.r_out);
-  out.report.push_back({"disk", std::string(q.transparent ? "transparent" : "opaque")});
-  out.report.push_back({"tracer", std::string("kerr-closed-form")});
+  add_disk_entries(out.report, q.disk, d.disk);
+  return out;
+}
+
+RingImageResult ring_image(const RingImageRequest& in) {
+  RingImageResult out;
+  out.request = in;
+  RingImageRequest& q = out.request;
+  const CheckedDistantDisk d = check_distant_disk(q.disk, "--rings");
+  RingImageSpec spec;
+  spec.width = q.width;
+  spec.height = q.height;
+  spec.half_width = q.field;
+  spec.emissivity = d.emissivity;
+  spec.redshift_power = q.redshift_power;
+  spec.transparent = q.disk.transparent;
+  spec.ring_cuts = q.cuts;
+  const RingImageSampling sampling;
+  refusal_as_request_error("", [&] { check_ring_image(spec, sampling); });
+
+  out.seconds = timed_on_threads(q.disk.threads, [&] { out.rings = ring_image(d.map, spec, sampling); });
+
+  const RingImage& r = out.rings;
+  out.image = ring_image_channels(r);
+  out.orders = ring_orders_picture(r);
+  const std::optional<SourceScale> scale =
+      q.source ? std::optional(*q.source == "m87" ? SourceScale::m87() : SourceScale::sgr_a()) : std::nullopt;
+  const double uas = scale ? scale->microarcseconds_per_m() / q.disk.metric.mass : 0.0;  // per M of length
+
+  auto add = [&](const std::string& key, long v) { out.report.push_back({key, v}); };
+  auto add_number = [&](const std::string& key, double v) { out.report.push_back({key, v}); };
+  add("width", static_cast<long>(q.width));
+  add("height", static_cast<long>(q.height));
+  add_number("seconds", out.seconds);
+  add("rays", r.rays);
+  add("triangles", r.triangles);
+  add("ring_cuts", static_cast<long>(r.rings.cut_angle.size()));
+  add_number("field_half_width", r.half_width);
+  add_number("pixel", r.pixel);
+  const char* order_names[] = {"n0", "n1", "n2", "n3_up"};
+  for (std::size_t o = 0; o < RingImage::kOrderChannels; ++o) add_number(std::string("flux_") + order_names[o], r.flux[o]);
+  for (std::size_t n = 1; n < RingImage::kOrderChannels; ++n) {
+    add_number("ring_diameter_n" + std::to_string(n), r.rings.diameter[n]);
+    add_number("ring_width_n" + std::to_string(n), r.rings.width[n]);
+  }
+  if (scale) {
+    out.report.push_back({"source", *q.source});
+    add_number("microarcseconds_per_m", uas);
+    for (std::size_t n = 1; n < RingImage::kOrderChannels; ++n) {
+      add_number("ring_diameter_n" + std::to_string(n) + "_uas", r.rings.diameter[n] * uas);
+      add_number("ring_width_n" + std::to_string(n) + "_uas", r.rings.width[n] * uas);
+    }
+  }
+  add_number("redshift_power", q.redshift_power);
+  add_disk_entries(out.report, q.disk, d.disk);
+
+  out.image.metadata["ring_image"] = "photon ring by order of a thin disk: " + d.description;
+  out.image.metadata["ring_units"] =
+      "I: g^" + shortest_number_text(q.redshift_power) +
+      " eps(r), eps(r = M) = 1, each pixel's mean; lengths in M (pixel " + shortest_number_text(r.pixel) + " M)";
+  std::ostringstream rings;
+  rings.precision(8);
+  for (std::size_t n = 1; n < RingImage::kOrderChannels; ++n)
+    rings << (n > 1 ? "; " : "") << "n" << n << ": diameter " << r.rings.diameter[n] << " M, width "
+          << r.rings.width[n] << " M, flux " << r.flux[n];
+  out.image.metadata["ring_sizes"] = rings.str();
   return out;
 }
 

@@ -98,19 +98,32 @@ std::vector<OptionInfo> make_render_options() {
                "line: instead of a frame, the disk's line profile seen from afar at --camera-theta (a CSV at --out "
                "NAME.csv and its plot NAME.png): the flux per energy bin, in total and by image order n = 0, 1, 2, "
                ">= 3, for --metric kerr or schwarzschild, every ray in closed form on an adaptive image-plane mesh"});
+  o.push_back({"rings", "",
+               "instead of a frame, the disk's photon ring by order seen from afar at --camera-theta (--out NAME.exr "
+               "with channels I, I_n0 .. I_n3_up, NAME.png and NAME-orders.png): each ring integrated across its "
+               "width however thin, the flux of each order and the rings' diameters and widths in the JSON line, "
+               "for --metric kerr or schwarzschild, every ray in closed form",
+               true});
+  o.push_back({"ring-field", "8", "--rings: the image's half width (M), square pixels of 2 field / width"});
+  o.push_back({"ring-cuts", "0", "--rings: radial cuts for the rings n >= 2 (0: a pixel apart at 6 M from the centre)"});
+  o.push_back({"ring-redshift-power", "3",
+               "--rings: the observed intensity is g^power eps(r) (3: a specific intensity, flat source spectrum; 4: "
+               "bolometric)"});
   o.push_back({"line-energy", "6.4", "--spectrum line: the line's energy in the gas's frame (the bins' unit: keV)"});
-  o.push_back({"emissivity-index", "3", "--spectrum line: the gas's line emissivity falls as r^-index"});
+  o.push_back({"emissivity-index", "3", "--spectrum line or --rings: the gas's emissivity falls as r^-index"});
   o.push_back({"emissivity-index-outer", "",
-               "--spectrum line: the index beyond --emissivity-break (a broken power law; default: the same)"});
-  o.push_back({"emissivity-break", "", "--spectrum line: the radius (M) where the emissivity's index changes"});
+               "--spectrum line or --rings: the index beyond --emissivity-break (a broken power law; default: the "
+               "same)"});
+  o.push_back({"emissivity-break", "",
+               "--spectrum line or --rings: the radius (M) where the emissivity's index changes"});
   o.push_back({"energy-range", "",
                "--spectrum line: lo,hi of the bins (default: around the energies the disk's light arrives at)"});
   o.push_back({"energy-bins", "200", "--spectrum line: the number of energy bins, 1 .. 100000"});
   o.push_back({"line-finest", "0.015625",
                "--spectrum line: the image-plane mesh's finest cell (M); 1e-3 of the peak per bin at the default"});
   o.push_back({"disk-transparent", "",
-               "--spectrum line: every crossing of the disk shines and the ray goes on (default: an opaque disk, "
-               "the first crossing only)",
+               "--spectrum line or --rings: every crossing of the disk shines and the ray goes on (default: an "
+               "opaque disk, the first crossing only)",
                true});
   o.push_back({"accretion-gas", "free-fall",
                "accretion scene: free-fall (from rest at infinity, Narayan, Johnson & Gammie 2019) | rest"});
@@ -173,50 +186,84 @@ Vec3 triple(const OptionSource& s, const std::string& name) {
   return {v[0], v[1], v[2]};
 }
 
-/// The options only --spectrum line reads.
-constexpr std::array<const char*, 9> kLineProfileOptions = {
-    "spectrum",     "line-energy", "emissivity-index", "emissivity-index-outer", "emissivity-break",
-    "energy-range", "energy-bins", "line-finest",      "disk-transparent"};
+/// The options only --spectrum line reads, only --rings reads, and both.
+constexpr std::array<const char*, 5> kLineProfileOptions = {"spectrum", "line-energy", "energy-range", "energy-bins",
+                                                            "line-finest"};
+constexpr std::array<const char*, 4> kRingImageOptions = {"rings", "ring-field", "ring-cuts", "ring-redshift-power"};
+constexpr std::array<const char*, 4> kDistantDiskOptions = {"emissivity-index", "emissivity-index-outer",
+                                                            "emissivity-break", "disk-transparent"};
+
+/// The disk and observer a line profile and a ring image share; `what` names the command in messages, `own` the
+/// options it reads besides. Every other option given is refused: it describes a frame.
+DistantDisk read_distant_disk(const OptionSource& s, const std::string& what, const std::vector<std::string>& own) {
+  std::vector<std::string> reads = own;
+  reads.insert(reads.end(), kDistantDiskOptions.begin(), kDistantDiskOptions.end());
+  for (const char* o :
+       {"scene", "metric", "mass", "chart", "camera-theta", "disk-inner", "disk-outer", "disk-retrograde", "threads"})
+    reads.emplace_back(o);
+  for (const NamedMetricParameter& p : named_metric_parameters()) reads.emplace_back(p.parameter.option);
+  for (const OptionInfo& o : render_options())
+    if (s.given(std::string(o.name)) && std::find(reads.begin(), reads.end(), o.name) == reads.end())
+      throw RequestError("--" + std::string(o.name) + " describes a frame; " + what +
+                         " is a distant observer's view of the disk (at --camera-theta, every ray in closed form): "
+                         "leave --" +
+                         std::string(o.name) + " out");
+  if (text_of(s, "scene") != "disk") throw RequestError(what + " is the disk's: add --scene disk");
+  DistantDisk d;
+  d.metric = read_metric(s, {"kerr", "schwarzschild"});
+  d.inclination_degrees = option_number(s, "camera-theta");
+  if (s.given("disk-inner")) d.disk_inner = option_number(s, "disk-inner");
+  d.disk_outer = option_number(s, "disk-outer");
+  d.disk_retrograde = s.given("disk-retrograde");
+  d.transparent = s.given("disk-transparent");
+  d.emissivity_index = option_number(s, "emissivity-index");
+  if (s.given("emissivity-index-outer")) d.emissivity_index_outer = option_number(s, "emissivity-index-outer");
+  if (s.given("emissivity-break")) d.emissivity_break = option_number(s, "emissivity-break");
+  d.threads = integer_in(s, "threads", 0, 1024, "--threads must be 0 (all cores) .. 1024");
+  return d;
+}
 
 }  // namespace
 
 LineProfileRequest read_line_profile_request(const OptionSource& s) {
   if (text_of(s, "spectrum") != "line")
     throw RequestError("--spectrum must be line (the disk's line profile), got '" + text_of(s, "spectrum") + "'");
-  // What a line profile reads; every other option describes a frame.
-  static const std::vector<std::string> reads = [] {
-    std::vector<std::string> r{kLineProfileOptions.begin(), kLineProfileOptions.end()};
-    for (const char* o :
-         {"scene", "metric", "mass", "chart", "camera-theta", "disk-inner", "disk-outer", "disk-retrograde", "threads"})
-      r.emplace_back(o);
-    for (const NamedMetricParameter& p : named_metric_parameters()) r.emplace_back(p.parameter.option);
-    return r;
-  }();
-  for (const OptionInfo& o : render_options())
-    if (s.given(std::string(o.name)) && std::find(reads.begin(), reads.end(), o.name) == reads.end())
-      throw RequestError("--" + std::string(o.name) +
-                         " describes a frame; --spectrum line is a distant observer's spectrum of the disk (at "
-                         "--camera-theta, every ray in closed form): leave --" +
-                         std::string(o.name) + " out");
-  if (text_of(s, "scene") != "disk") throw RequestError("--spectrum line is the disk's spectrum: add --scene disk");
+  if (s.given("rings"))
+    throw RequestError("--spectrum line and --rings are two commands: give one (a spectrum or a ring image)");
   LineProfileRequest q;
-  q.metric = read_metric(s, {"kerr", "schwarzschild"});
-  q.inclination_degrees = option_number(s, "camera-theta");
-  if (s.given("disk-inner")) q.disk_inner = option_number(s, "disk-inner");
-  q.disk_outer = option_number(s, "disk-outer");
-  q.disk_retrograde = s.given("disk-retrograde");
-  q.transparent = s.given("disk-transparent");
+  q.disk = read_distant_disk(s, "--spectrum line", {kLineProfileOptions.begin(), kLineProfileOptions.end()});
   q.line_energy = option_number(s, "line-energy");
-  q.emissivity_index = option_number(s, "emissivity-index");
-  if (s.given("emissivity-index-outer")) q.emissivity_index_outer = option_number(s, "emissivity-index-outer");
-  if (s.given("emissivity-break")) q.emissivity_break = option_number(s, "emissivity-break");
   if (s.given("energy-range")) {
     const std::vector<double> r = option_numbers(s, "energy-range", 2);
     q.energy_range = std::array<double, 2>{r[0], r[1]};
   }
   q.bins = integer_in(s, "energy-bins", 1, 100'000, "--energy-bins must be in 1 .. 100000");
   q.finest_cell = option_number(s, "line-finest");
-  q.threads = integer_in(s, "threads", 0, 1024, "--threads must be 0 (all cores) .. 1024");
+  return q;
+}
+
+RingImageRequest read_ring_image_request(const OptionSource& s) {
+  if (!s.given("rings")) throw RequestError("read_ring_image_request: --rings is not given");
+  RingImageRequest q;
+  std::vector<std::string> own{kRingImageOptions.begin(), kRingImageOptions.end()};
+  for (const char* o : {"width", "height", "source"}) own.emplace_back(o);
+  q.disk = read_distant_disk(s, "--rings", own);
+  q.width = integer_in(s, "width", 8, 16384, "--width must be 8 .. 16384 pixels");
+  q.height = integer_in(s, "height", 8, 16384, "--height must be 8 .. 16384 pixels");
+  q.field = option_number(s, "ring-field");
+  if (!(q.field >= 6.0 && q.field <= 1e6))
+    throw RequestError("--ring-field must be 6 .. 1e6 M (the rings lie ~5 M from the centre), got " +
+                       text_of(s, "ring-field"));
+  q.cuts = integer_in(s, "ring-cuts", 0, 100'000, "--ring-cuts must be 0 (automatic) or 2 .. 100000");
+  if (q.cuts == 1) throw RequestError("--ring-cuts must be 0 (automatic) or 2 .. 100000");
+  q.redshift_power = option_number(s, "ring-redshift-power");
+  if (!(std::abs(q.redshift_power) <= 10.0))
+    throw RequestError("--ring-redshift-power must lie in [-10, 10], got " + text_of(s, "ring-redshift-power"));
+  if (s.given("source")) {
+    q.source = text_of(s, "source");
+    if (*q.source != "m87" && *q.source != "sgr-a")
+      throw RequestError("--source must be m87 or sgr-a, got '" + *q.source + "'");
+  }
   return q;
 }
 
@@ -289,6 +336,10 @@ MethodRequest read_method(const OptionSource& s, const std::string& prefix) {
 void check_scene_options(const OptionSource& s, const std::string& scene) {
   for (const char* line_option : kLineProfileOptions)
     if (std::string_view(line_option) != "spectrum") refuse_unless(s, line_option, false, "--spectrum line");
+  for (const char* ring_option : kRingImageOptions)
+    if (std::string_view(ring_option) != "rings") refuse_unless(s, ring_option, false, "--rings");
+  for (const char* disk_option : kDistantDiskOptions)
+    refuse_unless(s, disk_option, false, "--spectrum line or --rings");
   for (const char* disk_option : {"disk-inner", "disk-outer", "disk-retrograde"})
     refuse_unless(s, disk_option, scene == "disk", "--scene disk");
   refuse_unless(s, "checker-squares", scene == "checker", "--scene checker");
@@ -312,6 +363,10 @@ RenderRequest read_render_request(const OptionSource& s) {
     throw RequestError(
         "--spectrum asks for the disk's line profile, not a frame (app::line_profile; grtrace-render "
         "computes it when --spectrum is given)");
+  if (s.given("rings"))
+    throw RequestError(
+        "--rings asks for the disk's photon ring by order, not a frame (app::ring_image; grtrace-render "
+        "computes it when --rings is given)");
   q.metric = read_metric(s, {kMetricNames.begin(), kMetricNames.end()});
   check_scene_options(s, q.scene);
   q.method = read_method(s, "");

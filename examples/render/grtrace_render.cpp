@@ -406,6 +406,36 @@ int run_line_profile(CommandLine& cli) {
   return 0;
 }
 
+/// --rings: the disk's photon ring by order (app::ring_image) as --out NAME.exr (channels I, I_n0 .. I_n3_up, R, G,
+/// B), its preview NAME.png and NAME-orders.png (all new or all as they were), and one line of JSON with each
+/// order's flux and the rings' sizes. A frame's options are refused (the library refuses the render options; the
+/// tool's own, such as --status-map or --flight, here).
+int run_ring_image(CommandLine& cli) {
+  const tools::CommandLineOptions options(cli);
+  const app::RingImageRequest request = tools::as_usage_error([&] { return app::read_ring_image_request(options); });
+  for (const auto& [name, value] : cli.values()) {
+    const bool render_option = std::any_of(app::render_options().begin(), app::render_options().end(),
+                                           [&](const app::OptionInfo& o) { return o.name == name; });
+    if (!render_option && name != "out" && cli.given(name))
+      throw UsageError("--" + name + " is for frames; --rings writes an EXR of the orders and two PNGs: leave it out");
+  }
+  const std::string out = cli.text("out");
+  tools::check_exr_output_name("out", out);
+  const std::string stem = out.substr(0, out.size() - 4), png = stem + ".png", orders = stem + "-orders.png";
+  for (const std::string& path : {out, png, orders}) tools::check_command_output(cli, "out", path, {});
+  if (cli.write_config_if_asked()) return 0;
+  const app::RingImageResult result = tools::as_usage_error([&] { return app::ring_image(request); });
+  OutputSet outputs;
+  write_exr_and_preview(outputs, out, png, result.image);
+  write_png_rgb8(outputs, orders, result.orders.width, result.orders.height, result.orders.rgb);
+  outputs.commit();
+  JsonObject json;
+  add_entries(json, result.report);
+  json.add("out", out).add("png", png).add("orders_png", orders);
+  std::cout << json.str() << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -413,6 +443,7 @@ int main(int argc, char** argv) {
   CommandLine cli = make_command_line();
   return tools::run_tool(cli, argc, argv, [&] {
     if (cli.given("spectrum")) return run_line_profile(cli);
+    if (cli.given("rings")) return run_ring_image(cli);
     Request q = read_request(cli);
     const ExrWriteOptions exr = exr_options(cli, q.checked.request.threads);
     if (cli.write_config_if_asked()) return 0;  // checked as for a run: saved, nothing traced

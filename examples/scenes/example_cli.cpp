@@ -29,8 +29,9 @@ ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
   a.size = static_cast<int>(size);
   for (auto& [name, value] : a.numbers) value = cli.number(name);
   // Before any work: a missing or unwritable directory, a directory in the way, the --config file read.
-  for (const std::string& path : {a.out, a.out.substr(0, a.out.size() - 4) + ".png"})
-    grtrace::tools::check_command_output(cli, "out", path, {});
+  std::vector<std::string> paths{a.out, a.out.substr(0, a.out.size() - 4) + ".png"};
+  for (const std::string& suffix : a.more_pictures) paths.push_back(a.out.substr(0, a.out.size() - 4) + suffix + ".png");
+  for (const std::string& path : paths) grtrace::tools::check_command_output(cli, "out", path, {});
   if (cli.write_config_if_asked()) throw NothingMoreToDo{};  // checked as for a run: saved, nothing rendered
   return a;
 }
@@ -45,6 +46,19 @@ void write_example_frame(const ExampleArgs& a, const grtrace::Frame& frame) {
     counts.add(grtrace::kRayStatusNames[i], frame.stats.status_counts[i]);
   json.add("out", a.out).add("png", png).add("seconds", frame.stats.seconds).add("status_counts", counts);
   std::cout << json.str() << "\n";
+}
+
+void write_example_image(const ExampleArgs& a, const grtrace::Image& image,
+                         const std::vector<grtrace::LineChart>& pictures) {
+  if (pictures.size() != a.more_pictures.size())
+    throw std::logic_error("write_example_image: one picture per ExampleArgs::more_pictures");
+  const std::string stem = a.out.substr(0, a.out.size() - 4);
+  grtrace::OutputSet files;
+  grtrace::write_exr_and_preview(files, a.out, stem + ".png", image);
+  for (std::size_t i = 0; i < pictures.size(); ++i)
+    grtrace::write_png_rgb8(files, stem + a.more_pictures[i] + ".png", pictures[i].width, pictures[i].height,
+                            pictures[i].rgb);
+  files.commit();
 }
 
 int run_example(const char* program, const std::function<void()>& body) {

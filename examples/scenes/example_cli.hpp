@@ -9,15 +9,19 @@
 #pragma once
 
 #include "grtrace/render/frame.hpp"
+#include "grtrace/spectra/line_profile_result.hpp"
 
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 struct ExampleArgs {
   std::string out;                        ///< the EXR; the PNG goes beside it
   int size = 512;                         ///< width and height in pixels
   std::map<std::string, double> numbers;  ///< "--name value" options of the example, with their defaults
+  /// further pictures beside the EXR, by suffix: "-orders" is NAME-orders.png (checked with the others before work)
+  std::vector<std::string> more_pictures{};
 };
 
 /// Thrown by parse_example_args when --help, --version or --write-config was answered (already printed or
@@ -33,6 +37,11 @@ ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults);
 /// Writes the EXR (all data channels) and its PNG preview as one set (both new or both old, render/output_file.hpp),
 /// and prints {"out","png","seconds","status_counts"}.
 void write_example_frame(const ExampleArgs& a, const grtrace::Frame& frame);
+
+/// Writes `image` (any channels; R, G, B for its preview) as the EXR and its PNG preview, and `pictures` (one per
+/// ExampleArgs::more_pictures, in order) beside them, as one set.
+void write_example_image(const ExampleArgs& a, const grtrace::Image& image,
+                         const std::vector<grtrace::LineChart>& pictures);
 
 /// Runs an example's body: exits 0 after --help/--version/--write-config (NothingMoreToDo), 2 with the message
 /// for bad input (std::invalid_argument, tools::UsageError), 1 for other failures.

@@ -246,6 +246,28 @@ def line_profile(**options: Any) -> Dict[str, Any]:
     return _grtrace._line_profile(options)
 
 
+def ring_image(**options: Any) -> Dict[str, Any]:
+    """The photon ring of a thin disk around a Kerr (or Schwarzschild) hole by order, as a distant observer sees it:
+    the image of each order n = 0, 1, 2, >= 3, each ring integrated across its width however thin and taken into
+    the pixels with its flux kept, every ray in closed form (grtrace-render ``--rings``).
+
+    Keywords are grtrace-render's (``scene`` and ``rings`` default to disk and True here): ``metric`` (kerr or
+    schwarzschild), ``spin``, ``mass``, ``camera_theta`` (the inclination, degrees), ``disk_inner`` (default: the
+    ISCO), ``disk_outer``, ``disk_retrograde``, ``disk_transparent``, ``emissivity_index``,
+    ``emissivity_index_outer``, ``emissivity_break``, ``width``, ``height``, ``ring_field`` (the image's half width,
+    M), ``ring_cuts``, ``ring_redshift_power`` (the observed intensity is g^p eps(r)), ``source`` (m87 or sgr-a: the
+    rings' sizes in microarcseconds too), ``threads``; a frame's options raise ValueError.
+
+    Returns a dict: ``intensity`` (four arrays, height x width, the top row first: each pixel's mean intensity of
+    order n = 0, 1, 2, >= 3, in eps(r = M) units), ``flux`` (each order's integral over the field, M^2 eps(r = M)),
+    ``ring_diameter`` and ``ring_width`` (n = 1, 2, 3; M) and ``report`` (grtrace-render's JSON line: seconds,
+    rays, fluxes, the rings' sizes).
+    """
+    options.setdefault("rings", True)
+    options.setdefault("scene", "disk")
+    return _grtrace._ring_image(options)
+
+
 def read_exr(path: str) -> Frame:
     """Reads an OpenEXR file (a frame grtrace-render or :meth:`Frame.write_exr` wrote, or any float image) as a
     :class:`Frame`: its channels as numpy arrays and its header. ValueError for a file that is not a readable EXR

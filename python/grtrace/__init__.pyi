@@ -84,6 +84,10 @@ def render(
     disk_outer: Number = 20,
     disk_retrograde: bool = False,
     spectrum: str = "",
+    rings: bool = False,
+    ring_field: Number = 8,
+    ring_cuts: int = 0,
+    ring_redshift_power: Number = 3,
     line_energy: Number = 6.4,
     emissivity_index: Number = 3,
     emissivity_index_outer: Optional[Number] = None,
@@ -146,6 +150,10 @@ def trace_ray(
     disk_outer: Number = 20,
     disk_retrograde: bool = False,
     spectrum: str = "",
+    rings: bool = False,
+    ring_field: Number = 8,
+    ring_cuts: int = 0,
+    ring_redshift_power: Number = 3,
     line_energy: Number = 6.4,
     emissivity_index: Number = 3,
     emissivity_index_outer: Optional[Number] = None,
@@ -167,6 +175,7 @@ def trace_ray(
     no_mirrors: bool = False,
 ) -> Ray: ...
 def line_profile(**options: Any) -> Dict[str, Any]: ...
+def ring_image(**options: Any) -> Dict[str, Any]: ...
 def read_exr(path: str) -> Frame: ...
 def frame(channels: Dict[str, Any], header: Optional[Dict[str, str]] = None) -> Frame: ...
 def options() -> List[Dict[str, Any]]: ...

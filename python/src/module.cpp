@@ -438,6 +438,30 @@ py::dict line_profile_of(const py::dict& kwargs) {
   return d;
 }
 
+/// grtrace.ring_image: the library's reader and checks (app::read_ring_image_request, app::ring_image), the image
+/// computed with the GIL released; numpy copies of each order's plane.
+py::dict ring_image_of(const py::dict& kwargs) {
+  const KeywordOptions options(kwargs);
+  const app::RingImageRequest request = app::read_ring_image_request(options);
+  app::RingImageResult r;
+  {
+    py::gil_scoped_release release;
+    r = app::ring_image(request);
+  }
+  const RingImage& image = r.rings;
+  py::list intensity;
+  for (const auto& plane : image.intensity)
+    intensity.append(py::array_t<double>({static_cast<py::ssize_t>(image.height), static_cast<py::ssize_t>(image.width)},
+                                         plane.data()));
+  py::dict d;
+  d["intensity"] = intensity;
+  d["flux"] = py::array_t<double>(static_cast<py::ssize_t>(image.flux.size()), image.flux.data());
+  d["ring_diameter"] = py::array_t<double>(3, image.rings.diameter.data() + 1);
+  d["ring_width"] = py::array_t<double>(3, image.rings.width.data() + 1);
+  d["report"] = entries_dict(r.report);
+  return d;
+}
+
 // ---- files ------------------------------------------------------------------------------------------------
 
 PyFrame read_frame(const std::string& path) {
@@ -559,6 +583,7 @@ PYBIND11_MODULE(_grtrace, m) {
         py::arg("samples_per_step"), py::arg("scene_objects"), py::arg("options"));
   m.def("_read_exr", &read_frame, py::arg("path"));
   m.def("_line_profile", &line_profile_of, py::arg("options"));
+  m.def("_ring_image", &ring_image_of, py::arg("options"));
   m.def("_frame", &frame_of, py::arg("channels"), py::arg("header"));
   m.def("_options", [] {
     py::list out;

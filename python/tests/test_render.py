@@ -85,6 +85,28 @@ def test_a_line_profile_is_the_tools_and_its_orders_sum_to_it(run_tool):
         grtrace.render(spectrum="line", scene="disk")
 
 
+def test_a_ring_image_is_the_tools_and_its_orders_hold_their_flux(run_tool):
+    options = dict(metric="kerr", spin=0.5, camera_theta=30, disk_outer=50, disk_transparent=True, width=40,
+                   height=36, ring_field=7)
+    rings = grtrace.ring_image(**options)
+    code, out, err, exr = run_tool(dict(options, rings=True, scene="disk"), "ring.exr")
+    assert code == 0, err
+    tool = grtrace.read_exr(str(exr))
+    for n, name in enumerate(["I_n0", "I_n1", "I_n2", "I_n3_up"]):
+        assert rings["intensity"][n].shape == (36, 40)
+        assert np.allclose(tool[name], rings["intensity"][n], rtol=1e-6, atol=1e-30), name
+    pixel = 2 * 7 / 40
+    assert np.allclose([plane.sum() * pixel**2 for plane in rings["intensity"]], rings["flux"], rtol=1e-9, atol=0)
+    line = json.loads(out.strip().splitlines()[-1])
+    assert line["flux_n2"] == rings["report"]["flux_n2"] > 0
+    assert line["ring_diameter_n1"] == rings["ring_diameter"][0] > 0
+    assert rings["ring_width"][2] < 0.2 * rings["ring_width"][1] < rings["ring_width"][0]
+    with pytest.raises(ValueError, match="--fov describes a frame"):
+        grtrace.ring_image(fov=30)
+    with pytest.raises(ValueError, match="--rings asks for the disk's photon ring"):
+        grtrace.render(rings=True, scene="disk")
+
+
 def test_a_riaf_frame_is_the_tools_in_physical_units(run_tool):
     options = dict(scene="riaf", metric="kerr", spin=0.9, source="sgr-a", camera_r=1000, camera_theta=17,
                    fov=2.3, width=12, height=12, sky_radius=2000, rtol=1e-8)

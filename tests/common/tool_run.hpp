@@ -16,6 +16,7 @@
 #include <array>
 #include <cctype>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -137,6 +138,13 @@ inline ToolRun run_tool(const std::filesystem::path& binary, const std::vector<s
 /// Takes a directory; returns the names of what is in it (files, links, folders), sorted: for the checks that a
 /// refused run left no file behind, or exactly the files expected. Throws if the directory does not exist (a
 /// missing directory must not pass for an empty one).
+/// The number after "key": in a one-line JSON object (NaN if absent).
+inline double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\":");
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
 inline std::vector<std::string> files_in(const std::filesystem::path& dir) {
   std::vector<std::string> names;
   for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());

@@ -41,13 +41,6 @@ struct TempDir {
 
 ToolRun render(const std::string& args) { return run_command(std::string(GRTRACE_RENDER_BINARY) + " " + args); }
 
-/// The number after "key": in a one-line JSON object (NaN if absent).
-double json_number(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\":");
-  if (at == std::string::npos) return std::nan("");
-  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
-}
-
 const std::string kSmall = "--width 24 --height 16 --fov 50 --threads 2 ";
 
 TEST(FlightCli, SeedFlightWritesNumberedFramesAndResumes) {

@@ -5,9 +5,11 @@
 //
 // The binary: GRTRACE_RENDER_BINARY if CMake defines it for this target (tests/render/CMakeLists.txt), else
 // <build>/examples/render/grtrace-render next to this test's <build>/tests/render/.
+#include "grtrace/core/physical_units.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/spectra/line_profile.hpp"
+#include "grtrace/spectra/ring_image.hpp"
 
 #include "../common/tool_run.hpp"
 
@@ -414,6 +416,93 @@ TEST_F(KerrCli, LineProfileIsTheLibrarysAndRefusesFrameOptions) {
   const ToolRun stray = run({"--line-energy", "6", "--out", out("frame.exr").string()});
   EXPECT_EQ(stray.status, 2);
   EXPECT_NE(stray.err.find("--line-energy applies only with --spectrum line"), std::string::npos) << stray.err;
+  EXPECT_TRUE(out_empty());
+}
+
+// --rings: the disk's photon ring by order as an EXR (a channel per order) and two PNGs, the library's image to
+// float precision (the tool is a thin client of app::ring_image, itself of spectra/ring_image.hpp), each order's
+// pixels summing to its flux in the JSON line; a frame's options and bad values refused before any work.
+TEST_F(KerrCli, RingImageIsTheLibrarysAndRefusesFrameOptions) {
+  const fs::path exr = out("ring.exr");
+  const std::vector<std::string> base = {"--rings",      "--scene",  "disk",         "--metric", "kerr",
+                                         "--spin",       "0.9",      "--camera-theta", "17",     "--width",
+                                         "48",           "--height", "40",           "--ring-field", "7",
+                                         "--disk-outer", "100",      "--disk-transparent"};
+  std::vector<std::string> args = base;
+  for (const std::string& a : std::vector<std::string>{"--source", "m87", "--out", exr.string()}) args.push_back(a);
+  const ToolRun r = run(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out("ring.png")));
+  EXPECT_TRUE(fs::exists(out("ring-orders.png")));
+  const grtrace::Image image = grtrace::read_exr(exr);
+
+  grtrace::KerrMetric metric;
+  metric.spin = 0.9;
+  const grtrace::KerrDiskMap map(metric, 1e7, 17.0 * std::numbers::pi / 180.0,
+                                 grtrace::exact::isco_radius(0.9, grtrace::exact::Orbit::prograde), 100.0);
+  grtrace::RingImageSpec spec;
+  spec.width = 48;
+  spec.height = 40;
+  spec.half_width = 7.0;
+  spec.transparent = true;
+  const grtrace::RingImage expected = grtrace::ring_image(map, spec);
+  const double pixel_area = expected.pixel * expected.pixel;
+  const char* channels[] = {"I_n0", "I_n1", "I_n2", "I_n3_up"};
+  const char* keys[] = {"flux_n0", "flux_n1", "flux_n2", "flux_n3_up"};
+  for (std::size_t o = 0; o < grtrace::RingImage::kOrderChannels; ++o) {
+    const std::vector<float>& plane = image.channel(channels[o]);
+    ASSERT_EQ(plane.size(), expected.intensity[o].size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < plane.size(); ++i) {
+      EXPECT_NEAR(plane[i], expected.intensity[o][i], 1e-6 * expected.intensity[o][i] + 1e-30) << channels[o] << i;
+      sum += plane[i];
+    }
+    const double flux = grtrace::tool_tests::json_number(r.out, keys[o]);
+    EXPECT_NEAR(flux, expected.flux[o], 1e-9 * expected.flux[o]) << keys[o];
+    EXPECT_NEAR(sum * pixel_area, flux, 1e-5 * flux) << keys[o];
+    EXPECT_GT(flux, 0.0) << keys[o];
+  }
+  // The rings' sizes, and in microarcseconds for M87* (3.8 uas per M).
+  const double d2 = grtrace::tool_tests::json_number(r.out, "ring_diameter_n2");
+  EXPECT_NEAR(d2, expected.rings.diameter[2], 1e-9 * d2);
+  EXPECT_NEAR(grtrace::tool_tests::json_number(r.out, "ring_diameter_n2_uas"),
+              d2 * grtrace::SourceScale::m87().microarcseconds_per_m(), 1e-6 * d2);
+  EXPECT_LT(grtrace::tool_tests::json_number(r.out, "ring_width_n3"),
+            0.2 * grtrace::tool_tests::json_number(r.out, "ring_width_n2"));
+  for (const auto& entry : fs::directory_iterator(base_ / "out")) fs::remove(entry.path());
+
+  const std::vector<BadCase> bad = {
+      {{"--fov", "30"}, "--fov describes a frame"},
+      {{"--status-map"}, "--status-map is for frames"},
+      {{"--line-energy", "6"}, "--line-energy describes a frame"},
+      {{"--camera-theta", "0"}, "inclination"},
+      {{"--metric", "rn"}, "--metric must be"},
+      {{"--ring-field", "2"}, "--ring-field"},
+      {{"--ring-cuts", "1"}, "--ring-cuts"},
+      {{"--width", "4"}, "--width"},
+      {{"--source", "m31"}, "--source must be"},
+      {{"--spectrum", "line"}, "two commands"},
+      {{"--disk-inner", "2"}, "ISCO"},
+      {{"--scene", "checker"}, "--scene disk"},
+  };
+  for (const auto& c : bad) {
+    std::vector<std::string> a = base;
+    for (const auto& x : c.args) a.push_back(x);
+    for (const std::string& x : std::vector<std::string>{"--out", exr.string()}) a.push_back(x);
+    const ToolRun refused = run(a);
+    std::string shown;
+    for (const auto& x : c.args) shown += x + " ";
+    EXPECT_EQ(refused.status, 2) << shown << "\n" << refused.err;
+    EXPECT_NE(refused.err.find(c.says), std::string::npos) << shown << ": should say '" << c.says << "':\n"
+                                                           << refused.err;
+    EXPECT_TRUE(out_empty()) << shown;
+  }
+  std::vector<std::string> csv = base;
+  for (const std::string& x : std::vector<std::string>{"--out", out("ring.csv").string()}) csv.push_back(x);
+  EXPECT_EQ(run(csv).status, 2);
+  const ToolRun stray = run({"--ring-field", "9", "--out", out("frame.exr").string()});
+  EXPECT_EQ(stray.status, 2);
+  EXPECT_NE(stray.err.find("--ring-field applies only with --rings"), std::string::npos) << stray.err;
   EXPECT_TRUE(out_empty());
 }
 

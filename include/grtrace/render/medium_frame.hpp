@@ -27,14 +27,6 @@
 
 namespace grtrace {
 
-/// v in [0, 1] as black -> red -> yellow -> white (each colour rises in turn: a "hot gas" map, monotone in
-/// brightness, readable without colour vision).
-inline std::array<float, 3> hot_gas_colour(double v) {
-  const double t = std::clamp(v, 0.0, 1.0);
-  return {static_cast<float>(std::clamp(3.0 * t, 0.0, 1.0)), static_cast<float>(std::clamp(3.0 * t - 1.0, 0.0, 1.0)),
-          static_cast<float>(std::clamp(3.0 * t - 2.0, 0.0, 1.0))};
-}
-
 /// Colours R, G, B from the image's "intensity" channel (see the top of this file); records intensity_peak.
 inline void shade_intensity(Image& image, double exponent = 1.0) {
   const std::vector<float>& intensity = image.channel("intensity");

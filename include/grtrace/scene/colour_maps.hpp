@@ -22,6 +22,14 @@ inline int checker_parity(double theta, double phi, int n_theta) {
   return static_cast<int>(((i + j) % 2 + 2) % 2);
 }
 
+/// v in [0, 1] as black -> red -> yellow -> white (each colour rises in turn: a "hot gas" map, monotone in
+/// brightness, readable without colour vision).
+inline std::array<float, 3> hot_gas_colour(double v) {
+  const double t = std::clamp(v, 0.0, 1.0);
+  return {static_cast<float>(std::clamp(3.0 * t, 0.0, 1.0)), static_cast<float>(std::clamp(3.0 * t - 1.0, 0.0, 1.0)),
+          static_cast<float>(std::clamp(3.0 * t - 2.0, 0.0, 1.0))};
+}
+
 /// f_obs / f_src as colour: red for redshift, blue for blueshift, white at 1; saturates at a factor `range`.
 inline Rgb redshift_colour(double g, double range = 4.0) {
   if (!(g > 0.0) || !std::isfinite(g)) return {0.0f, 0.0f, 0.0f};

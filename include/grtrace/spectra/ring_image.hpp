@@ -40,6 +40,7 @@
 
 #include "grtrace/spectra/disk_mesh.hpp"
 #include "grtrace/spectra/kerr_disk_map.hpp"
+#include "grtrace/spectra/ring_image_result.hpp"
 
 #include <algorithm>
 #include <array>
@@ -76,30 +77,7 @@ struct RingImageSampling : DiskSampling {
   }
 };
 
-/// The rings' shape: per order n (index n; index 0 unused: NaN) the mean diameter and width over the cuts, and
-/// per cut the width and radius of each order's image (0 where it is not seen).
-struct RingGeometry {
-  static constexpr int kOrders = 4;
-  double centre_alpha = 0.0;  ///< the cuts' centre (on the alpha axis)
-  std::array<double, kOrders> diameter{}, width{};
-  std::array<int, kOrders> cuts_seen{};
-  /// per order channel (n = 1, 2, >= 3; index 0 unused): int I dalpha dbeta over the whole screen
-  std::array<double, kOrders> flux{};
-  std::vector<double> cut_angle, critical_radius;                  ///< per cut
-  std::vector<std::array<double, kOrders>> cut_width, cut_radius;  ///< per cut, per order (1, 2, 3)
-  std::vector<std::array<double, kOrders>> cut_flux;  ///< per cut, per order channel: int I rho drho along the cut
-  long rays = 0;
-};
-
-struct RingImage {
-  static constexpr int kOrderChannels = disk_mesh::kOrderChannels;  ///< n = 0, 1, 2 and >= 3
-  int width = 0, height = 0;
-  double half_width = 0.0, pixel = 0.0;  ///< the field's half width and a pixel's side (M)
-  std::array<std::vector<double>, kOrderChannels> intensity;  ///< per order: width * height, the top row first
-  std::array<double, kOrderChannels> flux{};                  ///< per order: int I dalpha dbeta over the field
-  RingGeometry rings;
-  long rays = 0, triangles = 0, unresolved = 0, uncovered = 0;  ///< the mesh's (spectra/disk_mesh.hpp)
-};
+static_assert(RingImage::kOrderChannels == disk_mesh::kOrderChannels, "a ring image's channels are the mesh's");
 
 namespace ring_detail {
 

@@ -39,6 +39,7 @@
 #include "grtrace/render/progress_bar.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/spectra/line_profile_result.hpp"
+#include "grtrace/spectra/ring_image_result.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
 #include "grtrace/trace/ray_outcome.hpp"
 #include "grtrace/trace/traced_path.hpp"
@@ -429,27 +430,32 @@ bool cpu_table_tracer_draws(const RenderRequest& request);
 /// nothing against it, else cpu. Refuses names outside kDeviceNames. check_request calls it with request.device.
 std::string choose_device(std::string_view asked, const RenderRequest& request);
 
-// ---- a disk's line profile ----------------------------------------------------------------------------------
+// ---- a disk seen from afar: its line profile and its photon ring by order -------------------------------------
 
-/// A thin disk's line profile (spectra/line_profile.hpp): the flux per energy bin that a distant observer receives
-/// from a line emitted at one energy by the disk's gas, in total and by image order n = 0, 1, 2, >= 3, each ray
-/// in closed form (a Kerr hole in Boyer-Lindquist coordinates, or Schwarzschild's as spin 0). What
-/// grtrace-render --spectrum line reads.
-struct LineProfileRequest {
+/// A thin disk seen by a distant observer, each ray in closed form (a Kerr hole in Boyer-Lindquist coordinates, or
+/// Schwarzschild's as spin 0): what a line profile and a ring image share.
+struct DistantDisk {
   MetricSpec metric;                  ///< kerr (chart bl) or schwarzschild
   double inclination_degrees = 90.0;  ///< the observer's theta (--camera-theta), strictly between 0 and 180
   std::optional<double> disk_inner;   ///< nothing: 6 M, or for kerr the ISCO of the disk's sense (as for frames)
   double disk_outer = 20.0;
   bool disk_retrograde = false;
   bool transparent = false;       ///< --disk-transparent: every crossing inside the radii shines (else the first only)
-  double line_energy = 6.4;       ///< --line-energy: in the gas's frame, the bins' unit (keV for iron K-alpha)
   double emissivity_index = 3.0;  ///< --emissivity-index q: eps ~ r^-q
-  std::optional<double> emissivity_index_outer;       ///< --emissivity-index-outer: beyond --emissivity-break
-  std::optional<double> emissivity_break;             ///< --emissivity-break (M)
+  std::optional<double> emissivity_index_outer;  ///< --emissivity-index-outer: beyond --emissivity-break
+  std::optional<double> emissivity_break;        ///< --emissivity-break (M)
+  int threads = 0;                               ///< OpenMP threads (0: all cores)
+};
+
+/// A thin disk's line profile (spectra/line_profile.hpp): the flux per energy bin that a distant observer receives
+/// from a line emitted at one energy by the disk's gas, in total and by image order n = 0, 1, 2, >= 3. What
+/// grtrace-render --spectrum line reads.
+struct LineProfileRequest {
+  DistantDisk disk;
+  double line_energy = 6.4;  ///< --line-energy: in the gas's frame, the bins' unit (keV for iron K-alpha)
   std::optional<std::array<double, 2>> energy_range;  ///< --energy-range lo,hi; nothing: around the light's
   int bins = 200;                                     ///< --energy-bins
   double finest_cell = 1.0 / 64.0;                    ///< --line-finest: the mesh's finest cell on the screen (M)
-  int threads = 0;                                    ///< OpenMP threads (0: all cores)
 };
 
 /// The options --spectrum line reads: the metric (kerr or schwarzschild), --camera-theta as the inclination, the
@@ -469,5 +475,34 @@ struct LineProfileResult {
 
 /// Checks the request (RequestError), then computes the profile.
 LineProfileResult line_profile(const LineProfileRequest& request);
+
+/// A thin disk's photon ring by order (spectra/ring_image.hpp): its image in channels n = 0, 1, 2, >= 3, each ring
+/// integrated across its width however thin, with each order's flux and the rings' diameters and widths. What
+/// grtrace-render --rings reads.
+struct RingImageRequest {
+  DistantDisk disk;
+  int width = 512, height = 512;  ///< --width, --height
+  double field = 8.0;             ///< --ring-field: the image's half width (M)
+  int cuts = 0;                   ///< --ring-cuts: radial cuts for the rings (0: a pixel apart at 6 M)
+  double redshift_power = 3.0;    ///< --ring-redshift-power p: the observed intensity is g^p eps(r)
+  std::optional<std::string> source;  ///< --source m87 | sgr-a: the rings' sizes in microarcseconds too
+};
+
+/// The options --rings reads: a distant disk's (as --spectrum line), --width, --height, --ring-field, --ring-cuts,
+/// --ring-redshift-power, --source. Any other option given is refused (RequestError saying what to change).
+RingImageRequest read_ring_image_request(const OptionSource& options);
+
+struct RingImageResult {
+  RingImageRequest request;  ///< as checked: disk_inner filled in
+  RingImage rings;
+  double seconds = 0.0;
+  /// channels I, I_n0 .. I_n3_up and R, G, B (spectra/ring_image_output.hpp), the request in the metadata
+  Image image = Image::with_channels(1, 1, {});
+  LineChart orders;                 ///< the orders side by side (ring_orders_picture)
+  std::vector<ReportEntry> report;  ///< the JSON line's entries: seconds, rays, flux by order, rings' sizes
+};
+
+/// Checks the request (RequestError), then computes the ring image.
+RingImageResult ring_image(const RingImageRequest& request);
 
 }  // namespace grtrace::app

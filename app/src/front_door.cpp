@@ -5,6 +5,7 @@
 #include "gpu_tracers.hpp"
 #include "grtrace/core/memory_limit.hpp"
 #include "grtrace/core/number_text.hpp"
+#include "grtrace/core/physical_units.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/schwarzschild_exact.hpp"
 #include "grtrace/medium/polish_doughnut.hpp"
@@ -20,7 +21,6 @@
 #include "grtrace/spectra/line_profile_output.hpp"
 #include "grtrace/spectra/ring_image.hpp"
 #include "grtrace/spectra/ring_image_output.hpp"
-#include "grtrace/core/physical_units.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <algorithm>
@@ -749,7 +749,8 @@ struct CheckedDistantDisk {
 /// Checks the disk and observer (RequestError naming `what`), fills in q.disk_inner.
 CheckedDistantDisk check_distant_disk(DistantDisk& q, const std::string& what) {
   if (q.metric.name != "kerr" && q.metric.name != "schwarzschild")
-    throw RequestError(what + " needs --metric kerr or schwarzschild (its rays are Kerr's in closed form), got --metric " +
+    throw RequestError(what +
+                       " needs --metric kerr or schwarzschild (its rays are Kerr's in closed form), got --metric " +
                        q.metric.name);
   if (q.metric.name == "kerr" && q.metric.chart != "bl")
     throw RequestError(what + " traces Kerr in Boyer-Lindquist coordinates: leave --chart out or use bl");
@@ -913,7 +914,8 @@ RingImageResult ring_image(const RingImageRequest& in) {
   add_number("field_half_width", r.half_width);
   add_number("pixel", r.pixel);
   const char* order_names[] = {"n0", "n1", "n2", "n3_up"};
-  for (std::size_t o = 0; o < RingImage::kOrderChannels; ++o) add_number(std::string("flux_") + order_names[o], r.flux[o]);
+  for (std::size_t o = 0; o < RingImage::kOrderChannels; ++o)
+    add_number(std::string("flux_") + order_names[o], r.flux[o]);
   for (std::size_t n = 1; n < RingImage::kOrderChannels; ++n) {
     add_number("ring_diameter_n" + std::to_string(n), r.rings.diameter[n]);
     add_number("ring_width_n" + std::to_string(n), r.rings.width[n]);
@@ -930,14 +932,14 @@ RingImageResult ring_image(const RingImageRequest& in) {
   add_disk_entries(out.report, q.disk, d.disk);
 
   out.image.metadata["ring_image"] = "photon ring by order of a thin disk: " + d.description;
-  out.image.metadata["ring_units"] =
-      "I: g^" + shortest_number_text(q.redshift_power) +
-      " eps(r), eps(r = M) = 1, each pixel's mean; lengths in M (pixel " + shortest_number_text(r.pixel) + " M)";
+  out.image.metadata["ring_units"] = "I: g^" + shortest_number_text(q.redshift_power) +
+                                     " eps(r), eps(r = M) = 1, each pixel's mean; lengths in M (pixel " +
+                                     shortest_number_text(r.pixel) + " M)";
   std::ostringstream rings;
   rings.precision(8);
   for (std::size_t n = 1; n < RingImage::kOrderChannels; ++n)
-    rings << (n > 1 ? "; " : "") << "n" << n << ": diameter " << r.rings.diameter[n] << " M, width "
-          << r.rings.width[n] << " M, flux " << r.flux[n];
+    rings << (n > 1 ? "; " : "") << "n" << n << ": diameter " << r.rings.diameter[n] << " M, width " << r.rings.width[n]
+          << " M, flux " << r.flux[n];
   out.image.metadata["ring_sizes"] = rings.str();
   return out;
 }

@@ -105,7 +105,8 @@ std::vector<OptionInfo> make_render_options() {
                "for --metric kerr or schwarzschild, every ray in closed form",
                true});
   o.push_back({"ring-field", "8", "--rings: the image's half width (M), square pixels of 2 field / width"});
-  o.push_back({"ring-cuts", "0", "--rings: radial cuts for the rings n >= 2 (0: a pixel apart at 6 M from the centre)"});
+  o.push_back(
+      {"ring-cuts", "0", "--rings: radial cuts for the rings n >= 2 (0: a pixel apart at 6 M from the centre)"});
   o.push_back({"ring-redshift-power", "3",
                "--rings: the observed intensity is g^power eps(r) (3: a specific intensity, flat source spectrum; 4: "
                "bolometric)"});
@@ -114,8 +115,8 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"emissivity-index-outer", "",
                "--spectrum line or --rings: the index beyond --emissivity-break (a broken power law; default: the "
                "same)"});
-  o.push_back({"emissivity-break", "",
-               "--spectrum line or --rings: the radius (M) where the emissivity's index changes"});
+  o.push_back(
+      {"emissivity-break", "", "--spectrum line or --rings: the radius (M) where the emissivity's index changes"});
   o.push_back({"energy-range", "",
                "--spectrum line: lo,hi of the bins (default: around the energies the disk's light arrives at)"});
   o.push_back({"energy-bins", "200", "--spectrum line: the number of energy bins, 1 .. 100000"});

@@ -30,7 +30,8 @@ ExampleArgs parse_example_args(int argc, char** argv, ExampleArgs defaults) {
   for (auto& [name, value] : a.numbers) value = cli.number(name);
   // Before any work: a missing or unwritable directory, a directory in the way, the --config file read.
   std::vector<std::string> paths{a.out, a.out.substr(0, a.out.size() - 4) + ".png"};
-  for (const std::string& suffix : a.more_pictures) paths.push_back(a.out.substr(0, a.out.size() - 4) + suffix + ".png");
+  for (const std::string& suffix : a.more_pictures)
+    paths.push_back(a.out.substr(0, a.out.size() - 4) + suffix + ".png");
   for (const std::string& path : paths) grtrace::tools::check_command_output(cli, "out", path, {});
   if (cli.write_config_if_asked()) throw NothingMoreToDo{};  // checked as for a run: saved, nothing rendered
   return a;

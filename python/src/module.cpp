@@ -451,8 +451,8 @@ py::dict ring_image_of(const py::dict& kwargs) {
   const RingImage& image = r.rings;
   py::list intensity;
   for (const auto& plane : image.intensity)
-    intensity.append(py::array_t<double>({static_cast<py::ssize_t>(image.height), static_cast<py::ssize_t>(image.width)},
-                                         plane.data()));
+    intensity.append(py::array_t<double>(
+        {static_cast<py::ssize_t>(image.height), static_cast<py::ssize_t>(image.width)}, plane.data()));
   py::dict d;
   d["intensity"] = intensity;
   d["flux"] = py::array_t<double>(static_cast<py::ssize_t>(image.flux.size()), image.flux.data());

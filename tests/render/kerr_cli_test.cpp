@@ -5,13 +5,12 @@
 //
 // The binary: GRTRACE_RENDER_BINARY if CMake defines it for this target (tests/render/CMakeLists.txt), else
 // <build>/examples/render/grtrace-render next to this test's <build>/tests/render/.
+#include "../common/tool_run.hpp"
 #include "grtrace/core/physical_units.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/spectra/line_profile.hpp"
 #include "grtrace/spectra/ring_image.hpp"
-
-#include "../common/tool_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -424,10 +423,10 @@ TEST_F(KerrCli, LineProfileIsTheLibrarysAndRefusesFrameOptions) {
 // pixels summing to its flux in the JSON line; a frame's options and bad values refused before any work.
 TEST_F(KerrCli, RingImageIsTheLibrarysAndRefusesFrameOptions) {
   const fs::path exr = out("ring.exr");
-  const std::vector<std::string> base = {"--rings",      "--scene",  "disk",         "--metric", "kerr",
-                                         "--spin",       "0.9",      "--camera-theta", "17",     "--width",
-                                         "48",           "--height", "40",           "--ring-field", "7",
-                                         "--disk-outer", "100",      "--disk-transparent"};
+  const std::vector<std::string> base = {
+      "--rings", "--scene",        "disk", "--metric",     "kerr", "--spin",
+      "0.9",     "--camera-theta", "17",   "--width",      "48",   "--height",
+      "40",      "--ring-field",   "7",    "--disk-outer", "100",  "--disk-transparent"};
   std::vector<std::string> args = base;
   for (const std::string& a : std::vector<std::string>{"--source", "m87", "--out", exr.string()}) args.push_back(a);
   const ToolRun r = run(args);

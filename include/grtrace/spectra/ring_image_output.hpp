@@ -29,7 +29,8 @@ namespace ring_output_detail {
 /// The sRGB transfer function (IEC 61966-2-1), linear [0, 1] -> byte.
 inline std::uint8_t srgb_byte(double linear) {
   const double v = std::clamp(linear, 0.0, 1.0);
-  return static_cast<std::uint8_t>(std::lround(255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)));
+  return static_cast<std::uint8_t>(
+      std::lround(255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)));
 }
 
 /// Writes `plane` (w x h, top row first) into the picture at (x0, y0) in the hot-gas map of (v / peak)^(1/2).
@@ -43,8 +44,7 @@ inline void paint(LineChart& picture, const std::vector<double>& plane, int w, i
       const auto c = hot_gas_colour(peak > 0.0 && v > 0.0 ? std::sqrt(v / peak) : 0.0);
       const std::size_t at = 3 * (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(picture.width) +
                                   static_cast<std::size_t>(x0 + x));
-      for (std::size_t k = 0; k < 3; ++k)
-        picture.rgb[at + k] = srgb_byte(c[k]);
+      for (std::size_t k = 0; k < 3; ++k) picture.rgb[at + k] = srgb_byte(c[k]);
     }
 }
 

@@ -27,7 +27,7 @@ struct RingGeometry {
 struct RingImage {
   static constexpr int kOrderChannels = 4;  ///< n = 0, 1, 2 and >= 3
   int width = 0, height = 0;
-  double half_width = 0.0, pixel = 0.0;  ///< the field's half width and a pixel's side (M)
+  double half_width = 0.0, pixel = 0.0;                       ///< the field's half width and a pixel's side (M)
   std::array<std::vector<double>, kOrderChannels> intensity;  ///< per order: width * height, the top row first
   std::array<double, kOrderChannels> flux{};                  ///< per order: int I dalpha dbeta over the field
   RingGeometry rings;

@@ -481,10 +481,10 @@ LineProfileResult line_profile(const LineProfileRequest& request);
 /// grtrace-render --rings reads.
 struct RingImageRequest {
   DistantDisk disk;
-  int width = 512, height = 512;  ///< --width, --height
-  double field = 8.0;             ///< --ring-field: the image's half width (M)
-  int cuts = 0;                   ///< --ring-cuts: radial cuts for the rings (0: a pixel apart at 6 M)
-  double redshift_power = 3.0;    ///< --ring-redshift-power p: the observed intensity is g^p eps(r)
+  int width = 512, height = 512;      ///< --width, --height
+  double field = 8.0;                 ///< --ring-field: the image's half width (M)
+  int cuts = 0;                       ///< --ring-cuts: radial cuts for the rings (0: a pixel apart at 6 M)
+  double redshift_power = 3.0;        ///< --ring-redshift-power p: the observed intensity is g^p eps(r)
   std::optional<std::string> source;  ///< --source m87 | sgr-a: the rings' sizes in microarcseconds too
 };
 

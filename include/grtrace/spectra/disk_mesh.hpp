@@ -132,9 +132,15 @@ inline std::array<signed char, DiskRaySample::kOrders> views(const DiskRaySample
   bool seen = false;
   for (std::size_t n = 0; n < static_cast<std::size_t>(std::clamp(orders, 0, DiskRaySample::kOrders)); ++n) {
     switch (s.where[n]) {
-      case DiskRaySample::inside_edge: v[n] = 0; break;
-      case DiskRaySample::beyond_edge: v[n] = 2; break;
-      case DiskRaySample::nothing: v[n] = s.escaped ? 2 : 0; break;
+      case DiskRaySample::inside_edge:
+        v[n] = 0;
+        break;
+      case DiskRaySample::beyond_edge:
+        v[n] = 2;
+        break;
+      case DiskRaySample::nothing:
+        v[n] = s.escaped ? 2 : 0;
+        break;
       case DiskRaySample::on_disk:
         v[n] = (seen && !transparent) ? 2 : 1;
         seen = true;
@@ -311,8 +317,7 @@ class Mesher {
     return {{{p[0], m[0], m[2]}, {m[0], p[1], m[1]}, {m[2], m[1], p[2]}, {m[0], m[1], m[2]}}};
   }
 
-  void split(const std::array<std::array<long, 2>, 3>& p, Caches& cache, typename S::Row& row,
-             Counts& counts) const {
+  void split(const std::array<std::array<long, 2>, 3>& p, Caches& cache, typename S::Row& row, Counts& counts) const {
     const auto m = midpoints(p);
     for (const auto& child : children(p, m)) triangle(child, cache, row, counts);
   }
@@ -372,20 +377,30 @@ class Mesher {
     Vertex start = a;
     if (ka < kb) {
       if (ka == 0) {
-        Vertex next = bisect(a, b, n, [](signed char k) { return k >= 1; }, counts).second;
+        Vertex next = bisect(
+                          a, b, n, [](signed char k) { return k >= 1; }, counts)
+                          .second;
         if (next.view[n] != 1) return out;  // straight from inside to beyond: no band wider than the precision
         start = next;
         out.lit[static_cast<std::size_t>(out.count++)] = next;
       }
-      if (kb == 2) out.lit[static_cast<std::size_t>(out.count++)] = bisect(start, b, n, [](signed char k) { return k >= 2; }, counts).first;
+      if (kb == 2)
+        out.lit[static_cast<std::size_t>(out.count++)] = bisect(
+                                                             start, b, n, [](signed char k) { return k >= 2; }, counts)
+                                                             .first;
     } else {
       if (ka == 2) {
-        Vertex next = bisect(a, b, n, [](signed char k) { return k <= 1; }, counts).second;
+        Vertex next = bisect(
+                          a, b, n, [](signed char k) { return k <= 1; }, counts)
+                          .second;
         if (next.view[n] != 1) return out;
         start = next;
         out.lit[static_cast<std::size_t>(out.count++)] = next;
       }
-      if (kb == 0) out.lit[static_cast<std::size_t>(out.count++)] = bisect(start, b, n, [](signed char k) { return k <= 0; }, counts).first;
+      if (kb == 0)
+        out.lit[static_cast<std::size_t>(out.count++)] = bisect(
+                                                             start, b, n, [](signed char k) { return k <= 0; }, counts)
+                                                             .first;
     }
     return out;
   }
@@ -433,8 +448,9 @@ class Mesher {
                           n};
         auto it = caches.edges.find(key);
         if (it == caches.edges.end())
-          it = caches.edges.emplace(key, forward ? edge_cut(*v[i], *v[j], n, counts) : edge_cut(*v[j], *v[i], n, counts))
-                   .first;
+          it =
+              caches.edges.emplace(key, forward ? edge_cut(*v[i], *v[j], n, counts) : edge_cut(*v[j], *v[i], n, counts))
+                  .first;
         const EdgeCut& e = it->second;
         for (int c = 0; c < e.count; ++c)
           polygon[static_cast<std::size_t>(count++)] = &e.lit[static_cast<std::size_t>(forward ? c : e.count - 1 - c)];

@@ -194,8 +194,8 @@ LineProfile line_profile(const Map& map, const LineProfileSpec& spec, const Line
     for (int i = 0; i <= spec.bins; ++i) out.edges[static_cast<std::size_t>(i)] = e_lo + bin_width * i;
     out.edges.back() = e_hi;
     const line_detail::LineBins sink{out.edges, bin_width, spec.line_energy};
-    rows = disk_mesh::mesh_square(map, light, sampling, sink, half,
-                                  sampling.g_tolerance * bin_width / spec.line_energy, counts);
+    rows = disk_mesh::mesh_square(map, light, sampling, sink, half, sampling.g_tolerance * bin_width / spec.line_energy,
+                                  counts);
   };
   mesh();
   if (automatic) {

@@ -287,16 +287,14 @@ Cuts trace_cuts(const Map& map, const DiskLight& light, int cuts, const PixelSin
         if (a == b) continue;
         double lo = rho[i - 1];
         if (a != 1) {  // entering: the first point at or past 1 from a's side
-          const auto [dark, next] =
-              bisect(lo, rho[i], n, [a](signed char v) { return a < 1 ? v >= 1 : v <= 1; });
+          const auto [dark, next] = bisect(lo, rho[i], n, [a](signed char v) { return a < 1 ? v >= 1 : v <= 1; });
           (void)dark;
           if (view_at(next)[n] != 1) continue;  // straight past 1: no band wider than the precision
           open[n] = next;
           lo = next;
         }
         if (b != 1) {  // leaving: the last point at 1 before b's side
-          const auto [inside, beyond] =
-              bisect(lo, rho[i], n, [b](signed char v) { return b > 1 ? v >= 2 : v <= 0; });
+          const auto [inside, beyond] = bisect(lo, rho[i], n, [b](signed char v) { return b > 1 ? v >= 2 : v <= 0; });
           (void)beyond;
           lit[n].push_back({open[n], inside});
         }
@@ -425,8 +423,8 @@ RingImage ring_image(const Map& map, const RingImageSpec& spec, const DiskSampli
   out.pixel = 2.0 * spec.half_width / spec.width;
   const double half_y = 0.5 * out.pixel * spec.height;
   const double mesh_half = std::max(spec.half_width, half_y);
-  const ring_detail::PixelSink sink{spec.width, spec.height, spec.half_width, half_y,
-                                    out.pixel,  mesh_half,   2.0 * mesh_half / sampling.base_cells};
+  const ring_detail::PixelSink sink{
+      spec.width, spec.height, spec.half_width, half_y, out.pixel, mesh_half, 2.0 * mesh_half / sampling.base_cells};
   // Orders 0 and 1 (bands >= ~0.3 M wide) on the mesh, the thinner rings along the cuts.
   constexpr int kMeshed = 2;
   const DiskLight light{spec.emissivity, spec.redshift_power, spec.transparent};
@@ -447,10 +445,10 @@ RingImage ring_image(const Map& map, const RingImageSpec& spec, const DiskSampli
         }
       out.flux[o] += r.flux[o];
     }
-  const int cuts = spec.ring_cuts > 0
-                       ? spec.ring_cuts
-                       : std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * 6.0 * map.mass() / out.pixel)),
-                                    64, 100000);
+  const int cuts =
+      spec.ring_cuts > 0
+          ? spec.ring_cuts
+          : std::clamp(static_cast<int>(std::ceil(2.0 * std::numbers::pi * 6.0 * map.mass() / out.pixel)), 64, 100000);
   const ring_detail::Cuts traced = ring_detail::trace_cuts(map, light, cuts, &sink, kMeshed);
   // Each segment as the wedge of its cut (half the angle to either neighbour), its flux spread evenly over the
   // wedge's chord quadrilateral and clipped against the pixels.

@@ -374,34 +374,18 @@ class Mesher {
   EdgeCut edge_cut(const Vertex& a, const Vertex& b, std::size_t n, Counts& counts) const {
     EdgeCut out;
     const signed char ka = a.view[n], kb = b.view[n];
+    // Walking up (inside -> lit -> beyond) or down, the view passes 1 where it leaves `from`'s side of a threshold.
+    const bool up = ka < kb;
+    const auto past_entry = [up](signed char k) { return up ? k >= 1 : k <= 1; };
+    const auto past_exit = [up](signed char k) { return up ? k >= 2 : k <= 0; };
     Vertex start = a;
-    if (ka < kb) {
-      if (ka == 0) {
-        Vertex next = bisect(
-                          a, b, n, [](signed char k) { return k >= 1; }, counts)
-                          .second;
-        if (next.view[n] != 1) return out;  // straight from inside to beyond: no band wider than the precision
-        start = next;
-        out.lit[static_cast<std::size_t>(out.count++)] = next;
-      }
-      if (kb == 2)
-        out.lit[static_cast<std::size_t>(out.count++)] = bisect(
-                                                             start, b, n, [](signed char k) { return k >= 2; }, counts)
-                                                             .first;
-    } else {
-      if (ka == 2) {
-        Vertex next = bisect(
-                          a, b, n, [](signed char k) { return k <= 1; }, counts)
-                          .second;
-        if (next.view[n] != 1) return out;
-        start = next;
-        out.lit[static_cast<std::size_t>(out.count++)] = next;
-      }
-      if (kb == 0)
-        out.lit[static_cast<std::size_t>(out.count++)] = bisect(
-                                                             start, b, n, [](signed char k) { return k <= 0; }, counts)
-                                                             .first;
+    if (ka != 1) {
+      const Vertex next = bisect(a, b, n, past_entry, counts).second;
+      if (next.view[n] != 1) return out;  // straight from inside to beyond: no band wider than the precision
+      start = next;
+      out.lit[static_cast<std::size_t>(out.count++)] = next;
     }
+    if (kb != 1) out.lit[static_cast<std::size_t>(out.count++)] = bisect(start, b, n, past_exit, counts).first;
     return out;
   }
 

@@ -287,15 +287,13 @@ Cuts trace_cuts(const Map& map, const DiskLight& light, int cuts, const PixelSin
         if (a == b) continue;
         double lo = rho[i - 1];
         if (a != 1) {  // entering: the first point at or past 1 from a's side
-          const auto [dark, next] = bisect(lo, rho[i], n, [a](signed char v) { return a < 1 ? v >= 1 : v <= 1; });
-          (void)dark;
+          const double next = bisect(lo, rho[i], n, [a](signed char v) { return a < 1 ? v >= 1 : v <= 1; }).second;
           if (view_at(next)[n] != 1) continue;  // straight past 1: no band wider than the precision
           open[n] = next;
           lo = next;
         }
         if (b != 1) {  // leaving: the last point at 1 before b's side
-          const auto [inside, beyond] = bisect(lo, rho[i], n, [b](signed char v) { return b > 1 ? v >= 2 : v <= 0; });
-          (void)beyond;
+          const double inside = bisect(lo, rho[i], n, [b](signed char v) { return b > 1 ? v >= 2 : v <= 0; }).first;
           lit[n].push_back({open[n], inside});
         }
       }

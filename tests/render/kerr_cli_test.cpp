@@ -55,6 +55,29 @@ class KerrCli : public ::testing::Test {
   }
 
   bool out_empty() const { return fs::is_empty(base_ / "out"); }
+
+  struct BadCase {
+    std::vector<std::string> args;
+    std::string says;  ///< a piece of the message that tells what is wrong
+  };
+
+  /// Each case's arguments after `base`, then --out `target`: refused with exit 2 and a message that says `says`,
+  /// leaving no file.
+  void expect_refused(const std::vector<std::string>& base, const std::vector<BadCase>& bad,
+                      const fs::path& target) const {
+    for (const auto& c : bad) {
+      std::vector<std::string> a = base;
+      for (const auto& x : c.args) a.push_back(x);
+      for (const std::string& x : std::vector<std::string>{"--out", target.string()}) a.push_back(x);
+      const ToolRun refused = run(a);
+      std::string shown;
+      for (const auto& x : c.args) shown += x + " ";
+      EXPECT_EQ(refused.status, 2) << shown << "\n" << refused.err;
+      EXPECT_NE(refused.err.find(c.says), std::string::npos) << shown << ": should say '" << c.says << "':\n"
+                                                             << refused.err;
+      EXPECT_TRUE(out_empty()) << shown;
+    }
+  }
   fs::path out(const std::string& name) const { return base_ / "out" / name; }
 
   grtrace::tool_tests::ScratchDir scratch_{"grtrace_kerr_cli"};
@@ -71,11 +94,6 @@ std::vector<std::string> kerr(std::vector<std::string> args, const std::string& 
   args.push_back(out);
   return args;
 }
-
-struct BadCase {
-  std::vector<std::string> args;
-  std::string says;  ///< a piece of the message that tells what is wrong
-};
 
 TEST_F(KerrCli, RefusesBadKerrInputBeforeTracingAndLeavesNoFile) {
   const std::string target = out("frame.exr").string();
@@ -396,18 +414,7 @@ TEST_F(KerrCli, LineProfileIsTheLibrarysAndRefusesFrameOptions) {
       {{"--scene", "checker"}, "--scene disk"},
       {{"--spectrum", "continuum"}, "--spectrum must be line"},
   };
-  for (const auto& c : bad) {
-    std::vector<std::string> a = base;
-    for (const auto& x : c.args) a.push_back(x);
-    for (const std::string& x : std::vector<std::string>{"--out", csv.string()}) a.push_back(x);
-    const ToolRun refused = run(a);
-    std::string shown;
-    for (const auto& x : c.args) shown += x + " ";
-    EXPECT_EQ(refused.status, 2) << shown << "\n" << refused.err;
-    EXPECT_NE(refused.err.find(c.says), std::string::npos) << shown << ": should say '" << c.says << "':\n"
-                                                           << refused.err;
-    EXPECT_TRUE(out_empty()) << shown;
-  }
+  expect_refused(base, bad, csv);
   // The CSV's name, and a line option without --spectrum.
   std::vector<std::string> exr = base;
   for (const std::string& x : std::vector<std::string>{"--out", out("line.exr").string()}) exr.push_back(x);
@@ -484,18 +491,7 @@ TEST_F(KerrCli, RingImageIsTheLibrarysAndRefusesFrameOptions) {
       {{"--disk-inner", "2"}, "ISCO"},
       {{"--scene", "checker"}, "--scene disk"},
   };
-  for (const auto& c : bad) {
-    std::vector<std::string> a = base;
-    for (const auto& x : c.args) a.push_back(x);
-    for (const std::string& x : std::vector<std::string>{"--out", exr.string()}) a.push_back(x);
-    const ToolRun refused = run(a);
-    std::string shown;
-    for (const auto& x : c.args) shown += x + " ";
-    EXPECT_EQ(refused.status, 2) << shown << "\n" << refused.err;
-    EXPECT_NE(refused.err.find(c.says), std::string::npos) << shown << ": should say '" << c.says << "':\n"
-                                                           << refused.err;
-    EXPECT_TRUE(out_empty()) << shown;
-  }
+  expect_refused(base, bad, exr);
   std::vector<std::string> csv = base;
   for (const std::string& x : std::vector<std::string>{"--out", out("ring.csv").string()}) csv.push_back(x);
   EXPECT_EQ(run(csv).status, 2);

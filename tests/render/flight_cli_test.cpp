@@ -27,6 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using grtrace::tool_tests::run_command;
+using grtrace::tool_tests::json_number;
 using grtrace::tool_tests::ToolRun;
 
 struct TempDir {

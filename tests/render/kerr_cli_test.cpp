@@ -460,8 +460,9 @@ TEST_F(KerrCli, RingImageIsTheLibrarysAndRefusesFrameOptions) {
     ASSERT_EQ(plane.size(), expected.intensity[o].size());
     double sum = 0.0;
     for (std::size_t i = 0; i < plane.size(); ++i) {
-      EXPECT_NEAR(plane[i], expected.intensity[o][i], 1e-6 * expected.intensity[o][i] + 1e-30) << channels[o] << i;
-      sum += plane[i];
+      const double v = plane[i];
+      EXPECT_NEAR(v, expected.intensity[o][i], 1e-6 * expected.intensity[o][i] + 1e-30) << channels[o] << i;
+      sum += v;
     }
     const double flux = grtrace::tool_tests::json_number(r.out, keys[o]);
     EXPECT_NEAR(flux, expected.flux[o], 1e-9 * expected.flux[o]) << keys[o];

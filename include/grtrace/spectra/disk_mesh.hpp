@@ -67,9 +67,11 @@ struct DiskSampling {
   /// this fraction of the disk's Newtonian flux 2 pi int eps r dr
   double edge_tolerance = 1e-7;
   /// Where an image's edge crosses the edges of a mixed triangle at its last size: bisected until the bracket is
-  /// this short (M), for orders 0 to 3. 0: not cut, the corners alone give the light (lit ones with their weight,
-  /// dark ones with none: first order in the cell's size, enough for a line profile's bins; a ring image's thin
-  /// bands need the cut)
+  /// this short (M). 0: not cut, the corners alone give the light (lit ones with their weight, dark ones with none:
+  /// first order in the cell's size, enough for a line profile's bins). The cut is second order for an edge
+  /// straight within the cell, but it takes the weight as linear between the points it finds, which a band
+  /// narrower than the cell is not (its radius runs from r_in to r_out across it): such bands are integrated along
+  /// radial cuts instead (spectra/ring_image.hpp)
   double edge_precision = 0.0;
 };
 
@@ -391,8 +393,7 @@ class Mesher {
 
   /// A mixed triangle at its last size: per order, the polygon where the order is lit (its lit corners and the
   /// points on the edges where its view changes, found by bisection), in a fan of triangles. With edge_precision
-  /// 0, and for the orders beyond the last channel's first (n >= 4, < 1e-5 of the light), the corners alone: lit
-  /// ones with their weight, dark ones with none (first order in the cell's size).
+  /// 0 the corners alone: lit ones with their weight, dark ones with none (first order in the cell's size).
   void cut(const std::array<std::array<long, 2>, 3>& p, const std::array<const Vertex*, 3>& v, Caches& caches,
            typename S::Row& row, Counts& counts) const {
     ++counts.triangles;

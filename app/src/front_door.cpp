@@ -775,8 +775,7 @@ CheckedDistantDisk check_distant_disk(DistantDisk& q, const std::string& what) {
   emissivity.index_inner = q.emissivity_index;
   emissivity.index_outer = q.emissivity_index_outer.value_or(q.emissivity_index);
   if (q.emissivity_break) emissivity.r_break = *q.emissivity_break;
-  if (!std::isfinite(emissivity.index_inner) || !std::isfinite(emissivity.index_outer) || !(emissivity.r_break > 0.0))
-    throw RequestError(what + " needs finite emissivity indices and a positive --emissivity-break");
+  refusal_as_request_error("", [&] { disk_mesh::check_emissivity(emissivity, what); });
   KerrMetric metric;
   metric.mass = q.metric.mass;
   metric.spin = q.metric.name == "kerr" ? q.metric.spin : 0.0;

@@ -103,8 +103,11 @@ struct DiskLight {
   /// false: the first crossing inside the disk's radii emits and ends the ray (an opaque disk); true: every
   /// crossing inside them emits and the ray goes on (an optically thin disk: AART's model).
   bool transparent = false;
-  /// The orders that emit, from n = 0 (the ring image meshes order 0 alone and takes the rings along radial cuts)
+  /// The orders that emit, from n = 0 (the ring image meshes orders 0 and 1 and takes the rings along radial cuts)
   int orders = DiskRaySample::kOrders;
+
+  /// The observed intensity g^redshift_power eps(r) of a crossing at radius r seen with redshift g.
+  double intensity(double g, double r) const { return std::pow(g, redshift_power) * emissivity(r); }
 };
 
 namespace disk_mesh {
@@ -126,6 +129,18 @@ struct Vertex {
   std::array<signed char, DiskRaySample::kOrders> view{};
   std::array<double, DiskRaySample::kOrders> redshift{}, weight{};
 };
+
+/// J = (1 + x^2 + y^2)^-3/2 at the screen point (alpha, beta), x = alpha / r_o, y = beta / r_o: the camera's
+/// tangent plane's area to solid angle times r_o^2.
+inline double screen_jacobian(double alpha, double beta, double camera_radius) {
+  const double x = alpha / camera_radius, y = beta / camera_radius, q = 1.0 + x * x + y * y;
+  return 1.0 / (q * std::sqrt(q));
+}
+
+/// The area of the triangle (a, b, c) on the screen.
+inline double triangle_area(const ScreenPoint& a, const ScreenPoint& b, const ScreenPoint& c) {
+  return 0.5 * std::abs((b.alpha - a.alpha) * (c.beta - a.beta) - (c.alpha - a.alpha) * (b.beta - a.beta));
+}
 
 /// The views of a ray's orders (Vertex::view; 1: lit); orders from `orders` on are dark (0).
 inline std::array<signed char, DiskRaySample::kOrders> views(const DiskRaySample& s, bool transparent,
@@ -162,6 +177,12 @@ inline double newtonian_flux(const DiskEmissivity& e, double r_in, double r_out)
     sum += 2.0 * 3.14159265358979323846 * e(r) * r * r * dl;
   }
   return sum;
+}
+
+/// Checks an emissivity; std::invalid_argument ("<what>: ...") saying what to change.
+inline void check_emissivity(const DiskEmissivity& e, const std::string& what) {
+  if (!std::isfinite(e.index_inner) || !std::isfinite(e.index_outer) || !(e.r_break > 0.0))
+    throw std::invalid_argument(what + ": the emissivity needs finite indices and a positive break radius");
 }
 
 /// Checks a sampling; std::invalid_argument ("<what>: ...") saying what to change.
@@ -245,13 +266,12 @@ class Mesher {
     ++counts.rays;
     v.covered = s.covered;
     if (!s.covered) ++counts.uncovered;
-    const double x = alpha / map_.camera_radius(), y = beta / map_.camera_radius();
-    const double q = 1.0 + x * x + y * y, jacobian = 1.0 / (q * std::sqrt(q));
+    const double jacobian = screen_jacobian(alpha, beta, map_.camera_radius());
     v.view = views(s, light_.transparent, light_.orders);
     for (std::size_t n = 0; n < DiskRaySample::kOrders; ++n) {
       if (v.view[n] != 1) continue;
       v.redshift[n] = s.redshift[n];
-      v.weight[n] = std::pow(s.redshift[n], light_.redshift_power) * light_.emissivity(s.radius[n]) * jacobian;
+      v.weight[n] = light_.intensity(s.redshift[n], s.radius[n]) * jacobian;
     }
     return v;
   }

@@ -100,8 +100,7 @@ struct LineBins {
 
   void deposit(std::size_t channel, const std::array<disk_mesh::ScreenPoint, 3>& xy, std::array<double, 3> g,
                const std::array<double, 3>& w, Row& row) const {
-    const double area = 0.5 * std::abs((xy[1].alpha - xy[0].alpha) * (xy[2].beta - xy[0].beta) -
-                                       (xy[2].alpha - xy[0].alpha) * (xy[1].beta - xy[0].beta));
+    const double area = disk_mesh::triangle_area(xy[0], xy[1], xy[2]);
     std::vector<double>& bins = row.bins[channel];
     for (double& x : g) x *= line_energy;  // energies from here on
     const double lo = std::min({g[0], g[1], g[2]}), hi = std::max({g[0], g[1], g[2]});
@@ -144,9 +143,7 @@ inline void check_line_profile(const LineProfileSpec& spec, const LineSampling& 
   const bool automatic = spec.energy_min == 0.0 && spec.energy_max == 0.0;
   if (!automatic && !(spec.energy_min >= 0.0 && spec.energy_max > spec.energy_min && std::isfinite(spec.energy_max)))
     fail("the energy range needs 0 <= min < max (or both 0: around the energies the disk's light arrives at)");
-  const LineEmissivity& e = spec.emissivity;
-  if (!std::isfinite(e.index_inner) || !std::isfinite(e.index_outer) || !(e.r_break > 0.0))
-    fail("the emissivity needs finite indices and a positive break radius");
+  disk_mesh::check_emissivity(spec.emissivity, "line profile");
   disk_mesh::check_sampling(sampling, "line profile");
 }
 

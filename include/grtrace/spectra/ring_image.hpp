@@ -151,8 +151,8 @@ struct PixelSink {
                        static_cast<std::size_t>(c)] += v;
       row.flux[channel] += v;
     };
-    if (c0 == c1 && r0 == r1 && pixel_column(lo_a) == c0 && pixel_column(hi_a) == c0 && pixel_row(hi_b) == r0 &&
-        pixel_row(lo_b) == r0) {
+    if (pixel_column(lo_a) == pixel_column(hi_a) && pixel_row(hi_b) == pixel_row(lo_b) && c0 == c1 && r0 == r1) {
+      // wholly inside one pixel of the image
       add(r0, c0, 0.5 * std::abs(det) * (w[0] + w[1] + w[2]) / 3.0);
       return;
     }
@@ -172,19 +172,13 @@ struct PixelSink {
         const double w0 = weight_at(a[0]);
         for (int i = 1; i + 1 < n; ++i) {
           const ScreenPoint &p = a[static_cast<std::size_t>(i)], &q = a[static_cast<std::size_t>(i + 1)];
-          const double area = 0.5 * std::abs((p.alpha - a[0].alpha) * (q.beta - a[0].beta) -
-                                             (q.alpha - a[0].alpha) * (p.beta - a[0].beta));
-          integral += area * (w0 + weight_at(p) + weight_at(q)) / 3.0;
+          integral += disk_mesh::triangle_area(a[0], p, q) * (w0 + weight_at(p) + weight_at(q)) / 3.0;
         }
         if (integral != 0.0) add(r, c, integral);
       }
     }
   }
 };
-
-}  // namespace ring_detail
-
-namespace ring_detail {
 
 /// One piece of an order's image on a cut: rho in [from, to] (M from the cuts' centre), int I rho drho over it.
 struct Segment {
@@ -307,9 +301,8 @@ Cuts trace_cuts(const Map& map, const DiskLight& light, int cuts, const PixelSin
       const DiskRaySample s = sample(r);
       const auto v = disk_mesh::views(s, light.transparent);
       if (v[n] != 1) return 0.0;
-      const double x = (centre + r * ca) / map.camera_radius(), y = r * cb / map.camera_radius();
-      const double q = 1.0 + x * x + y * y;
-      return std::pow(s.redshift[n], light.redshift_power) * light.emissivity(s.radius[n]) / (q * std::sqrt(q)) * r;
+      return light.intensity(s.redshift[n], s.radius[n]) *
+             disk_mesh::screen_jacobian(centre + r * ca, r * cb, map.camera_radius()) * r;
     };
     for (std::size_t n = 1; n < kOrders; ++n)
       for (const auto& [from, to] : lit[n]) {
@@ -400,9 +393,7 @@ inline void check_ring_image(const RingImageSpec& spec, const DiskSampling& samp
   if (spec.width < 1 || spec.height < 1 || spec.width > 16384 || spec.height > 16384)
     fail("width and height must be in 1 .. 16384 pixels");
   if (!(spec.half_width > 0.0) || !std::isfinite(spec.half_width)) fail("the field's half width must be positive");
-  const DiskEmissivity& e = spec.emissivity;
-  if (!std::isfinite(e.index_inner) || !std::isfinite(e.index_outer) || !(e.r_break > 0.0))
-    fail("the emissivity needs finite indices and a positive break radius");
+  disk_mesh::check_emissivity(spec.emissivity, "ring image");
   if (!std::isfinite(spec.redshift_power)) fail("the redshift power must be finite");
   if (spec.ring_cuts != 0 && (spec.ring_cuts < 2 || spec.ring_cuts > 100000))
     fail("ring_cuts must be 0 (automatic) or in 2 .. 100000");

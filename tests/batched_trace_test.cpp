@@ -169,6 +169,7 @@ TEST(BatchedTrace, DiskFrameOutcomesAreThePixelsTracedOneByOne) {
     EXPECT_EQ(many[i].status, one.status) << i;
     EXPECT_EQ(many[i].object, one.object) << i;
     EXPECT_EQ(many[i].steps, one.steps) << i;
+    EXPECT_EQ(many[i].order, one.order) << i;
     EXPECT_TRUE(same(many[i].state, one.state)) << i;
     EXPECT_TRUE(same_or_nan(many[i].radius, one.radius)) << i;
     EXPECT_TRUE(same_or_nan(many[i].redshift, one.redshift)) << i;

@@ -12,15 +12,22 @@
 //  (c) the state at any Mino time against a direct integration of the separated equations (tested here, not the
 //      library's system: its time is slowed near the axis);
 //  (d) whole disk frames equal to the reduced Kerr tracer's: the same object at every pixel but silhouettes
-//      (counted), hit radius and redshift within 1e-8 relative, sky directions within 1e-8 rad (rtol 1e-12).
+//      (counted), hit radius and redshift within 1e-8 relative, sky directions within 1e-8 rad (rtol 1e-12), and
+//      the same order (crossings before the end) at every pixel, the sky's and the horizon's too;
+//  (e) the disk-light frame (render/disk_light_frame.hpp: KerrDiskRays' crossings with their Keplerian redshift from
+//      exact/kerr_exact.hpp) against this tracer's frame of the same opaque disk (its object, order, and
+//      g^p eps(r) from its hit's radius and redshift through circular_orbits.hpp), and its transparent disk
+//      against its opaque one.
 #include "common/trace_settings.hpp"
 #include "grtrace/core/jacobi_elliptic.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/exact/kerr_null_geodesic.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/observer/camera_spec.hpp"
+#include "grtrace/render/disk_light_frame.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/scene/thin_disk.hpp"
+#include "grtrace/spectra/kerr_disk_map.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/kerr_closed_form_tracer.hpp"
@@ -201,6 +208,9 @@ TEST(KerrClosedForm, CrossingsOfOrdersZeroOneTwoEqualTheReducedTracers) {
           ASSERT_EQ(o.status, RayStatus::hit)
               << describe(c) << " pixel " << col << "," << row << " n " << n << " r " << r;
           EXPECT_EQ(offered, n + 1) << "order; " << describe(c) << " pixel " << col << "," << row;
+          // The order the tracing loop counts (the equatorial crossings before the hit) is the closed form's n.
+          EXPECT_EQ(o.order, n) << describe(c) << " pixel " << col << "," << row;
+
           radius_err = std::max(radius_err, std::abs(o.radius - r) / r);
           EXPECT_NEAR(o.radius, r, 1e-9 * r) << describe(c) << " n " << n;
           const double g = redshift_at(metric, disk.emitter_velocity(metric, y.head<4>()), y);
@@ -312,7 +322,8 @@ TEST(KerrClosedForm, DiskFramesEqualTheReducedTracers) {
     const auto scene = make_scene(StarFieldSky{}, HorizonPaint{}, disk);
     const auto closed = make_kerr_closed_form_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, scene);
     const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, scene);
-    int differ = 0, hits = 0, sky = 0, captured = 0;
+    int differ = 0, hits = 0, sky = 0, captured = 0, order_differs = 0;
+    int by_order[4] = {0, 0, 0, 0};  // pixels on the disk by the order of its image: 0, 1, 2, >= 3
     double radius_err = 0.0, redshift_err = 0.0, sky_err = 0.0;
     for (int row = 0; row < pixels; ++row)
       for (int col = 0; col < pixels; ++col) {
@@ -323,6 +334,10 @@ TEST(KerrClosedForm, DiskFramesEqualTheReducedTracers) {
           ++differ;
           continue;
         }
+        // Every ray's order: the crossings the closed form enumerates against those the integration counted (the
+        // sky's and the horizon's rays too: every crossing before the sky sphere or the guard).
+        if (a.order != b.order) ++order_differs;
+        if (a.status == RayStatus::hit) ++by_order[std::min(a.order, 3)];
         const double dr = std::abs(a.radius - b.radius) / b.radius;
         const double dg = std::abs(a.redshift - b.redshift) / std::abs(b.redshift);
         if (a.status == RayStatus::hit) {
@@ -340,13 +355,93 @@ TEST(KerrClosedForm, DiskFramesEqualTheReducedTracers) {
         }
       }
     std::printf(
-        "%s: %d hits, %d sky, %d captured, %d differ, %ld fallbacks; radius %.1e, redshift %.1e, sky %.1e rad\n",
-        describe(c).c_str(), hits, sky, captured, differ, closed.fallback_rays(), radius_err, redshift_err, sky_err);
+        "%s: %d hits (orders %d, %d, %d, %d+), %d sky, %d captured, %d differ, %ld fallbacks; radius %.1e, redshift "
+        "%.1e, sky %.1e rad\n",
+        describe(c).c_str(), hits, by_order[0], by_order[1], by_order[2], by_order[3], sky, captured, differ,
+        closed.fallback_rays(), radius_err, redshift_err, sky_err);
+    EXPECT_EQ(order_differs, 0) << describe(c);
+    EXPECT_GT(by_order[0], 0) << describe(c);
     EXPECT_LE(differ, pixels * pixels / 400) << describe(c);
     EXPECT_LT(radius_err, 1e-8) << describe(c);
     EXPECT_LT(redshift_err, 1e-8) << describe(c);
     EXPECT_LT(sky_err, 1e-8) << describe(c);
   }
+}
+
+// ---- (e) the disk-light frame ----------------------------------------------------------------------------------
+
+TEST(KerrDiskLight, OpaqueFrameIsTheClosedFormTracersDiskAndTransparentAddsTheOrdersBehind) {
+  int behind_all = 0;  // pixels where a transparent disk shows more than the opaque one (none for the a = -0.9 case:
+                       // its disk starts at the retrograde ISCO, 8.7 M, outside the radii its rays cross again at)
+  DiskLight light;
+  light.emissivity.index_inner = 3.0;
+  light.redshift_power = 3.0;
+  for (const CameraCase& c : {CameraCase{0.9, 1000.0, 1.3, 2.2}, CameraCase{0.9, 30.0, 0.5, 60.0},
+                              CameraCase{0.0, 50.0, 1.2, 40.0}, CameraCase{-0.9, 20.0, 2.4, 70.0}}) {
+    const KerrMetric metric{1.0, c.spin};
+    const int pixels = 48;
+    const Camera cam = camera_of(metric, c, pixels);
+    const TraceSettings s = test_settings::settings_at(1e-10, 2000.0);
+    ThinDisk disk;  // turning towards +phi: against the hole's spin for a < 0
+    disk.r_in = exact::isco_radius(c.spin, c.spin >= 0.0 ? exact::Orbit::prograde : exact::Orbit::retrograde);
+    disk.r_out = 25.0;
+    const KerrDiskRays rays(metric, disk.r_in, disk.r_out, +1, s.escape_radius);
+    light.transparent = false;
+    const DiskLightFrame opaque = render_disk_light_frame(cam, rays, light);
+    light.transparent = true;
+    const DiskLightFrame clear = render_disk_light_frame(cam, rays, light);
+    const auto closed = make_kerr_closed_form_tracer<Fehlberg78, IController>(
+        metric, s, AngleCorrection::exact, make_scene(StarFieldSky{}, HorizonPaint{}, disk));
+    const Image &a = opaque.frame.image, &b = clear.frame.image;
+    int hits = 0, rings = 0, behind = 0, edges = 0;
+    double worst = 0.0;
+    for (int row = 0; row < pixels; ++row)
+      for (int col = 0; col < pixels; ++col) {
+        const std::size_t i = a.index(col, row);
+        const RayOutcome o = closed.trace(cam.pixel_state(col, row));
+        const PixelSample p = a.sample(col, row);
+        if (p.status == RayStatus::max_steps) continue;  // not followed in closed form (vortical): the tracer falls back
+        // Both follow the same closed form, but decide the disk's edges on radii computed apart (a hair).
+        if (o.object != p.object) {
+          const double r = o.object == kFirstSceneObject ? o.radius : disk.r_in;
+          EXPECT_LT(std::min(std::abs(r / disk.r_in - 1.0), std::abs(r / disk.r_out - 1.0)), 1e-9) << describe(c);
+          ++edges;
+          continue;
+        }
+        EXPECT_EQ(p.status, o.status) << describe(c) << " pixel " << col << "," << row;
+        EXPECT_EQ(p.order, o.status == RayStatus::hit ? o.order : -1) << describe(c) << " pixel " << col << "," << row;
+        // Every order's channel sums to the total, in the frame's own float additions.
+        for (const Image* im : {&a, &b}) {
+          float sum = 0.0f;
+          for (const char* name : kDiskLightOrderChannels) sum += im->channel(name)[i];
+          EXPECT_EQ(sum, im->channel("intensity")[i]);
+        }
+        if (o.status != RayStatus::hit) {
+          EXPECT_EQ(a.channel("intensity")[i], 0.0f);
+          continue;
+        }
+        ++hits;
+        if (o.order >= 1) ++rings;
+        const double expected = std::pow(o.redshift, 3.0) * std::pow(o.radius, -3.0);
+        const float got = a.channel(kDiskLightOrderChannels[static_cast<std::size_t>(std::min(o.order, 3))])[i];
+        worst = std::max(worst, std::abs(static_cast<double>(got) / expected - 1.0));
+        EXPECT_NEAR(got, expected, 1e-6 * expected) << describe(c) << " pixel " << col << "," << row;
+        EXPECT_EQ(got, a.channel("intensity")[i]) << "an opaque disk shows one order";
+        // A transparent disk shows the same first image and adds what lies behind it, never less.
+        const auto first = static_cast<std::size_t>(std::min(o.order, 3));
+        EXPECT_EQ(b.channel(kDiskLightOrderChannels[first])[i] >= got, true);
+        if (b.channel("intensity")[i] > got) ++behind;
+      }
+    std::printf("%s: %d disk pixels (%d of order >= 1), %d edge pixels, %ld not followed; worst g^3 eps %.1e; "
+                "transparent adds light at %d\n",
+                describe(c).c_str(), hits, rings, edges, opaque.uncovered, worst, behind);
+    EXPECT_GT(hits, 50) << describe(c);
+    EXPECT_LE(edges, pixels * pixels / 400) << describe(c);
+    behind_all += behind;
+    EXPECT_LE(opaque.uncovered, pixels * pixels / 400) << describe(c);
+    EXPECT_EQ(opaque.uncovered, opaque.frame.stats.count(RayStatus::max_steps));
+  }
+  EXPECT_GT(behind_all, 100);
 }
 
 }  // namespace

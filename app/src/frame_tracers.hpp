@@ -31,6 +31,12 @@ template <MetricPolicy Metric>
 class PolishDoughnut;
 }  // namespace grtrace
 
+namespace grtrace {
+class KerrDiskRays;  // spectra/kerr_disk_map.hpp
+struct DiskLight;    // spectra/disk_mesh.hpp
+struct ThinDisk;     // scene/thin_disk.hpp
+}  // namespace grtrace
+
 namespace grtrace::app {
 
 /// f(), a std::invalid_argument it throws (a library refusal) as a RequestError with `prefix` before its message.
@@ -71,6 +77,13 @@ PolishDoughnut<KerrMetric> polish_doughnut(const RenderRequest& q);
 /// The frame renderer of an emitting medium's scene (is_medium_scene; medium_frames.cpp, the default method only).
 std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked);
 
+/// A disk drawn by its light (RenderRequest::disk_light; draws_light): its rays' crossings in closed form, of the
+/// checked disk (std::invalid_argument where the disk reaches the photon orbit or the sky sphere); its light
+/// (emissivity, redshift power, transparency); its frame renderer (medium_frames.cpp).
+KerrDiskRays disk_light_rays(const RenderRequest& q, const ThinDisk& disk, double sky_radius);
+DiskLight disk_light_of(const RenderRequest& q);
+std::unique_ptr<FrameRenderer> make_disk_light_renderer(const CheckedRequest& checked);
+
 /// The ray tracer of a checked request in metric M (defined in ray_tracers.cpp).
 template <MetricPolicy M>
 std::unique_ptr<RayTracer> make_ray_tracer(const CheckedRequest& checked, const M& metric);
@@ -85,6 +98,8 @@ struct FrameFacts {
   double trace_seconds = 0.0;  ///< the wall time of the frame's tracing and shading
   std::optional<double> flux;  ///< an emitting medium's frame: the intensity summed over the pixels' solid angles
   std::optional<double> flux_jy, microarcseconds_per_pixel;  ///< the same in physical units (riaf)
+  std::optional<std::array<double, 4>> flux_by_order;        ///< a disk drawn by its light: n = 0, 1, 2, >= 3
+  long uncovered_rays = 0;                                    ///< its pixels not followed in closed form
 };
 
 /// The render loop's options of a request and a control (threads, mirrors, progress, cancel).

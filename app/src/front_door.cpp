@@ -15,8 +15,10 @@
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/metric/static_spherical.hpp"
 #include "grtrace/observer/observers.hpp"
+#include "grtrace/render/disk_light_frame.hpp"
 #include "grtrace/render/exr_io.hpp"
 #include "grtrace/scene/thin_disk.hpp"
+#include "grtrace/spectra/kerr_disk_map.hpp"
 #include "grtrace/spectra/line_profile.hpp"
 #include "grtrace/spectra/line_profile_output.hpp"
 #include "grtrace/spectra/ring_image.hpp"
@@ -71,6 +73,34 @@ PolishDoughnut<KerrMetric> polish_doughnut(const RenderRequest& q) {
 bool is_medium_scene(std::string_view scene) {
   return std::find(kMediumSceneNames.begin(), kMediumSceneNames.end(), scene) != kMediumSceneNames.end();
 }
+
+/// The names of the order channels in reports and headers: n = 0, 1, 2 and >= 3.
+constexpr std::array<const char*, 4> kOrderNames = {"n0", "n1", "n2", "n3_up"};
+
+bool draws_light(const RenderRequest& q) { return is_medium_scene(q.scene) || (q.scene == "disk" && q.disk_light); }
+
+namespace {
+
+/// The emissivity a disk's light is asked with, checked (RequestError naming `what`).
+DiskEmissivity disk_emissivity(const DiskLightRequest& q, const std::string& what) {
+  DiskEmissivity emissivity;
+  emissivity.index_inner = q.emissivity_index;
+  emissivity.index_outer = q.emissivity_index_outer.value_or(q.emissivity_index);
+  if (q.emissivity_break) emissivity.r_break = *q.emissivity_break;
+  refusal_as_request_error("", [&] { disk_mesh::check_emissivity(emissivity, what); });
+  return emissivity;
+}
+
+std::string describe_disk_light(const DiskLightRequest& q) {
+  const DiskEmissivity e = disk_emissivity(q, "");
+  return std::string(q.transparent ? "transparent" : "opaque") + ", emissivity r^-" +
+         shortest_number_text(e.index_inner) +
+         (q.emissivity_break ? " inside " + shortest_number_text(*q.emissivity_break) + " M, r^-" +
+                                   shortest_number_text(e.index_outer) + " beyond"
+                             : "");
+}
+
+}  // namespace
 
 std::vector<std::string> scene_names() {
   std::vector<std::string> names(kStandardSceneNames.begin(), kStandardSceneNames.end());
@@ -281,7 +311,43 @@ void check_medium_request(const RenderRequest& q) {
                        ")");
 }
 
+/// What a disk drawn by its light needs: a hole whose rays are Kerr's in closed form, the tracer that draws them,
+/// the CPU, an emissivity and a redshift power that make sense; no error map (no sky is shown).
+void check_disk_light_request(const RenderRequest& q) {
+  if (q.metric.name != "kerr" && q.metric.name != "schwarzschild")
+    throw RequestError("--disk-light follows the disk's rays in closed form (Kerr's): use --metric kerr or "
+                       "schwarzschild, got --metric " +
+                       q.metric.name);
+  if (q.metric.name == "kerr" && q.metric.chart != "bl")
+    throw RequestError("--disk-light traces Kerr in Boyer-Lindquist coordinates: leave --chart out or use bl");
+  if (q.tracer != "auto" && q.tracer != "kerr-closed-form")
+    throw RequestError("--tracer " + q.tracer +
+                       " cannot draw a disk by its light (--disk-light: every ray in closed form); use auto or "
+                       "kerr-closed-form");
+  if (q.error_map)
+    throw RequestError("--error-map judges where escaped rays point; a disk drawn by its light shows no sky: leave "
+                       "--error-map out");
+  if (!(std::abs(q.redshift_power) <= 10.0))
+    throw RequestError("--redshift-power must lie in [-10, 10], got " + shortest_number_text(q.redshift_power));
+  (void)disk_emissivity(*q.disk_light, "--disk-light");
+}
+
 }  // namespace
+
+KerrDiskRays disk_light_rays(const RenderRequest& q, const ThinDisk& disk, double sky_radius) {
+  KerrMetric metric;
+  metric.mass = q.metric.mass;
+  metric.spin = q.metric.name == "kerr" ? q.metric.spin : 0.0;
+  return KerrDiskRays(metric, disk.r_in, disk.r_out, disk.sense, sky_radius);
+}
+
+DiskLight disk_light_of(const RenderRequest& q) {
+  DiskLight light;
+  light.emissivity = disk_emissivity(*q.disk_light, "--disk-light");
+  light.redshift_power = q.redshift_power;
+  light.transparent = q.disk_light->transparent;
+  return light;
+}
 
 void check_method(const MethodRequest& m, const std::string& prefix) {
   const std::string o = "--" + prefix;
@@ -301,6 +367,7 @@ void check_method(const MethodRequest& m, const std::string& prefix) {
 std::optional<std::string> gpu_refusal(const RenderRequest& q) {
   if (is_medium_scene(q.scene))
     return "--scene " + q.scene + " is drawn on the CPU (the GPU does not trace emitting media yet); use --device cpu or auto";
+  if (draws_light(q)) return "a disk drawn by its light (--disk-light) is drawn on the CPU; use --device cpu or auto";
   if (q.method.tableau != kGpuTableau || q.method.control != kGpuControl)
     return "the GPU traces with --tableau " + std::string(kGpuTableau) + " --control " + std::string(kGpuControl) +
            " only; use those, or --device cpu for the other methods";
@@ -323,7 +390,7 @@ std::string choose_device(std::string_view asked, const RenderRequest& q) {
     throw RequestError("unknown --device '" + std::string(asked) + "'; choose auto, cpu or cuda");
   // Where auto keeps the CPU anyway, the driver is not asked (its start costs a tenth of a second where there is a
   // GPU, and nothing is gained).
-  if (asked == "auto" && (!kAutoPicksGpu || cpu_table_tracer_draws(q) || is_medium_scene(q.scene))) return "cpu";
+  if (asked == "auto" && (!kAutoPicksGpu || cpu_table_tracer_draws(q) || draws_light(q))) return "cpu";
   const auto refusal = gpu_refusal(q);
   if (asked == "cuda" && refusal) throw RequestError("--device cuda: " + *refusal);
   return refusal ? "cpu" : "cuda";
@@ -353,6 +420,8 @@ CheckedRequest check_request(const RenderRequest& in) {
   refusal_as_request_error("", [&] { check_metric_spec(q.metric); });
   const MetricSpec& ms = q.metric;
   if (medium) check_medium_request(q);
+  if (q.disk_light && !disk) throw RequestError("--disk-light draws the disk scene: add --scene disk");
+  if (draws_light(q) && !medium) check_disk_light_request(q);
   if (ms.name == "minkowski" && disk)
     throw RequestError("--scene disk needs a metric with a mass (the disk orbits it), not --metric minkowski");
 
@@ -386,7 +455,10 @@ CheckedRequest check_request(const RenderRequest& in) {
   {  // the image's memory, before anything is allocated: the channels (+ error channel and double directions with
      // the error map) and the 8-bit previews
     const double pixels = static_cast<double>(c.width) * static_cast<double>(c.height);
-    const double channels = static_cast<double>(Image::kStandardChannels.size() + (q.error_map ? 1 : 0));
+    // + the light's channels: a medium's intensity and optical depth, a disk's intensity and its four orders
+    const std::size_t light_channels = medium ? 2 : draws_light(q) ? 1 + kDiskLightOrderChannels.size() : 0;
+    const double channels =
+        static_cast<double>(Image::kStandardChannels.size() + light_channels + (q.error_map ? 1 : 0));
     const double bytes = image_bytes(static_cast<double>(c.width), static_cast<double>(c.height), channels) +
                          pixels * (3.0 + (q.error_map ? 2.0 * sizeof(double) * 2.0 : 0.0));
     try {
@@ -450,6 +522,8 @@ CheckedRequest check_request(const RenderRequest& in) {
     refusal_as_request_error("", [&] {
       try {
         with_named_metric(ms, [&](const auto& m) { check_disk_orbits(m, scene.disk); });
+        // Drawn by its light: its rays in closed form outside the photon orbit, which must lie inside the disk.
+        if (draws_light(q)) (void)disk_light_rays(q, scene.disk, settings.escape_radius);
       } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(std::string(e.what()) + " (--disk-inner, --disk-outer)");
       }
@@ -481,6 +555,7 @@ std::unique_ptr<FrameRenderer> FrameRenderer::create(const RenderRequest& reques
 
 std::unique_ptr<FrameRenderer> FrameRenderer::create(const CheckedRequest& checked) {
   if (is_medium_scene(checked.request.scene)) return make_medium_renderer(checked);
+  if (draws_light(checked.request)) return make_disk_light_renderer(checked);
   return with_named_metric(checked.request.metric,
                            [&](const auto& metric) { return make_frame_renderer(checked, metric); });
 }
@@ -566,6 +641,11 @@ void record_report(Image& image, const RenderReport& r) {
   if (r.flux) m["flux"] = exact_number(*r.flux);
   if (r.flux_jy) m["flux_jy"] = exact_number(*r.flux_jy);
   if (r.microarcseconds_per_pixel) m["microarcseconds_per_pixel"] = exact_number(*r.microarcseconds_per_pixel);
+  if (r.flux_by_order) {
+    for (std::size_t n = 0; n < r.flux_by_order->size(); ++n)
+      m[std::string("flux_") + kOrderNames[n]] = exact_number((*r.flux_by_order)[n]);
+    m["uncovered_rays"] = std::to_string(r.uncovered_rays);
+  }
   if (r.error) {
     m["error_max"] = exact_number(r.error->max);
     m["error_median"] = exact_number(r.error->median);
@@ -603,6 +683,8 @@ RenderResult finish_render(const CheckedRequest& checked, Frame&& frame, const F
   r.flux = facts.flux;
   r.flux_jy = facts.flux_jy;
   r.microarcseconds_per_pixel = facts.microarcseconds_per_pixel;
+  r.flux_by_order = facts.flux_by_order;
+  r.uncovered_rays = facts.uncovered_rays;
   // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
   if (checked.request.error_map) r.error = add_error_channel(checked, result.image, directions);
   describe_request(result.image, checked);
@@ -659,13 +741,19 @@ void describe_request(Image& image, const CheckedRequest& checked) {
     m["disk_inner"] = exact_number(checked.scene.disk.r_in);
     m["disk_outer"] = exact_number(checked.scene.disk.r_out);
   }
+  if (q.disk_light) {
+    m["disk_light"] = describe_disk_light(*q.disk_light);
+    m["disk_transparent"] = q.disk_light->transparent ? "true" : "false";
+    m["redshift_power"] = exact_number(q.redshift_power);
+    m["intensity_unit"] = "g^" + shortest_number_text(q.redshift_power) + " eps(r), eps(r = M) = 1";
+  }
   m["tableau"] = q.method.tableau;
   m["control"] = q.method.control;
   m["rtol"] = exact_number(q.method.rtol);
   m["atol"] = exact_number(q.method.atol);
   m["max_steps"] = std::to_string(q.method.max_steps);
   m["sky_radius"] = exact_number(q.sky_radius);
-  if (!is_medium_scene(q.scene)) m["angle_correction"] = q.angle_correction;
+  if (!draws_light(q)) m["angle_correction"] = q.angle_correction;
 }
 
 std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequest& checked) {
@@ -681,6 +769,10 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
   for (std::size_t i = 0; i < kRayStatusCount; ++i)
     counts.emplace_back(std::string(kRayStatusNames[i]), r.stats.status_counts[i]);
   add("status_counts", counts);
+  if (!is_medium_scene(q.scene)) {  // the pixels that show an object, by the order of its image
+    const auto& o = r.stats.hits_by_order;
+    add("hits_by_order", ReportEntry::Counts{{"n0", o[0]}, {"n1", o[1]}, {"n2", o[2]}, {"n3_up", o[3]}});
+  }
   add("tracer", r.tracer);
   add("tableau", q.method.tableau);
   add("control", q.method.control);
@@ -706,6 +798,12 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
   if (r.flux) add("flux", *r.flux);
   if (r.flux_jy) add("flux_jy", *r.flux_jy);
   if (r.microarcseconds_per_pixel) add("microarcseconds_per_pixel", *r.microarcseconds_per_pixel);
+  if (r.flux_by_order) {
+    for (std::size_t n = 0; n < r.flux_by_order->size(); ++n)
+      add(std::string("flux_") + kOrderNames[n], (*r.flux_by_order)[n]);
+    add("uncovered_rays", r.uncovered_rays);
+    add("disk", std::string(q.disk_light && q.disk_light->transparent ? "transparent" : "opaque"));
+  }
   if (r.tracer == "planar") {
     add("table_rays", r.table_rays);
     add("table_steps", r.table_steps);
@@ -771,11 +869,7 @@ CheckedDistantDisk check_distant_disk(DistantDisk& q, const std::string& what) {
   const CheckedRequest checked = check_request(frame);
   const ThinDisk& disk = checked.scene.disk;
   q.disk_inner = disk.r_in;
-  DiskEmissivity emissivity;
-  emissivity.index_inner = q.emissivity_index;
-  emissivity.index_outer = q.emissivity_index_outer.value_or(q.emissivity_index);
-  if (q.emissivity_break) emissivity.r_break = *q.emissivity_break;
-  refusal_as_request_error("", [&] { disk_mesh::check_emissivity(emissivity, what); });
+  const DiskEmissivity emissivity = disk_emissivity(q.light, what);
   KerrMetric metric;
   metric.mass = q.metric.mass;
   metric.spin = q.metric.name == "kerr" ? q.metric.spin : 0.0;
@@ -792,12 +886,7 @@ CheckedDistantDisk check_distant_disk(DistantDisk& q, const std::string& what) {
       "--metric " + q.metric.name + " (spin " + spin + ", mass " + shortest_number_text(q.metric.mass) +
           "), inclination " + shortest_number_text(q.inclination_degrees) + " deg, disk " +
           shortest_number_text(disk.r_in) + " .. " + shortest_number_text(disk.r_out) + " M, " +
-          (disk.sense > 0 ? "gas towards +phi" : "gas towards -phi") + ", " +
-          (q.transparent ? "transparent" : "opaque") + ", emissivity r^-" +
-          shortest_number_text(emissivity.index_inner) +
-          (q.emissivity_break ? " inside " + shortest_number_text(*q.emissivity_break) + " M, r^-" +
-                                    shortest_number_text(emissivity.index_outer) + " beyond"
-                              : "")};
+          (disk.sense > 0 ? "gas towards +phi" : "gas towards -phi") + ", " + describe_disk_light(q.light)};
 }
 
 /// Runs `work` on `threads` OpenMP threads (0: as many as there are), the setting restored after; its seconds.
@@ -823,7 +912,7 @@ void add_disk_entries(std::vector<ReportEntry>& report, const DistantDisk& q, co
   report.push_back({"inclination_degrees", q.inclination_degrees});
   report.push_back({"disk_inner", disk.r_in});
   report.push_back({"disk_outer", disk.r_out});
-  report.push_back({"disk", std::string(q.transparent ? "transparent" : "opaque")});
+  report.push_back({"disk", std::string(q.light.transparent ? "transparent" : "opaque")});
   report.push_back({"tracer", std::string("kerr-closed-form")});
 }
 
@@ -840,7 +929,7 @@ LineProfileResult line_profile(const LineProfileRequest& in) {
   spec.bins = q.bins;
   if (q.energy_range) spec.energy_min = (*q.energy_range)[0], spec.energy_max = (*q.energy_range)[1];
   spec.emissivity = d.emissivity;
-  spec.transparent = q.disk.transparent;
+  spec.transparent = q.disk.light.transparent;
   LineSampling sampling;
   sampling.finest_cell = q.finest_cell;
   refusal_as_request_error("", [&] { check_line_profile(spec, sampling); });
@@ -888,7 +977,7 @@ RingImageResult ring_image(const RingImageRequest& in) {
   spec.half_width = q.field;
   spec.emissivity = d.emissivity;
   spec.redshift_power = q.redshift_power;
-  spec.transparent = q.disk.transparent;
+  spec.transparent = q.disk.light.transparent;
   spec.ring_cuts = q.cuts;
   const RingImageSampling sampling;
   refusal_as_request_error("", [&] { check_ring_image(spec, sampling); });
@@ -912,9 +1001,8 @@ RingImageResult ring_image(const RingImageRequest& in) {
   add("ring_cuts", static_cast<long>(r.rings.cut_angle.size()));
   add_number("field_half_width", r.half_width);
   add_number("pixel", r.pixel);
-  const char* order_names[] = {"n0", "n1", "n2", "n3_up"};
   for (std::size_t o = 0; o < RingImage::kOrderChannels; ++o)
-    add_number(std::string("flux_") + order_names[o], r.flux[o]);
+    add_number(std::string("flux_") + kOrderNames[o], r.flux[o]);
   for (std::size_t n = 1; n < RingImage::kOrderChannels; ++n) {
     add_number("ring_diameter_n" + std::to_string(n), r.rings.diameter[n]);
     add_number("ring_width_n" + std::to_string(n), r.rings.width[n]);

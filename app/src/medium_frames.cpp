@@ -7,6 +7,8 @@
 //     pixel integrated, geometric units;
 //   --scene riaf: RiafFlow (medium/riaf.hpp) around Kerr in Boyer-Lindquist coordinates, every pixel integrated,
 //     its intensity in cgs, its flux in janskys and its pixel in microarcseconds at the source's distance.
+// and the frames of the thin disk drawn by its light (--scene disk --disk-light: render/disk_light_frame.hpp, every
+// ray's crossings in closed form), whose intensity is split by image order.
 #include "frame_tracers.hpp"
 #include "grtrace/core/physical_units.hpp"
 #include "grtrace/medium/polish_doughnut.hpp"
@@ -14,8 +16,10 @@
 #include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/render/disk_light_frame.hpp"
 #include "grtrace/render/medium_frame.hpp"
 #include "grtrace/render/scale_bar.hpp"
+#include "grtrace/spectra/kerr_disk_map.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <chrono>
@@ -84,6 +88,33 @@ std::unique_ptr<FrameRenderer> own_medium_tracer(const CheckedRequest& checked, 
   return renderer;
 }
 
+/// The renderer of a disk drawn by its light: the disk's rays and light, made once.
+class DiskLightRenderer final : public FrameRenderer {
+ public:
+  explicit DiskLightRenderer(const CheckedRequest& checked)
+      : FrameRenderer(checked),
+        rays_(disk_light_rays(checked.request, checked.scene.disk, checked.settings.escape_radius)),
+        light_(disk_light_of(checked.request)) {}
+
+  RenderResult render(const RenderControl& control) const override {
+    RenderOptions options = render_options(checked_, control);
+    options.mirror_symmetry = false;  // render_disk_light_frame traces every pixel
+    FrameFacts facts;
+    const auto t0 = std::chrono::steady_clock::now();
+    DiskLightFrame f = render_disk_light_frame(camera(), rays_, light_, options);
+    facts.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    facts.tracer.name = "kerr-closed-form";
+    facts.flux_by_order = disk_light_flux(camera(), f.frame.image);
+    facts.flux = medium_frame_flux(camera(), f.frame.image);
+    facts.uncovered_rays = f.uncovered;
+    return finish_render(checked_, std::move(f.frame), facts, setup_seconds_, {});
+  }
+
+ private:
+  KerrDiskRays rays_;
+  DiskLight light_;
+};
+
 SphericalAccretion accretion_of(const CheckedRequest& checked) {
   const RenderRequest& q = checked.request;
   SphericalAccretion gas;
@@ -94,6 +125,10 @@ SphericalAccretion accretion_of(const CheckedRequest& checked) {
 }
 
 }  // namespace
+
+std::unique_ptr<FrameRenderer> make_disk_light_renderer(const CheckedRequest& checked) {
+  return std::make_unique<DiskLightRenderer>(checked);
+}
 
 std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked) {
   const RenderRequest& q = checked.request;

@@ -107,24 +107,30 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"ring-field", "8", "--rings: the image's half width (M), square pixels of 2 field / width"});
   o.push_back(
       {"ring-cuts", "0", "--rings: radial cuts for the rings n >= 2 (0: a pixel apart at 6 M from the centre)"});
-  o.push_back({"ring-redshift-power", "3",
-               "--rings: the observed intensity is g^power eps(r) (3: a specific intensity, flat source spectrum; 4: "
-               "bolometric)"});
+  o.push_back({"redshift-power", "3",
+               "--rings or --disk-light: the observed intensity is g^power eps(r) (3: a specific intensity, flat "
+               "source spectrum; 4: bolometric)"});
   o.push_back({"line-energy", "6.4", "--spectrum line: the line's energy in the gas's frame (the bins' unit: keV)"});
-  o.push_back({"emissivity-index", "3", "--spectrum line or --rings: the gas's emissivity falls as r^-index"});
+  o.push_back({"emissivity-index", "3", "--spectrum line, --rings or --disk-light: the emissivity falls as r^-index"});
   o.push_back({"emissivity-index-outer", "",
-               "--spectrum line or --rings: the index beyond --emissivity-break (a broken power law; default: the "
-               "same)"});
-  o.push_back(
-      {"emissivity-break", "", "--spectrum line or --rings: the radius (M) where the emissivity's index changes"});
+               "--spectrum line, --rings or --disk-light: the index beyond --emissivity-break (a broken power law; "
+               "default: the same)"});
+  o.push_back({"emissivity-break", "",
+               "--spectrum line, --rings or --disk-light: the radius (M) where the emissivity's index changes"});
   o.push_back({"energy-range", "",
                "--spectrum line: lo,hi of the bins (default: around the energies the disk's light arrives at)"});
   o.push_back({"energy-bins", "200", "--spectrum line: the number of energy bins, 1 .. 100000"});
   o.push_back({"line-finest", "0.015625",
                "--spectrum line: the image-plane mesh's finest cell (M); 1e-3 of the peak per bin at the default"});
   o.push_back({"disk-transparent", "",
-               "--spectrum line or --rings: every crossing of the disk shines and the ray goes on (default: an "
-               "opaque disk, the first crossing only)",
+               "--spectrum line, --rings or --scene disk (implies --disk-light): every crossing of the disk shines "
+               "and the ray goes on (default: an opaque disk, the first crossing only)",
+               true});
+  o.push_back({"disk-light", "",
+               "disk scene: the frame shows the disk's light g^p eps(r) (--redshift-power, --emissivity-*) by image "
+               "order instead of its colour: EXR channels intensity, intensity_n0 .. intensity_n3_up, the picture in "
+               "a hot-gas map, the flux of each order in the JSON line; --metric kerr or schwarzschild, every ray in "
+               "closed form, on the CPU",
                true});
   o.push_back({"accretion-gas", "free-fall",
                "accretion scene: free-fall (from rest at infinity, Narayan, Johnson & Gammie 2019) | rest"});
@@ -190,15 +196,36 @@ Vec3 triple(const OptionSource& s, const std::string& name) {
 /// The options only --spectrum line reads, only --rings reads, and both.
 constexpr std::array<const char*, 5> kLineProfileOptions = {"spectrum", "line-energy", "energy-range", "energy-bins",
                                                             "line-finest"};
-constexpr std::array<const char*, 4> kRingImageOptions = {"rings", "ring-field", "ring-cuts", "ring-redshift-power"};
-constexpr std::array<const char*, 4> kDistantDiskOptions = {"emissivity-index", "emissivity-index-outer",
-                                                            "emissivity-break", "disk-transparent"};
+constexpr std::array<const char*, 3> kRingImageOptions = {"rings", "ring-field", "ring-cuts"};
+/// How the disk shines: read wherever its light is drawn (a line profile, a ring image, a frame with --disk-light).
+constexpr std::array<const char*, 4> kDiskLightOptions = {"emissivity-index", "emissivity-index-outer",
+                                                          "emissivity-break", "disk-transparent"};
+/// The options that describe a frame and say nothing of a disk drawn by its light (every ray in closed form).
+constexpr std::array<const char*, 10> kNotForDiskLight = {"tableau", "control", "step",   "rtol",        "atol",
+                                                          "max-steps", "table-rays", "angle-correction",
+                                                          "sky-texture", "error-map"};
+
+DiskLightRequest read_disk_light(const OptionSource& s) {
+  DiskLightRequest d;
+  d.transparent = s.given("disk-transparent");
+  d.emissivity_index = option_number(s, "emissivity-index");
+  if (s.given("emissivity-index-outer")) d.emissivity_index_outer = option_number(s, "emissivity-index-outer");
+  if (s.given("emissivity-break")) d.emissivity_break = option_number(s, "emissivity-break");
+  return d;
+}
+
+double read_redshift_power(const OptionSource& s) {
+  const double p = option_number(s, "redshift-power");
+  if (!(std::abs(p) <= 10.0))
+    throw RequestError("--redshift-power must lie in [-10, 10], got " + text_of(s, "redshift-power"));
+  return p;
+}
 
 /// The disk and observer a line profile and a ring image share; `what` names the command in messages, `own` the
 /// options it reads besides. Every other option given is refused: it describes a frame.
 DistantDisk read_distant_disk(const OptionSource& s, const std::string& what, const std::vector<std::string>& own) {
   std::vector<std::string> reads = own;
-  reads.insert(reads.end(), kDistantDiskOptions.begin(), kDistantDiskOptions.end());
+  reads.insert(reads.end(), kDiskLightOptions.begin(), kDiskLightOptions.end());
   for (const char* o :
        {"scene", "metric", "mass", "chart", "camera-theta", "disk-inner", "disk-outer", "disk-retrograde", "threads"})
     reads.emplace_back(o);
@@ -216,10 +243,7 @@ DistantDisk read_distant_disk(const OptionSource& s, const std::string& what, co
   if (s.given("disk-inner")) d.disk_inner = option_number(s, "disk-inner");
   d.disk_outer = option_number(s, "disk-outer");
   d.disk_retrograde = s.given("disk-retrograde");
-  d.transparent = s.given("disk-transparent");
-  d.emissivity_index = option_number(s, "emissivity-index");
-  if (s.given("emissivity-index-outer")) d.emissivity_index_outer = option_number(s, "emissivity-index-outer");
-  if (s.given("emissivity-break")) d.emissivity_break = option_number(s, "emissivity-break");
+  d.light = read_disk_light(s);
   d.threads = integer_in(s, "threads", 0, 1024, "--threads must be 0 (all cores) .. 1024");
   return d;
 }
@@ -231,6 +255,8 @@ LineProfileRequest read_line_profile_request(const OptionSource& s) {
     throw RequestError("--spectrum must be line (the disk's line profile), got '" + text_of(s, "spectrum") + "'");
   if (s.given("rings"))
     throw RequestError("--spectrum line and --rings are two commands: give one (a spectrum or a ring image)");
+  refuse_unless(s, "redshift-power", false, "--rings or --disk-light (a line profile's flux is g^4 eps: the line's energy)");
+  refuse_unless(s, "disk-light", false, "--scene disk frames (a line profile is not a frame)");
   LineProfileRequest q;
   q.disk = read_distant_disk(s, "--spectrum line", {kLineProfileOptions.begin(), kLineProfileOptions.end()});
   q.line_energy = option_number(s, "line-energy");
@@ -248,6 +274,8 @@ RingImageRequest read_ring_image_request(const OptionSource& s) {
   RingImageRequest q;
   std::vector<std::string> own{kRingImageOptions.begin(), kRingImageOptions.end()};
   for (const char* o : {"width", "height", "source"}) own.emplace_back(o);
+  own.emplace_back("redshift-power");
+  refuse_unless(s, "disk-light", false, "--scene disk frames (a ring image is drawn by its light already)");
   q.disk = read_distant_disk(s, "--rings", own);
   q.width = integer_in(s, "width", 8, 16384, "--width must be 8 .. 16384 pixels");
   q.height = integer_in(s, "height", 8, 16384, "--height must be 8 .. 16384 pixels");
@@ -257,9 +285,7 @@ RingImageRequest read_ring_image_request(const OptionSource& s) {
                        text_of(s, "ring-field"));
   q.cuts = integer_in(s, "ring-cuts", 0, 100'000, "--ring-cuts must be 0 (automatic) or 2 .. 100000");
   if (q.cuts == 1) throw RequestError("--ring-cuts must be 0 (automatic) or 2 .. 100000");
-  q.redshift_power = option_number(s, "ring-redshift-power");
-  if (!(std::abs(q.redshift_power) <= 10.0))
-    throw RequestError("--ring-redshift-power must lie in [-10, 10], got " + text_of(s, "ring-redshift-power"));
+  q.redshift_power = read_redshift_power(s);
   if (s.given("source")) {
     q.source = text_of(s, "source");
     if (*q.source != "m87" && *q.source != "sgr-a")
@@ -339,10 +365,17 @@ void check_scene_options(const OptionSource& s, const std::string& scene) {
     if (std::string_view(line_option) != "spectrum") refuse_unless(s, line_option, false, "--spectrum line");
   for (const char* ring_option : kRingImageOptions)
     if (std::string_view(ring_option) != "rings") refuse_unless(s, ring_option, false, "--rings");
-  for (const char* disk_option : kDistantDiskOptions)
-    refuse_unless(s, disk_option, false, "--spectrum line or --rings");
-  for (const char* disk_option : {"disk-inner", "disk-outer", "disk-retrograde"})
+  for (const char* disk_option : {"disk-inner", "disk-outer", "disk-retrograde", "disk-light", "disk-transparent"})
     refuse_unless(s, disk_option, scene == "disk", "--scene disk");
+  const bool light = scene == "disk" && (s.given("disk-light") || s.given("disk-transparent"));
+  for (const char* disk_option : kDiskLightOptions)
+    refuse_unless(s, disk_option, light, "--spectrum line, --rings or --scene disk --disk-light");
+  refuse_unless(s, "redshift-power", light, "--rings or --scene disk --disk-light");
+  for (const char* frame_option : kNotForDiskLight)
+    if (light && s.given(frame_option))
+      throw RequestError("--" + std::string(frame_option) +
+                         " has no effect on a disk drawn by its light (--disk-light: every ray in closed form, no "
+                         "sky): leave it out");
   refuse_unless(s, "checker-squares", scene == "checker", "--scene checker");
   refuse_unless(s, "sky-texture", scene == "sky" || scene == "disk", "--scene sky or disk");
   for (const char* medium_option : {"accretion-gas", "accretion-power"})
@@ -392,6 +425,8 @@ RenderRequest read_render_request(const OptionSource& s) {
   if (s.given("disk-inner")) q.disk_inner = option_number(s, "disk-inner");
   q.disk_outer = option_number(s, "disk-outer");
   q.disk_retrograde = s.given("disk-retrograde");
+  if (s.given("disk-light") || s.given("disk-transparent")) q.disk_light = read_disk_light(s);
+  q.redshift_power = read_redshift_power(s);
   q.accretion_gas = text_of(s, "accretion-gas");
   q.accretion_power = option_number(s, "accretion-power");
   q.source = text_of(s, "source");

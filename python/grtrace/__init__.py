@@ -192,7 +192,8 @@ def render(*, progress: Union[None, bool, ProgressCallback] = None, **options: A
     (``camera_r``, ``camera_theta``, ``camera_phi`` in degrees, ``observer``, ``velocity``, ``look``, ``up``,
     ``fov``, ``width``, ``height``), the method (``tableau``, ``control``, ``rtol``, ``atol``, ``step``,
     ``max_steps``), ``tracer``, ``device`` (auto, cpu, cuda: chosen as grtrace-render chooses), ``threads`` and the
-    rest. ``progress``: True draws a bar on stderr; a callable gets (pixels done, pixels in all) every 20 ms.
+    rest; the disk drawn by its light with ``disk_light=True`` or ``disk_transparent=True`` (channels intensity and
+    intensity_n0 .. intensity_n3_up by image order; ``emissivity_index``, ``redshift_power``). ``progress``: True draws a bar on stderr; a callable gets (pixels done, pixels in all) every 20 ms.
 
     Raises ValueError (the tool's message) for a bad keyword or value, before any work; KeyboardInterrupt when
     interrupted (Ctrl-C), within a tile's time, leaving nothing behind.
@@ -255,7 +256,7 @@ def ring_image(**options: Any) -> Dict[str, Any]:
     schwarzschild), ``spin``, ``mass``, ``camera_theta`` (the inclination, degrees), ``disk_inner`` (default: the
     ISCO), ``disk_outer``, ``disk_retrograde``, ``disk_transparent``, ``emissivity_index``,
     ``emissivity_index_outer``, ``emissivity_break``, ``width``, ``height``, ``ring_field`` (the image's half width,
-    M), ``ring_cuts``, ``ring_redshift_power`` (the observed intensity is g^p eps(r)), ``source`` (m87 or sgr-a: the
+    M), ``ring_cuts``, ``redshift_power`` (the observed intensity is g^p eps(r)), ``source`` (m87 or sgr-a: the
     rings' sizes in microarcseconds too), ``threads``; a frame's options raise ValueError.
 
     Returns a dict: ``intensity`` (four arrays, height x width, the top row first: each pixel's mean intensity of

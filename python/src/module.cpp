@@ -406,6 +406,7 @@ py::dict trace_ray(const py::object& pixel, const py::object& position, const py
   o["radius"] = outcome.radius;
   o["redshift"] = outcome.redshift;
   o["steps"] = outcome.steps;
+  o["order"] = outcome.order;
   d["outcome"] = o;
   d["chart"] = ray.cartesian ? "cartesian" : "spherical";
   return d;

@@ -134,10 +134,30 @@ def test_channels_are_views_of_the_frames_memory():
     gc.collect()
     assert np.isfinite(a[0, 0]) or np.isnan(a[0, 0])  # the array keeps the frame alive
     assert sorted(grtrace.render(**MAIN_FRAME).channels) == sorted(
-        ["R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"])
+        ["R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps", "order"])
 
 
 # Each bad argument kind, as a keyword and as the tool's command line: the same refusal, word for word.
+def test_a_disk_drawn_by_its_light_is_the_tools_and_its_orders_sum_to_it(run_tool):
+    options = dict(KERR_DISK, width=32, height=24, disk_transparent=True, redshift_power=4)
+    frame = grtrace.render(**options)
+    code, out, err, exr = run_tool(options)
+    assert code == 0, err
+    tool = grtrace.read_exr(str(exr))
+    for name in frame.channel_names:
+        assert np.array_equal(bits(frame[name]), bits(tool[name])), name
+    orders = ["intensity_n0", "intensity_n1", "intensity_n2", "intensity_n3_up"]
+    total = np.zeros_like(frame["intensity"])
+    for name in orders:
+        total += frame[name]  # the frame's own float additions, in the same order
+    assert np.array_equal(total, frame["intensity"])
+    line = json.loads(out.strip().splitlines()[-1])
+    flux = [line["flux_" + n] for n in ("n0", "n1", "n2", "n3_up")]
+    assert frame.report["flux_n1"] == flux[1] > 0
+    assert sum(flux) == pytest.approx(line["flux"], rel=1e-12)
+    assert tool.header["disk_transparent"] == "true"
+
+
 BAD = [
     dict(metric="teapot"),
     dict(spin=0.5),
@@ -184,6 +204,10 @@ BAD = [
     dict(scene="riaf", metric="schwarzschild"),
     dict(scene="torus", metric="kerr", torus_inner=12),
     dict(torus_opacity=1),
+    dict(scene="disk", redshift_power=4),
+    dict(scene="disk", metric="kerr", spin=0.9, disk_light=True, tracer="general"),
+    dict(scene="disk", metric="rn", disk_light=True),
+    dict(scene="disk", disk_light=True, rtol=1e-6),
 ]
 
 

@@ -208,6 +208,7 @@ TEST(GpuProbe, OneRayStepByStepAsOnTheHost) {
                 static_cast<int>(g.status), g.steps, g.radius, static_cast<int>(c.status), c.steps, c.radius);
     EXPECT_EQ(g.status, c.status) << what;
     EXPECT_EQ(g.steps, c.steps) << what;
+    EXPECT_EQ(g.order, c.order) << what;
   };
   compare("app layer, Schwarzschild general", app::trace_on_gpu(main_camera, general, 1, 1, nullptr)[0],
           general.trace(main_camera.pixel_state(0, 0)));
@@ -255,6 +256,7 @@ Departure expect_gpu_outcomes_match_cpu(const char* what, const Camera& camera, 
       "rad, hit radius within %.3g (relative); captured rays' end on the horizon within %.3g rad\n",
       what, r.compared, r.silhouette, r.redshift, r.direction, r.radius, r.captured);
   EXPECT_EQ(r.status_differs, 0);
+  EXPECT_EQ(r.order_differs, 0);
   EXPECT_LE(r.silhouette, width * height / 200) << "more than 0.5 % of the pixels on a silhouette";
   EXPECT_GT(r.compared, width * height / 2);
   EXPECT_LE(r.redshift, 1e-9);

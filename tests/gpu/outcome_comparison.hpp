@@ -26,6 +26,7 @@ struct OutcomeComparison {
   long compared = 0;        ///< pixels with the same object and status, not failed
   long silhouette = 0;      ///< pixels whose object differs
   long status_differs = 0;  ///< pixels with the same object and another status
+  long order_differs = 0;   ///< compared pixels whose image order differs (RayOutcome::order)
   double redshift = 0.0;    ///< largest redshift difference of the compared pixels
   double direction = 0.0;   ///< largest angle between the sky directions or hit points (escaped and hit rays)
   double radius = 0.0;      ///< largest relative difference of the hit radius
@@ -49,6 +50,7 @@ OutcomeComparison compare_outcomes(const std::vector<RayOutcome>& gpu, const std
     }
     if (is_failure(c.status)) continue;
     ++r.compared;
+    if (g.order != c.order) ++r.order_differs;
     r.redshift = std::max(r.redshift, std::abs(g.redshift - c.redshift));
     const double angle = angular_distance(g.where, c.where);
     if (c.status == RayStatus::captured) {

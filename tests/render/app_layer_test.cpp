@@ -12,7 +12,10 @@
 #include "grtrace/metric/kerr_schild.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/observer/flight_path.hpp"
+#include "grtrace/exact/kerr_exact.hpp"
+#include "grtrace/render/disk_light_frame.hpp"
 #include "grtrace/render/exr_io.hpp"
+#include "grtrace/spectra/kerr_disk_map.hpp"
 #include "grtrace/scene/standard_scenes.hpp"
 #include "grtrace/tableau/dormand_prince54.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
@@ -226,6 +229,7 @@ TEST(AppLayer, RayPathsEndWhereTheSceneTracersRaysEnd) {
     EXPECT_EQ(ray.outcome.status, o.status) << col << "," << row;
     EXPECT_EQ(ray.outcome.object, o.object);
     EXPECT_EQ(ray.outcome.steps, o.steps);
+    EXPECT_EQ(ray.outcome.order, o.order);
     EXPECT_EQ(ray.outcome.state, o.state);
     EXPECT_EQ(ray.path.status, o.status);
     ASSERT_FALSE(ray.path.steps.empty());
@@ -527,6 +531,64 @@ app::RenderRequest riaf_request() {
   q.camera.fov_degrees = 2.0 * std::atan(20.0 / 1000.0) * 180.0 / std::numbers::pi;
   q.camera.width = q.camera.height = 16;
   return q;
+}
+
+TEST(AppLayer, ADiskDrawnByItsLightIsTheLibrarysDiskLightFrame) {
+  // The tools' transparent disk (Kerr a = 0.9, its ISCO to 20 M, r^-2.5, g^4) against the library's frame of the
+  // same camera and disk, channel for channel, bit for bit; its report's flux by order is the library's.
+  app::RenderRequest q;
+  q.metric.name = "kerr";
+  q.metric.spin = 0.9;
+  q.scene = "disk";
+  q.disk_light = app::DiskLightRequest{};
+  q.disk_light->transparent = true;
+  q.disk_light->emissivity_index = 2.5;
+  q.redshift_power = 4.0;
+  q.camera.r = 50.0;
+  q.camera.theta_degrees = 80.0;
+  q.camera.fov_degrees = 40.0;
+  q.camera.width = 36;
+  q.camera.height = 24;
+  const app::RenderResult r = app::render(q);
+  EXPECT_EQ(r.report.tracer, "kerr-closed-form");
+  const app::CheckedRequest checked = app::check_request(q);
+  const ThinDisk& disk = checked.scene.disk;
+  EXPECT_NEAR(disk.r_in, exact::isco_radius(0.9, exact::Orbit::prograde), 1e-12);
+  const KerrDiskRays rays(KerrMetric{1.0, 0.9}, disk.r_in, disk.r_out, disk.sense, checked.settings.escape_radius);
+  DiskLight light;
+  light.emissivity.index_inner = light.emissivity.index_outer = 2.5;
+  light.redshift_power = 4.0;
+  light.transparent = true;
+  const DiskLightFrame library = render_disk_light_frame(checked.camera, rays, light);
+  for (const char* c : {"intensity", "intensity_n0", "intensity_n1", "intensity_n2", "intensity_n3_up", "order",
+                        "object", "status", "R", "G", "B"}) {
+    const std::vector<float>&a = r.image.channel(c), &b = library.frame.image.channel(c);
+    ASSERT_EQ(a.size(), b.size()) << c;
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << c << " " << i;
+  }
+  const std::array<double, 4> flux = disk_light_flux(checked.camera, library.frame.image);
+  ASSERT_TRUE(r.report.flux_by_order);
+  for (std::size_t n = 0; n < 4; ++n) EXPECT_EQ((*r.report.flux_by_order)[n], flux[n]) << n;
+  EXPECT_GT(flux[1], 0.0);
+  EXPECT_EQ(r.image.metadata.at("disk_transparent"), "true");
+  EXPECT_EQ(r.image.metadata.count("angle_correction"), 0u);  // no sky in the picture
+
+  // Refused before any work: another hole, another tracer, the GPU, an error map, a disk light without the disk.
+  app::RenderRequest rn = q;
+  rn.metric.name = "rn";
+  expect_refused("--disk-light follows the disk's rays in closed form", [&] { (void)app::check_request(rn); });
+  app::RenderRequest general = q;
+  general.tracer = "general";
+  expect_refused("use auto or kerr-closed-form", [&] { (void)app::check_request(general); });
+  app::RenderRequest gpu = q;
+  gpu.device = "cuda";
+  expect_refused("is drawn on the CPU", [&] { (void)app::check_request(gpu); });
+  app::RenderRequest error = q;
+  error.error_map = true;
+  expect_refused("shows no sky", [&] { (void)app::check_request(error); });
+  app::RenderRequest sky = q;
+  sky.scene = "sky";
+  expect_refused("--disk-light draws the disk scene", [&] { (void)app::check_request(sky); });
 }
 
 }  // namespace

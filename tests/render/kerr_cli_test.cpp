@@ -502,4 +502,60 @@ TEST_F(KerrCli, RingImageIsTheLibrarysAndRefusesFrameOptions) {
   EXPECT_TRUE(out_empty());
 }
 
+// --scene disk --disk-transparent (or --disk-light): the disk drawn by its light, by image order, every ray in
+// closed form: the channels sum to the total, the JSON line's flux by order to its flux, the header says how it
+// shines; the options it has no use for, and the light's options without it, refused before any work.
+TEST_F(KerrCli, DiskDrawnByItsLightSplitsItsIntensityByOrder) {
+  const fs::path exr = out("light.exr");
+  const std::vector<std::string> base = {"--scene", "disk", "--metric", "kerr", "--spin", "0.9", "--camera-r", "60",
+                                         "--camera-theta", "80", "--fov", "35", "--width", "40", "--height", "30"};
+  std::vector<std::string> args = base;
+  for (const std::string& a :
+       std::vector<std::string>{"--disk-transparent", "--emissivity-index", "2.5", "--out", exr.string()})
+    args.push_back(a);
+  const ToolRun r = run(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out("light.png")));
+  const grtrace::Image image = grtrace::read_exr(exr);
+  EXPECT_EQ(image.metadata.at("disk_transparent"), "true");
+  EXPECT_EQ(image.metadata.at("tracer"), "kerr-closed-form");
+  const char* channels[] = {"intensity_n0", "intensity_n1", "intensity_n2", "intensity_n3_up"};
+  const char* keys[] = {"flux_n0", "flux_n1", "flux_n2", "flux_n3_up"};
+  const std::vector<float>& total = image.channel("intensity");
+  for (std::size_t i = 0; i < total.size(); ++i) {
+    float sum = 0.0f;
+    for (const char* c : channels) sum += image.channel(c)[i];
+    ASSERT_EQ(sum, total[i]) << i;
+  }
+  double flux_sum = 0.0;
+  for (const char* k : keys) flux_sum += grtrace::tool_tests::json_number(r.out, k);
+  const double flux = grtrace::tool_tests::json_number(r.out, "flux");
+  EXPECT_NEAR(flux_sum, flux, 1e-8 * flux);  // the JSON line's digits
+  EXPECT_GT(grtrace::tool_tests::json_number(r.out, "flux_n1"), 0.0);  // the first ring, seen through the disk
+  for (const auto& entry : fs::directory_iterator(base_ / "out")) fs::remove(entry.path());
+
+  const std::vector<BadCase> bad = {
+      {{"--disk-light", "--tableau", "rk4"}, "--tableau has no effect on a disk drawn by its light"},
+      {{"--disk-light", "--rtol", "1e-6"}, "--rtol has no effect"},
+      {{"--disk-light", "--angle-correction", "flat"}, "--angle-correction has no effect"},
+      {{"--disk-light", "--tracer", "general"}, "use auto or kerr-closed-form"},
+      {{"--disk-light", "--device", "cuda"}, "--device cuda"},
+      {{"--disk-light", "--emissivity-break", "-2"}, "a positive break radius"},
+      {{"--disk-light", "--redshift-power", "11"}, "--redshift-power must lie in [-10, 10]"},
+      {{"--redshift-power", "4"}, "--redshift-power applies only with --rings or --scene disk --disk-light"},
+      {{"--emissivity-index", "2"}, "applies only with --spectrum line, --rings or --scene disk --disk-light"},
+      {{"--disk-light", "--disk-inner", "1.5"}, "--disk-inner"},
+      {{"--disk-light", "--rings"}, "--disk-light applies only with --scene disk frames"},
+  };
+  expect_refused(base, bad, exr);
+  const ToolRun rn = run({"--scene", "disk", "--metric", "rn", "--disk-light", "--out", exr.string()});
+  EXPECT_EQ(rn.status, 2);
+  EXPECT_NE(rn.err.find("use --metric kerr or schwarzschild"), std::string::npos) << rn.err;
+  std::vector<std::string> sky = {"--scene", "sky", "--disk-light", "--out", exr.string()};
+  const ToolRun stray = run(sky);
+  EXPECT_EQ(stray.status, 2);
+  EXPECT_NE(stray.err.find("--disk-light applies only with --scene disk"), std::string::npos) << stray.err;
+  EXPECT_TRUE(out_empty());
+}
+
 }  // namespace

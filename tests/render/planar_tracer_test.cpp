@@ -342,6 +342,7 @@ class PlanarFrame : public ::testing::TestWithParam<FrameCase> {};
 // within 1e-6 relative, redshift within 1e-7 relative, sky direction within 1e-6 rad.
 struct Comparison {
   int hits = 0, skies = 0, horizons = 0, silhouettes = 0;
+  int ring_hits = 0, order_differs = 0;  ///< hits of order >= 1; pixels on the same object with another order
   double worst_r = 0.0, worst_g = 0.0, worst_sky = 0.0;
 };
 
@@ -364,8 +365,12 @@ Comparison compare_frames(const Planar& planar, const General& general, const Ca
         continue;
       }
       c.worst_g = std::max(c.worst_g, std::abs(a.redshift / b.redshift - 1.0));
+      // The order: the table's crossings psi_0 + k pi of the ray's plane against the crossings the integration
+      // counted, for hits and for the sky's and the horizon's rays.
+      if (a.order != b.order) ++c.order_differs;
       if (a.object == kFirstSceneObject) {
         ++c.hits;
+        if (a.order >= 1) ++c.ring_hits;
         c.worst_r = std::max(c.worst_r, std::abs(a.radius / b.radius - 1.0));
         c.worst_sky = std::max(c.worst_sky, angular_distance(a.where, b.where));
       } else if (a.object == kSkyObject) {
@@ -379,8 +384,11 @@ Comparison compare_frames(const Planar& planar, const General& general, const Ca
 }
 
 void expect_agreement(const Comparison& c, long fallbacks, long fallback_bound, const std::string& what) {
-  std::printf("%s: hits %d sky %d horizon %d silhouettes %d fallbacks %ld | worst r %.2e g %.2e sky %.2e\n",
-              what.c_str(), c.hits, c.skies, c.horizons, c.silhouettes, fallbacks, c.worst_r, c.worst_g, c.worst_sky);
+  std::printf("%s: hits %d (%d of order >= 1) sky %d horizon %d silhouettes %d fallbacks %ld | worst r %.2e g %.2e "
+              "sky %.2e\n",
+              what.c_str(), c.hits, c.ring_hits, c.skies, c.horizons, c.silhouettes, fallbacks, c.worst_r, c.worst_g,
+              c.worst_sky);
+  EXPECT_EQ(c.order_differs, 0);
   EXPECT_GT(c.hits, 20);
   EXPECT_GT(c.skies, 20);
   EXPECT_LE(c.silhouettes, 3);

@@ -43,7 +43,7 @@ TEST_F(RenderCli, WritesTheContractedJsonExrAndPng) {
   ASSERT_TRUE(fs::exists(out));
   EXPECT_TRUE(fs::exists(out.parent_path() / "frame.png"));
   const grtrace::Image img = grtrace::read_exr(out);
-  for (const char* ch : {"R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"})
+  for (const char* ch : {"R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps", "order"})
     EXPECT_TRUE(img.has_channel(ch)) << ch;
   for (float v : img.channel("R")) ASSERT_TRUE(std::isfinite(v));
   EXPECT_EQ(img.metadata.at("tableau"), "rkf78");

@@ -126,6 +126,7 @@ TEST(Image, SetAndSampleRoundTrip) {
   s.sky_theta = 0.1f;
   s.sky_phi = -0.2f;
   s.steps = 321;
+  s.order = 2;
   image.set(3, 2, s);
   const PixelSample t = image.sample(3, 2);
   EXPECT_EQ(t.rgb, s.rgb);
@@ -135,6 +136,7 @@ TEST(Image, SetAndSampleRoundTrip) {
   EXPECT_EQ(t.sky_theta, s.sky_theta);
   EXPECT_EQ(t.sky_phi, s.sky_phi);
   EXPECT_EQ(t.steps, s.steps);
+  EXPECT_EQ(t.order, s.order);
   EXPECT_EQ(image.channel("status")[image.index(3, 2)], 2.0f);
 }
 

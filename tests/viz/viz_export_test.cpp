@@ -229,7 +229,7 @@ TEST_F(ViewExport, FrameImageHasTheFramesSizeChannelsAndOrientation) {
   vtkDataArray* rgb = image->GetPointData()->GetArray("rgb");
   ASSERT_NE(rgb, nullptr);
   EXPECT_EQ(rgb->GetNumberOfComponents(), 3);
-  for (const char* c : {"R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"}) {
+  for (const char* c : {"R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps", "order"}) {
     vtkDataArray* a = image->GetPointData()->GetArray(c);
     ASSERT_NE(a, nullptr) << c;
     EXPECT_EQ(a->GetNumberOfTuples(), static_cast<vtkIdType>(kW) * kH) << c;

@@ -40,6 +40,20 @@ inline GRTRACE_HD SkyDirection sky_direction_of(const Vec3& d) {
   return s;
 }
 
+/// Below this angle from the equatorial plane (radians) a point counts as on it, in the count of a ray's crossings
+/// of the plane (RayOutcome::order): a hit located on a thin disk ends within round-off of the plane, on either
+/// side, and a camera in the plane starts on it; neither is a crossing.
+inline constexpr double kOnEquatorialPlane = 1e-9;
+
+/// 1 when an escaped ray, last seen at `latitude_at_end` (radians above the equatorial plane: its end on the sky
+/// sphere), is seen in a direction on the other side of the plane: it crossed the plane once more beyond the sphere,
+/// where it runs nearly straight (at most once). 0 otherwise, and for an end on the plane. So a ray's order counts
+/// its crossings up to where it is seen (the direction at infinity, or the sphere's point: AngleCorrection).
+inline GRTRACE_HD int crossed_beyond_sphere(double latitude_at_end, const SkyDirection& seen) {
+  constexpr double half_pi = 1.5707963267948966;
+  return std::abs(latitude_at_end) > kOnEquatorialPlane && latitude_at_end * (half_pi - seen.theta) < 0.0 ? 1 : 0;
+}
+
 /// Unit Cartesian vector of a sky direction.
 inline GRTRACE_HD Vec3 unit_vector_of(const SkyDirection& s) {
   const double st = std::sin(s.theta);

@@ -4,13 +4,13 @@
 //
 //   const Camera camera = make_camera(metric, spec);                                  // observer/camera_spec.hpp
 //   const auto tracer = make_general_tracer<Tsit5, IController>(metric, settings, AngleCorrection::exact, scene);
-//   Frame frame = render_frame(camera, tracer);                                        // all nine channels
+//   Frame frame = render_frame(camera, tracer);                                        // all ten channels
 //   write_exr("out.exr", frame.image);                                                 // render/exr_io.hpp
 //
 // Takes:   a Camera (observer/camera.hpp) and any SceneTracer (trace/scene_tracer_concept.hpp); RenderOptions
 //          (threads, tiles, progress: render/parallel_render.hpp); optionally a vector to receive every pixel's
 //          sky direction in double precision (the channels are float), e.g. for error maps.
-// Returns: the Image (channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps) and its RenderStats.
+// Returns: the Image (channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps, order) and its RenderStats.
 //          Metadata written: tracer, mirrors (the reflections used: render/mirror_symmetry.hpp; a frame whose
 //          metric, scene and camera are mirror symmetric traces only half or a quarter of its pixels, see
 //          RenderStats::traced_rays; RenderOptions::mirror_symmetry = false traces every pixel),

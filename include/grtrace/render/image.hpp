@@ -46,7 +46,7 @@ namespace detail {
 
 /// Before the first touch of a large buffer of n floats: reserves it with 2 MB of slack and asks Linux to back it
 /// with transparent huge pages (madvise MADV_HUGEPAGE; with the kernel's default "madvise" mode only advised memory
-/// gets them), so that zeroing it costs a few 2 MB page faults instead of a thousand 4 kB ones (the main frame's nine
+/// gets them), so that zeroing it costs a few 2 MB page faults instead of a thousand 4 kB ones (the main frame's ten
 /// channels: ~6 ms less of a fresh process's ~10 ms, docs/benchmarks-archive.md). A hint only: small buffers, other
 /// systems and a refusal (no huge pages free) leave the buffer as it is. The slack lets every 2 MB-aligned block that
 /// holds data lie inside the advised range; it is virtual memory, never touched.
@@ -67,17 +67,17 @@ inline void advise_huge_pages([[maybe_unused]] std::vector<float>& v, [[maybe_un
 /// Planar float image with named channels, in a fixed channel order for the standard ones.
 class Image {
  public:
-  static constexpr std::array<const char*, 9> kStandardChannels = {
-      "R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps"};
+  static constexpr std::array<const char*, 10> kStandardChannels = {
+      "R", "G", "B", "object", "status", "redshift", "sky_theta", "sky_phi", "steps", "order"};
 
-  /// An image with the nine standard channels, all zero until set().
+  /// An image with the ten standard channels, all zero until set().
   /// Throws MemoryLimitError (before allocating) when the channels would exceed memory_limit_bytes().
   Image(int width, int height) : Image(width, height, NoChannels{}) {
     check_memory(image_bytes(width, height, kStandardChannels.size()),
                  "a " + std::to_string(width) + " x " + std::to_string(height) + " image with " +
                      std::to_string(kStandardChannels.size()) + " channels");
     // The first touch of a 1024 x 1024 frame's 36 MB (a page fault per 4 kB page, and zeroing) took 13 ms on one
-    // thread, a tenth of the main frame (docs/benchmarks-archive.md). So the nine channels are zeroed on several
+    // thread, a tenth of the main frame (docs/benchmarks-archive.md). So the ten channels are zeroed on several
     // threads where OpenMP is on, and large channels ask Linux for 2 MB pages first (detail::advise_huge_pages).
     std::array<std::vector<float>*, kStandardChannels.size()> planes{};
     for (std::size_t c = 0; c < kStandardChannels.size(); ++c) {
@@ -154,7 +154,7 @@ class Image {
   const std::vector<float>& channel(const std::string& name) const { return channels_.at(name); }
   const std::vector<std::string>& channel_names() const { return order_; }
 
-  /// Raw pointers into the nine standard channels: writes a PixelSample by linear index without map look-ups.
+  /// Raw pointers into the ten standard channels: writes a PixelSample by linear index without map look-ups.
   /// Take it before a parallel loop; it stays valid while the image lives (adding other channels does not move
   /// these). Distinct pixels may be written concurrently.
   class PixelWriter {
@@ -169,6 +169,7 @@ class Image {
       p_[6][i] = s.sky_theta;
       p_[7][i] = s.sky_phi;
       p_[8][i] = static_cast<float>(s.steps);
+      p_[9][i] = static_cast<float>(s.order);
     }
 
    private:
@@ -186,7 +187,8 @@ class Image {
   /// Safe to call concurrently for distinct pixels (no map insertion; at() only).
   void set(int x, int y, const PixelSample& s) { pixel_writer().set(index(x, y), s); }
 
-  /// The sample stored at (x, y) (the inverse of set(): object, status and steps are rounded back to integers).
+  /// The sample stored at (x, y) (the inverse of set(): object, status, steps and order are rounded back to
+  /// integers).
   PixelSample sample(int x, int y) const {
     const std::size_t i = index(x, y);
     auto at = [&](const char* name) { return channels_.at(name)[i]; };
@@ -198,6 +200,7 @@ class Image {
     s.sky_theta = at("sky_theta");
     s.sky_phi = at("sky_phi");
     s.steps = static_cast<int>(at("steps"));
+    s.order = static_cast<int>(at("order"));
     return s;
   }
 

@@ -54,15 +54,16 @@ inline double camera_pixel_pitch(const Camera& camera) {
   return 2.0 * camera.tan_half_fov() / std::max(1, camera.width() - 1);
 }
 
-/// The frame's flux in the camera's sky: every pixel's intensity times the solid angle the camera sees it under (a
-/// pinhole: the pixel's area on the image plane at unit distance, du dv, over (1 + u^2 + v^2)^(3/2)); NaN for a
-/// frame one pixel wide or high (no pitch). In janskys at a telescope: SourceScale::janskys (core/physical_units.hpp).
-inline double medium_frame_flux(const Camera& camera, const Image& image) {
+/// The frame's flux in the camera's sky: every pixel's intensity (the channel named, "intensity" unless said) times
+/// the solid angle the camera sees it under (a pinhole: the pixel's area on the image plane at unit distance, du dv,
+/// over (1 + u^2 + v^2)^(3/2)); NaN for a frame one pixel wide or high (no pitch). In janskys at a telescope:
+/// SourceScale::janskys (core/physical_units.hpp).
+inline double medium_frame_flux(const Camera& camera, const Image& image, const std::string& channel = "intensity") {
   const int w = camera.width(), h = camera.height();
   if (w < 2 || h < 2) return std::nan("");
   const double t = camera.tan_half_fov();
   const double du = camera_pixel_pitch(camera), dv = 2.0 * t * h / (static_cast<double>(w) * (h - 1));
-  const std::vector<float>& intensity = image.channel("intensity");
+  const std::vector<float>& intensity = image.channel(channel);
   double flux = 0.0;
   for (int row = 0; row < h; ++row) {
     const double v = t * (2.0 * row / (h - 1) - 1.0) * h / w;

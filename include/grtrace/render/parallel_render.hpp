@@ -99,6 +99,9 @@ struct RenderStats {
   long traced_rays = 0;  ///< pixels whose pixel function ran: rays, or fewer where mirror images were copied
   std::array<long, kRayStatusCount> status_counts{};  ///< indexed by RayStatus; sums to `rays`
   long total_steps = 0;                               ///< sum of PixelSample::steps
+  /// Pixels showing a scene object (status hit) by the image's order (PixelSample::order): n = 0 (direct),
+  /// 1, 2 and 3 or more (photon rings); hits of unknown order are not counted.
+  std::array<long, 4> hits_by_order{};
   long bad_colour = 0;                                ///< pixels whose R,G,B were non-finite and got error_rgb
   long bad_status = 0;                                ///< pixels whose status was outside the RayStatus range
   double seconds = 0.0;                               ///< wall time of the whole call
@@ -125,6 +128,7 @@ struct ScratchSlot {
 /// One thread's counters, on their own cache line.
 struct alignas(64) RenderTally {
   std::array<long, kRayStatusCount> status_counts{};
+  std::array<long, 4> hits_by_order{};
   long steps = 0;
   long bad_colour = 0;
   long bad_status = 0;
@@ -150,6 +154,7 @@ struct alignas(64) RenderTally {
   }
   ++tally.status_counts[status_index];
   tally.steps += s.steps;
+  if (s.status == RayStatus::hit && s.order >= 0) ++tally.hits_by_order[static_cast<std::size_t>(std::min(s.order, 3))];
 }
 
 inline int max_threads() {
@@ -272,6 +277,7 @@ RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_he
   for (const auto& tally : tallies) {
     for (std::size_t i = 0; i < kRayStatusCount; ++i) stats.status_counts[i] += tally.status_counts[i];
     stats.total_steps += tally.steps;
+    for (std::size_t n = 0; n < stats.hits_by_order.size(); ++n) stats.hits_by_order[n] += tally.hits_by_order[n];
     stats.bad_colour += tally.bad_colour;
     stats.bad_status += tally.bad_status;
   }
@@ -281,7 +287,7 @@ RenderStats render_image_by_orbits(Image& image, int traced_width, int traced_he
   return stats;
 }
 
-/// Renders every pixel of `image` (its nine standard channels) with `pixel(x, y, scratch) -> PixelSample`,
+/// Renders every pixel of `image` (its ten standard channels) with `pixel(x, y, scratch) -> PixelSample`,
 /// where each thread owns the object `make_scratch()` returned (called serially, once per thread, before the
 /// loop). See the top of this file for the guarantees. Throws std::invalid_argument for bad options (negative
 /// threads, tile sizes out of range, a non-finite error colour) and whatever the factory or pixel function threw.
@@ -311,8 +317,9 @@ requires std::invocable<const PixelFn&, int, int> &&
 }
 
 /// Records the statistics of a render in the image's metadata (written as EXR header attributes):
-/// render_seconds, rays_per_second, mean_steps, render_threads, traced_rays, and status_counts as a JSON object
-/// {"escaped":N,...} with every status name. Existing keys are overwritten.
+/// render_seconds, rays_per_second, mean_steps, render_threads, traced_rays, status_counts as a JSON object
+/// {"escaped":N,...} with every status name, and hits_by_order as a JSON array [n0,n1,n2,n3+]. Existing keys are
+/// overwritten.
 inline void record_render_stats(Image& image, const RenderStats& stats) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.6f", stats.seconds);
@@ -333,6 +340,9 @@ inline void record_render_stats(Image& image, const RenderStats& stats) {
   }
   counts.push_back('}');
   image.metadata["status_counts"] = counts;
+  const auto& o = stats.hits_by_order;
+  image.metadata["hits_by_order"] = "[" + std::to_string(o[0]) + "," + std::to_string(o[1]) + "," +
+                                    std::to_string(o[2]) + "," + std::to_string(o[3]) + "]";
 }
 
 }  // namespace grtrace

@@ -20,6 +20,7 @@ struct PixelSample {
   float sky_theta = nan;
   float sky_phi = nan;
   int steps = 0;
+  int order = -1;  ///< the image's order n (RayOutcome::order): 0 direct, 1 the first photon ring, ...; -1 unknown
 };
 
 }  // namespace grtrace

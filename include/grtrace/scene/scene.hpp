@@ -106,6 +106,7 @@ struct Scene {
     p.status = o.status;
     p.object = o.object;
     p.steps = o.steps;
+    p.order = o.order;
     if (is_failure(o.status)) {
       p.rgb = failure;
       return p;

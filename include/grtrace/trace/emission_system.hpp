@@ -105,6 +105,7 @@ struct EmissionSystem {
   GRTRACE_HD GeodesicState geodesic_state(const State& z) const { return head(z); }
   GRTRACE_HD double constraint_violation(const State& z) const { return ray.constraint_violation(head(z)); }
   GRTRACE_HD double constraint_drift(const State& z) const { return ray.constraint_drift(head(z)); }
+  GRTRACE_HD double equatorial_latitude(const State& z) const { return ray.equatorial_latitude(head(z)); }
   /// The ray's re-charting at a spherical chart's axis, and its move onto the axis (MetricGeodesicSystem); the
   /// light's slots are kept.
   GRTRACE_HD bool wrap_chart(State& z) const {

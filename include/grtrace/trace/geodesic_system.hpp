@@ -22,6 +22,11 @@
 //   double constraint_drift(const State& z) const       g(k, k) at z minus its value at the start
 //   bool wrap_chart(State& z) const              maps z back into the chart's range where the integration left
 //                                                it (a spherical chart's polar axis) and says whether it did
+// and optionally
+//   double equatorial_latitude(const State& z) const   the angle of the ray's point above the equatorial plane
+//                                                (pi/2 - theta; in a Cartesian chart asin(z / |x|)), of which
+//                                                the tracing loop needs the sign only: it counts the ray's
+//                                                crossings of the plane, each image's order (TraceResult)
 // The library's systems: MetricGeodesicSystem (any metric policy: the geodesic equation itself, below) and
 // KerrMinoSystem (trace/kerr_mino_tracer.hpp: Kerr's separated equations in Mino time).
 #pragma once
@@ -52,6 +57,15 @@ concept GeodesicSystem = requires(const S s, typename S::State z) {
   { s.constraint_drift(z) } -> std::convertible_to<double>;
   { s.wrap_chart(z) } -> std::same_as<bool>;
 };
+
+/// The angle of the event of y above the equatorial plane of the metric's chart: pi/2 - theta in a spherical
+/// chart, asin(z / |x|) in a Cartesian one (the spin axis is z for the library's Cartesian metrics), to first order
+/// (z / |x|: only its sign and its size near 0 are used). Zero on the plane.
+template <MetricPolicy Metric>
+GRTRACE_HD double equatorial_latitude(const GeodesicState& y) {
+  if constexpr (Metric::chart == Chart::spherical) return 0.5 * std::numbers::pi - y[2];
+  else return y[3] / std::sqrt(y[1] * y[1] + y[2] * y[2] + y[3] * y[3]);
+}
 
 /// Relative violation of the geodesic's constraint g(k,k) = const: |g(k,k) - norm0| / sum |g_mn k^m k^n|.
 template <MetricPolicy Metric>
@@ -144,6 +158,7 @@ struct MetricGeodesicSystem {
     if constexpr (Metric::chart == Chart::spherical) return wrap_polar_axis(y);
     else return false;
   }
+  GRTRACE_HD double equatorial_latitude(const State& y) const { return grtrace::equatorial_latitude<Metric>(y); }
 
   /// A state near the polar axis of a spherical chart (sin theta < 1e-4) on a light ray that passes the axis closer
   /// than kThroughAxis (|k_phi| <= kThroughAxis sqrt(k_theta^2 + k_phi^2 / sin^2 theta), the sine of its closest pass

@@ -77,7 +77,12 @@ struct TraceResult {
   double constraint_drift = 0;   ///< g(k,k) at the end minus g(k,k) at the start
   int hit_event = -1;            ///< index of the user event that ended the ray (status hit)
   int chart_wraps = 0;           ///< times the ray crossed the polar axis of a spherical chart (see wrap_polar_axis)
+  /// Times the ray crossed the equatorial plane before its end: the order n of the image it ends on (0 direct,
+  /// 1 the first ring, ...). A hit on the plane itself (a thin disk) is not counted: it is the (n+1)-th crossing.
+  /// -1 where the system does not say where the plane is (GeodesicSystem's optional equatorial_latitude).
+  int crossings = -1;
 };
+
 
 /// Optional: how many interior points of each step an event samples (to catch a surface entered and left
 /// within one step). Events declare `static constexpr int interior_samples = n;`; default 0.
@@ -169,8 +174,9 @@ GRTRACE_GPU_CALLED GRTRACE_HD LocatedCrossing<typename System::State> refine_loc
 }  // namespace detail
 
 /// What the tracing loop carries from one accepted step to the next besides the integrator: each surface's value at
-/// the last accepted point, whether the horizon guard is armed, the steps since the last constraint check, and the
-/// counts TraceResult reports (chart wraps, right-hand sides spent refining crossings).
+/// the last accepted point, whether the horizon guard is armed, the steps since the last constraint check, the side
+/// of the equatorial plane the ray was last seen on, and the counts TraceResult reports (chart wraps, right-hand
+/// sides spent refining crossings, crossings of the equatorial plane).
 template <std::size_t K>
 struct TraceProgress {
   std::array<double, K> g_prev{};
@@ -178,6 +184,8 @@ struct TraceProgress {
   int steps_since_check = 0;
   int chart_wraps = 0;
   long refinement_evals = 0;
+  double latitude_prev = 0.0;  ///< equatorial_latitude at the last accepted point off the plane (0: none yet)
+  int crossings = 0;
 };
 
 /// The tracing loop of one ray through a geodesic system (trace/geodesic_system.hpp), split into its start, its
@@ -214,6 +222,7 @@ class TraceLoop {
   /// other). Returns the result when the ray ends at its start (non-finite, or on the wrong side of a surface).
   GRTRACE_HD Optional<TraceResult> begin(const State& z0, bool leaves_interior, Progress& p, Integrator& integ) const {
     p = Progress{};
+    note_latitude(z0, p);
     p.guard_armed = !(has_horizon_ && !(system_.radial_coordinate(z0) > rho_guard_) && leaves_interior);
     detail::for_each_event(all_, [&](std::size_t i, const auto& e) { p.g_prev[i] = on_state(i, e, z0, p); });
     if (!all_finite(z0)) return finish(RayStatus::non_finite, z0, 0.0, integ, p);
@@ -298,6 +307,7 @@ class TraceLoop {
       if (violated(integ.state())) return finish(RayStatus::non_finite, integ.state(), integ.lambda(), integ, p);
     }
     observer(integ, 1.0);
+    note_latitude(integ.state(), p);
     State z = integ.state();
     const bool wrapped = system_.wrap_chart(z);
     if (wrapped) ++p.chart_wraps;
@@ -334,6 +344,7 @@ class TraceLoop {
     if (State wrapped = z; system_.wrap_chart(wrapped) || align_with_axis(wrapped)) return false;
     p.g_prev = g;
     p.steps_since_check = check_due ? 0 : p.steps_since_check + 1;
+    note_latitude(z, p);
     return true;
   }
 
@@ -374,6 +385,20 @@ class TraceLoop {
     const double guard = settings_.constraint_tolerance;
     return guard > 0.0 && system_.constraint_violation(z) > guard;
   }
+  // The system's optional equatorial_latitude (trace/geodesic_system.hpp): a change of side since the last
+  // accepted point off the plane is a crossing. A step crosses the plane at most once where it matters: a second
+  // crossing takes half an orbit, far longer than the steps near the hole, and a ray far away is a straight line.
+  static constexpr bool counts_crossings = requires(const System s, const State z) {
+    { s.equatorial_latitude(z) } -> std::convertible_to<double>;
+  };
+  GRTRACE_HD void note_latitude(const State& z, Progress& p) const {
+    if constexpr (counts_crossings) {
+      const double latitude = system_.equatorial_latitude(z);
+      if (!(std::abs(latitude) > kOnEquatorialPlane)) return;
+      if (latitude * p.latitude_prev < 0.0) ++p.crossings;
+      p.latitude_prev = latitude;
+    }
+  }
   // The result of a ray that ends at z (event: the surface that ended it, for status hit).
   GRTRACE_GPU_CALLED GRTRACE_HD TraceResult finish(RayStatus status, const State& z, double lambda,
                                                    const Integrator& integ, const Progress& p,
@@ -382,6 +407,11 @@ class TraceLoop {
     result.status = status;
     if (status == RayStatus::hit) result.hit_event = static_cast<int>(event) - 2;
     result.chart_wraps = p.chart_wraps;
+    if constexpr (counts_crossings) {
+      Progress end = p;
+      note_latitude(z, end);  // a crossing inside the last step, before the surface that ended it
+      result.crossings = end.crossings;
+    }
     result.refinement_evals = p.refinement_evals;
     result.final_state = system_.geodesic_state(z);
     result.step_end_state = integ.accepted() > 0 ? system_.geodesic_state(integ.state()) : result.final_state;

@@ -35,6 +35,7 @@
 
 #include <atomic>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -76,12 +77,17 @@ class KerrClosedFormTracer {
       return fallback_->trace(y0);
     }
     const double end = ray.end_mino_time();
-    for (int n = 0; ray.crossing_mino_time(n) < end; ++n) {
+    int n = 0;
+    for (; ray.crossing_mino_time(n) < end; ++n) {
       const GeodesicState y = ray.crossing_state(n);
-      if (std::optional<RayOutcome> hit = hit_at(y)) return *hit;
+      if (std::optional<RayOutcome> hit = hit_at(y)) {
+        hit->order = n;
+        return *hit;
+      }
     }
     RayOutcome out;
     out.steps = 0;
+    out.order = n;  // every crossing before the end
     if (!ray.escapes() || correction_ != AngleCorrection::exact) {
       out.state = ray.state_at(end);
       out.radius = out.state[1];
@@ -97,6 +103,7 @@ class KerrClosedFormTracer {
     out.object = kSkyObject;
     if (correction_ != AngleCorrection::exact) {
       out.where = continued_direction(metric_, out.state, out.state, correction_);
+      out.order += crossed_beyond_sphere(0.5 * std::numbers::pi - out.state[2], out.where);  // up to where it is seen
       return out;
     }
     // The direction at infinity needs no state on the sky sphere (NaN, as the table tracers leave it); the sphere's
@@ -106,7 +113,9 @@ class KerrClosedFormTracer {
     ray.direction_at_infinity(theta, phi);
     out.where = SkyDirection{theta, azimuth_in_range(phi)};
     out.radius = escape_radius_;
-    const double g_tt = metric_.terms(Vec4(0.0, escape_radius_, ray.theta_at(end), 0.0)).g_tt;
+    const double theta_end = ray.theta_at(end);
+    out.order += crossed_beyond_sphere(0.5 * std::numbers::pi - theta_end, out.where);  // up to where it is seen
+    const double g_tt = metric_.terms(Vec4(0.0, escape_radius_, theta_end, 0.0)).g_tt;
     out.redshift = -std::sqrt(g_tt) / ray.energy();
     return out;
   }

@@ -187,6 +187,8 @@ struct KerrMinoSystem {
 
   /// The polar axis crossed: theta -> -theta (or 2 pi - theta), phi -> phi + pi, theta' -> -theta'.
   GRTRACE_HD bool wrap_chart(State& z) const { return wrap_polar_axis<1, 2, 4>(z); }
+  /// pi/2 - theta: the side of the equatorial plane (trace/geodesic_system.hpp).
+  GRTRACE_HD double equatorial_latitude(const State& z) const { return 0.5 * std::numbers::pi - z[1]; }
 
  private:
   /// The closest pass by the axis (sin theta_min) below which a ray is traced as the L = 0 ray through it: a pass

@@ -6,6 +6,7 @@
 // already in the pixel's momentum).
 #pragma once
 
+#include "grtrace/core/rounding.hpp"
 #include "grtrace/core/sin_cos.hpp"
 #include "grtrace/core/sky_direction.hpp"
 #include "grtrace/core/types.hpp"
@@ -13,6 +14,8 @@
 #include "grtrace/metric/static_spherical.hpp"
 
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 namespace grtrace {
 
@@ -75,6 +78,34 @@ PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y, const Sp
 template <StaticSphericalMetric M>
 PlanarGeometry planar_geometry(const M& metric, const GeodesicState& y) {
   return planar_geometry(metric, y, spherical_basis(y[2], y[3]));
+}
+
+/// The swept angle psi_0 in (0, pi] at which the ray first crosses the equatorial plane after its start; it crosses
+/// again at psi_0 + k pi, since the plane's height z(psi) = n_z cos psi + t_z sin psi = R cos(psi - alpha) changes
+/// sign every half turn. A start on the plane (within kOnEquatorialPlane: a camera in it) is not a crossing. NaN
+/// when the ray's plane is the equatorial plane itself (it runs inside it: no crossing).
+inline double first_equator_crossing(const PlanarGeometry& g) {
+  constexpr double pi = std::numbers::pi;
+  const double nz = g.radial.z(), tz = g.tangential.z();
+  if (!(std::hypot(nz, tz) > 1e-12)) return std::numeric_limits<double>::quiet_NaN();
+  double psi = std::atan2(tz, nz) + 0.5 * pi;
+  psi -= pi * static_cast<double>(floor_to_long(psi / pi));  // the first zero in [0, pi)
+  if (psi <= 0.0 || (std::abs(nz) <= kOnEquatorialPlane && psi < 0.5 * pi)) psi += pi;  // the start is no crossing
+  return psi;
+}
+
+/// The ray's crossings of the equatorial plane up to the swept angle `sweep`, where its direction in the embedding
+/// is `seen` (g.direction_at(sweep), which the caller has: its sky direction): the plane's height along the ray,
+/// z(psi) = R cos(psi - alpha), has one zero in each half turn, so floor(sweep / pi) of them, and one more where the
+/// last, partial half turn ends on the other side, z(m pi) = (-1)^m n_z against seen.z(). No trigonometry (the
+/// first crossing's atan2 would cost a table-traced sky frame a tenth of its time). A start on the plane is not a
+/// crossing; a ray in the plane has none. The order of the image the ray ends on (RayOutcome::order).
+inline int equator_crossings_to(const PlanarGeometry& g, double sweep, const Vec3& seen) {
+  const double nz = g.radial.z(), tz = g.tangential.z();
+  if (!(nz * nz + tz * tz > 1e-24)) return 0;
+  const long m = floor_to_long(sweep / std::numbers::pi);
+  const double start = std::abs(nz) > kOnEquatorialPlane ? (m % 2 == 0 ? nz : -nz) : 0.0;
+  return static_cast<int>(m) + (start * seen.z() < 0.0 ? 1 : 0);
 }
 
 /// The direction at angle `sweep` from `radial` in the plane of the ray.

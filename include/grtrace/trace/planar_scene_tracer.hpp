@@ -19,7 +19,6 @@
 // crossing to look up) are traced by the general tracer instead: exact, just slower; fallback_rays() counts them.
 #pragma once
 
-#include "grtrace/core/rounding.hpp"
 #include "grtrace/metric/metric_traits.hpp"
 #include "grtrace/observer/camera.hpp"
 #include "grtrace/scene/scene.hpp"
@@ -127,18 +126,14 @@ class PlanarSceneTracer {
     const double energy = frame.lapse_squared * y0[4];  // conserved E = g_tt k^t (< 0: past-directed)
 
     if constexpr (SceneT::object_count > 0) {
-      // The plane meets the equator where z(psi) = n_z cos psi + t_z sin psi = R cos(psi - alpha) vanishes.
-      const double nz = g.radial.z(), tz = g.tangential.z(), amplitude = std::hypot(nz, tz);
-      if (!(amplitude > 1e-12)) return fall_back(y0);  // the ray runs in the equatorial plane
+      const double psi_0 = first_equator_crossing(g);
+      if (std::isnan(psi_0)) return fall_back(y0);  // the ray runs in the equatorial plane
       constexpr double pi = std::numbers::pi;
-      const double alpha = std::atan2(tz, nz);
-      double psi = alpha + 0.5 * pi;
-      psi -= pi * static_cast<double>(floor_to_long(psi / pi));  // first zero in [0, pi)
-      if (psi <= 0.0) psi += pi;         // the start itself is not a crossing
       // cos and sin of the crossings: psi advances by pi, so both only change sign.
-      const SinCos first = sin_cos(psi);
+      const SinCos first = sin_cos(psi_0);
       double cos_psi = first.cos, sin_psi = first.sin;
-      for (; psi < look.sweep_end; psi += pi, cos_psi = -cos_psi, sin_psi = -sin_psi) {
+      int order = 0;
+      for (double psi = psi_0; psi < look.sweep_end; psi += pi, ++order, cos_psi = -cos_psi, sin_psi = -sin_psi) {
         const auto p = table_->path_at(look, psi);
         if (!p) return fall_back(y0);
         const GeodesicState y = state_at(g, energy, cos_psi, sin_psi, *p);
@@ -152,6 +147,7 @@ class PlanarSceneTracer {
           out.radius = y[1];
           out.where = position_direction(metric_, y.template head<4>());
           out.redshift = redshift_at(metric_, object.emitter_velocity(metric_, y.template head<4>()), y);
+          out.order = order;
           hit = out;
         });
         if (hit) return *hit;
@@ -165,9 +161,15 @@ class PlanarSceneTracer {
     out.radius = r_end;
     // A static emitter there: u = d_t / sqrt(g_tt), so f_obs / f_src = -sqrt(g_tt(r_end)) / E.
     out.redshift = -(look.status == RayStatus::escaped ? sky_lapse_ : guard_lapse_) / energy;
+    // Where the ray is seen, and its crossings of the plane up to there (planar_geometry.hpp).
+    const auto seen_at = [&](double sweep) {
+      const Vec3 d = g.direction_at(sweep);
+      out.where = sky_direction_of(d);
+      out.order = equator_crossings_to(g, sweep, d);
+    };
     if (look.status == RayStatus::captured) {
       out.object = kHorizonObject;
-      out.where = rotate_in_plane(g, look.sweep_end);
+      seen_at(look.sweep_end);
       return out;
     }
     out.object = kSkyObject;
@@ -182,7 +184,7 @@ class PlanarSceneTracer {
       const double rdot2 = (1.0 / metric_.lapse_squared(rs) - b * b / (rs * rs)) / radial_scale_squared(metric_, rs);
       sweep += std::atan2(b / rs, std::sqrt(std::max(0.0, rdot2)));
     }
-    out.where = rotate_in_plane(g, sweep);
+    seen_at(sweep);
     return out;
   }
 

@@ -1,7 +1,8 @@
 // grtrace/trace/ray_outcome.hpp
 // What every scene tracer reports for one camera ray, before shading: how it ended, on what (a position in the
 // scene: scene/object_ids.hpp), where (the sky direction of an escaped ray after the angle correction, or the
-// direction of the hit point), the state at the end, and the redshift f_obs / f_src (seed eq. 9).
+// direction of the hit point), the state at the end, the redshift f_obs / f_src (seed eq. 9), and the order of
+// the image (the ray's crossings of the equatorial plane before it ended).
 // The tracers (general, symmetric-sky, straight-line) differ in how they get there, not in what they report.
 #pragma once
 
@@ -28,6 +29,11 @@ struct RayOutcome {
   double radius = quiet_nan();                   ///< metric radius of the end point (sky sphere, horizon guard, hit)
   double redshift = quiet_nan();                 ///< f_obs / f_src; NaN for failed rays
   int steps = 0;                    ///< accepted integration steps (table tracers: the nearest table ray's)
+  /// The image's order n: the ray's crossings of the equatorial plane before its end (a hit on a thin disk in
+  /// the plane is its (n+1)-th crossing): 0 the direct image, 1 the first photon ring, ... (trace/
+  /// geodesic_tracer.hpp TraceResult::crossings). A captured ray's count ends at the tracer's horizon guard, which
+  /// a chart through the horizon (Kerr-Schild) puts inside it. -1 for failed rays and tracers that do not count.
+  int order = -1;
   GeodesicState state = GeodesicState::Constant(quiet_nan());  ///< (x, k) at the end, in the metric's chart; NaN where
                                                                ///< a tracer does not follow the ray itself (tables)
 };

@@ -90,6 +90,7 @@ GRTRACE_GPU_CALLED GRTRACE_HD RayOutcome scene_outcome(const Metric& m, const Sc
   const Vec4 x = y.head<4>();
   out.state = y;
   out.radius = m.radius(x);
+  out.order = r.crossings;
   Vec4 u = Vec4::Zero();
   if (r.status == RayStatus::hit) {
     out.object = kFirstSceneObject + r.hit_event;
@@ -98,6 +99,9 @@ GRTRACE_GPU_CALLED GRTRACE_HD RayOutcome scene_outcome(const Metric& m, const Sc
   } else {
     out.object = r.status == RayStatus::escaped ? kSkyObject : kHorizonObject;
     out.where = r.status == RayStatus::escaped ? escaped(r.step_end_state, y) : position_direction(m, x);
+    // An escaped ray's order counts its crossings up to where it is seen (core/sky_direction.hpp).
+    if (r.status == RayStatus::escaped && r.crossings >= 0)
+      out.order += crossed_beyond_sphere(equatorial_latitude<Metric>(y), out.where);
     u = rest_emitter_velocity(m, x);
   }
   out.redshift = redshift_at(m, u, y);

@@ -63,7 +63,14 @@ class StraightLineTracer {
 
     RayOutcome out;
     out.steps = 0;
+    // A line crosses the equatorial plane (z = 0) at most once: before its end if it ends off the plane on the
+    // other side (a hit on the plane is not a crossing before it: trace/ray_outcome.hpp).
+    auto order_at_end = [&](double s) {
+      const Vec3 end = p + s * v;
+      return p.z() * end.z() < 0.0 && std::abs(end.z()) > kOnEquatorialPlane * end.norm() ? 1 : 0;
+    };
     if (first >= 0) {
+      out.order = order_at_end(theta_first * s_exit);
       const GeodesicState hit = state_at(theta_first * s_exit);
       out.status = RayStatus::hit;
       out.object = kFirstSceneObject + first;
@@ -77,9 +84,12 @@ class StraightLineTracer {
     }
     out.status = RayStatus::escaped;
     out.object = kSkyObject;
+    out.order = order_at_end(s_exit);
     out.state = y1;
     out.radius = sky_radius_;
     out.where = sky_direction_of(correction_ == AngleCorrection::none ? Vec3(p + s_exit * v) : v);
+    const Vec3 end = p + s_exit * v;  // a line going on towards the plane crosses it beyond the sphere
+    out.order += crossed_beyond_sphere(end.z() / end.norm(), out.where);
     out.redshift = redshift_at(metric_, rest_emitter_velocity(metric_, y1.head<4>()), y1);
     return out;
   }

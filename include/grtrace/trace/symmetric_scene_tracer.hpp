@@ -62,12 +62,16 @@ class SymmetricSceneTracer {
       double sweep = e.sweep;
       if (correction_ == AngleCorrection::exact) sweep = e.sweep_infinity;
       if (correction_ == AngleCorrection::flat) sweep += std::asin(std::min(1.0, g.impact * std::sqrt(f_sky) / sky_r_));
-      out.where = rotate_in_plane(g, sweep);
+      const Vec3 d = g.direction_at(sweep);
+      out.where = sky_direction_of(d);
+      out.order = equator_crossings_to(g, sweep, d);  // up to where it is seen
       out.radius = sky_r_;
       out.redshift = -std::sqrt(f_sky) / energy;
     } else if (e.status == RayStatus::captured) {
       out.object = kHorizonObject;
-      out.where = rotate_in_plane(g, e.sweep);
+      const Vec3 d = g.direction_at(e.sweep);
+      out.where = sky_direction_of(d);
+      out.order = equator_crossings_to(g, e.sweep, d);
       out.radius = guard_r_;
       out.redshift = -std::sqrt(metric_.lapse_squared(guard_r_)) / energy;
     }

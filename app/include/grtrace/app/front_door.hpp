@@ -88,6 +88,15 @@ struct MethodRequest {
   int max_steps = 100000;  ///< accepted steps before a ray ends as max_steps
 };
 
+/// How a thin disk shines where its light is drawn (a frame with --disk-light, a line profile, a ring image): the
+/// same options everywhere.
+struct DiskLightRequest {
+  bool transparent = false;       ///< --disk-transparent: every crossing inside the radii shines (else the first only)
+  double emissivity_index = 3.0;  ///< --emissivity-index q: eps ~ r^-q
+  std::optional<double> emissivity_index_outer;  ///< --emissivity-index-outer: beyond --emissivity-break
+  std::optional<double> emissivity_break;        ///< --emissivity-break (M)
+};
+
 /// Everything a frame is drawn with, by name and number (grtrace-render's options; defaults are its defaults: the
 /// seed report's main frame).
 struct RenderRequest {
@@ -119,6 +128,12 @@ struct RenderRequest {
   double torus_inner = 6.0;
   double torus_peak = 10.0;
   double torus_opacity = 0.0;
+  /// disk: drawn by its light instead of its colour (--disk-light, implied by --disk-transparent): per pixel the
+  /// ray's crossings of the disk in closed form (render/disk_light_frame.hpp), each crossing between the radii
+  /// seen as g^redshift_power eps(r), by image order (channels intensity, intensity_n0 .. intensity_n3_up; R, G, B
+  /// a picture of the intensity); --metric kerr (Boyer-Lindquist) or schwarzschild, on the CPU.
+  std::optional<DiskLightRequest> disk_light;
+  double redshift_power = 3.0;  ///< --redshift-power p (disk light): the observed intensity is g^p eps(r)
   CameraRequest camera;
   MethodRequest method;
   double sky_radius = 400.0;               ///< rays beyond it have escaped; the camera must be inside it
@@ -130,6 +145,10 @@ struct RenderRequest {
   bool mirrors = true;                     ///< trace half or a quarter of a mirror-symmetric frame and reflect the rest
   bool error_map = false;  ///< add the "error" channel against the exact directions (schwarzschild, minkowski)
 };
+
+/// True for the frames that show light (an emitting medium's, a disk drawn by its light: intensity channels, no
+/// sky): their angles and device follow from that.
+bool draws_light(const RenderRequest& request);
 
 /// A request as checked: the device chosen (cpu or cuda), the observer and the disk's edge filled in, the scene
 /// built (texture read), the settings the tracer takes, and the camera. What FrameRenderer and RayTracer are made
@@ -194,6 +213,10 @@ struct RenderReport {
   std::optional<double> flux;
   /// A medium in physical units (riaf): the flux at the telescope in janskys and a pixel's width there.
   std::optional<double> flux_jy, microarcseconds_per_pixel;
+  /// A disk drawn by its light: the flux of each order (n = 0, 1, 2, >= 3; they sum to `flux`), and the pixels whose
+  /// ray the closed form does not follow (dark: render/disk_light_frame.hpp).
+  std::optional<std::array<double, 4>> flux_by_order;
+  long uncovered_rays = 0;
 };
 
 /// One entry of a report as the JSON line and the Python dict give it.
@@ -209,7 +232,7 @@ struct ReportEntry {
 std::vector<ReportEntry> report_entries(const RenderReport& report, const CheckedRequest& request);
 
 struct RenderResult {
-  Image image;  ///< channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps (+ error)
+  Image image;  ///< channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps, order (+ error)
   RenderReport report;
 };
 
@@ -440,11 +463,8 @@ struct DistantDisk {
   std::optional<double> disk_inner;   ///< nothing: 6 M, or for kerr the ISCO of the disk's sense (as for frames)
   double disk_outer = 20.0;
   bool disk_retrograde = false;
-  bool transparent = false;       ///< --disk-transparent: every crossing inside the radii shines (else the first only)
-  double emissivity_index = 3.0;  ///< --emissivity-index q: eps ~ r^-q
-  std::optional<double> emissivity_index_outer;  ///< --emissivity-index-outer: beyond --emissivity-break
-  std::optional<double> emissivity_break;        ///< --emissivity-break (M)
-  int threads = 0;                               ///< OpenMP threads (0: all cores)
+  DiskLightRequest light;  ///< transparency and emissivity
+  int threads = 0;         ///< OpenMP threads (0: all cores)
 };
 
 /// A thin disk's line profile (spectra/line_profile.hpp): the flux per energy bin that a distant observer receives
@@ -484,12 +504,12 @@ struct RingImageRequest {
   int width = 512, height = 512;      ///< --width, --height
   double field = 8.0;                 ///< --ring-field: the image's half width (M)
   int cuts = 0;                       ///< --ring-cuts: radial cuts for the rings (0: a pixel apart at 6 M)
-  double redshift_power = 3.0;        ///< --ring-redshift-power p: the observed intensity is g^p eps(r)
+  double redshift_power = 3.0;        ///< --redshift-power p: the observed intensity is g^p eps(r)
   std::optional<std::string> source;  ///< --source m87 | sgr-a: the rings' sizes in microarcseconds too
 };
 
 /// The options --rings reads: a distant disk's (as --spectrum line), --width, --height, --ring-field, --ring-cuts,
-/// --ring-redshift-power, --source. Any other option given is refused (RequestError saying what to change).
+/// --redshift-power, --source. Any other option given is refused (RequestError saying what to change).
 RingImageRequest read_ring_image_request(const OptionSource& options);
 
 struct RingImageResult {

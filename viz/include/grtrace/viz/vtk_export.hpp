@@ -25,7 +25,7 @@
 // Frame (frame_to_imagedata): W x H x 1 points, spacing 1, origin 0; point (i, j) is pixel (i, H - 1 - j)
 // (VTK images grow upwards, frames are stored from the top), with point data "rgb" (uint8 x 3, the viewer's
 // preview colours, active scalars) and every channel of the rendered grtrace::Image as a float array of the
-// same name (R, G, B linear radiance, object, status, redshift, sky_theta, sky_phi, steps). The image lives in
+// same name (R, G, B linear radiance, object, status, redshift, sky_theta, sky_phi, steps, order). The image lives in
 // pixel units: show it in its own (2D) render view in ParaView.
 //
 // Flight (flight_to_export_polydata): a camera flight's path (observer/worldline.hpp worldline_path: one sample per frame) as

@@ -400,7 +400,8 @@ TEST(KerrDiskLight, OpaqueFrameIsTheClosedFormTracersDiskAndTransparentAddsTheOr
         const std::size_t i = a.index(col, row);
         const RayOutcome o = closed.trace(cam.pixel_state(col, row));
         const PixelSample p = a.sample(col, row);
-        if (p.status == RayStatus::max_steps) continue;  // not followed in closed form (vortical): the tracer falls back
+        // Not followed in closed form (vortical rays): the tracer falls back to an integration there.
+        if (p.status == RayStatus::max_steps) continue;
         // Both follow the same closed form, but decide the disk's edges on radii computed apart (a hair).
         if (o.object != p.object) {
           const double r = o.object == kFirstSceneObject ? o.radius : disk.r_in;
@@ -432,9 +433,10 @@ TEST(KerrDiskLight, OpaqueFrameIsTheClosedFormTracersDiskAndTransparentAddsTheOr
         EXPECT_EQ(b.channel(kDiskLightOrderChannels[first])[i] >= got, true);
         if (b.channel("intensity")[i] > got) ++behind;
       }
-    std::printf("%s: %d disk pixels (%d of order >= 1), %d edge pixels, %ld not followed; worst g^3 eps %.1e; "
-                "transparent adds light at %d\n",
-                describe(c).c_str(), hits, rings, edges, opaque.uncovered, worst, behind);
+    std::printf(
+        "%s: %d disk pixels (%d of order >= 1), %d edge pixels, %ld not followed; worst g^3 eps %.1e; "
+        "transparent adds light at %d\n",
+        describe(c).c_str(), hits, rings, edges, opaque.uncovered, worst, behind);
     EXPECT_GT(hits, 50) << describe(c);
     EXPECT_LE(edges, pixels * pixels / 400) << describe(c);
     behind_all += behind;

@@ -315,9 +315,10 @@ void check_medium_request(const RenderRequest& q) {
 /// the CPU, an emissivity and a redshift power that make sense; no error map (no sky is shown).
 void check_disk_light_request(const RenderRequest& q) {
   if (q.metric.name != "kerr" && q.metric.name != "schwarzschild")
-    throw RequestError("--disk-light follows the disk's rays in closed form (Kerr's): use --metric kerr or "
-                       "schwarzschild, got --metric " +
-                       q.metric.name);
+    throw RequestError(
+        "--disk-light follows the disk's rays in closed form (Kerr's): use --metric kerr or "
+        "schwarzschild, got --metric " +
+        q.metric.name);
   if (q.metric.name == "kerr" && q.metric.chart != "bl")
     throw RequestError("--disk-light traces Kerr in Boyer-Lindquist coordinates: leave --chart out or use bl");
   if (q.tracer != "auto" && q.tracer != "kerr-closed-form")
@@ -325,8 +326,9 @@ void check_disk_light_request(const RenderRequest& q) {
                        " cannot draw a disk by its light (--disk-light: every ray in closed form); use auto or "
                        "kerr-closed-form");
   if (q.error_map)
-    throw RequestError("--error-map judges where escaped rays point; a disk drawn by its light shows no sky: leave "
-                       "--error-map out");
+    throw RequestError(
+        "--error-map judges where escaped rays point; a disk drawn by its light shows no sky: leave "
+        "--error-map out");
   if (!(std::abs(q.redshift_power) <= 10.0))
     throw RequestError("--redshift-power must lie in [-10, 10], got " + shortest_number_text(q.redshift_power));
   (void)disk_emissivity(*q.disk_light, "--disk-light");

@@ -201,8 +201,8 @@ constexpr std::array<const char*, 3> kRingImageOptions = {"rings", "ring-field",
 constexpr std::array<const char*, 4> kDiskLightOptions = {"emissivity-index", "emissivity-index-outer",
                                                           "emissivity-break", "disk-transparent"};
 /// The options that describe a frame and say nothing of a disk drawn by its light (every ray in closed form).
-constexpr std::array<const char*, 10> kNotForDiskLight = {"tableau", "control", "step",   "rtol",        "atol",
-                                                          "max-steps", "table-rays", "angle-correction",
+constexpr std::array<const char*, 10> kNotForDiskLight = {"tableau",     "control",   "step",       "rtol",
+                                                          "atol",        "max-steps", "table-rays", "angle-correction",
                                                           "sky-texture", "error-map"};
 
 DiskLightRequest read_disk_light(const OptionSource& s) {
@@ -255,7 +255,8 @@ LineProfileRequest read_line_profile_request(const OptionSource& s) {
     throw RequestError("--spectrum must be line (the disk's line profile), got '" + text_of(s, "spectrum") + "'");
   if (s.given("rings"))
     throw RequestError("--spectrum line and --rings are two commands: give one (a spectrum or a ring image)");
-  refuse_unless(s, "redshift-power", false, "--rings or --disk-light (a line profile's flux is g^4 eps: the line's energy)");
+  refuse_unless(s, "redshift-power", false,
+                "--rings or --disk-light (a line profile's flux is g^4 eps: the line's energy)");
   refuse_unless(s, "disk-light", false, "--scene disk frames (a line profile is not a frame)");
   LineProfileRequest q;
   q.disk = read_distant_disk(s, "--spectrum line", {kLineProfileOptions.begin(), kLineProfileOptions.end()});

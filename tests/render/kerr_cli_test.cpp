@@ -507,8 +507,9 @@ TEST_F(KerrCli, RingImageIsTheLibrarysAndRefusesFrameOptions) {
 // shines; the options it has no use for, and the light's options without it, refused before any work.
 TEST_F(KerrCli, DiskDrawnByItsLightSplitsItsIntensityByOrder) {
   const fs::path exr = out("light.exr");
-  const std::vector<std::string> base = {"--scene", "disk", "--metric", "kerr", "--spin", "0.9", "--camera-r", "60",
-                                         "--camera-theta", "80", "--fov", "35", "--width", "40", "--height", "30"};
+  const std::vector<std::string> base = {"--scene",    "disk", "--metric",       "kerr", "--spin", "0.9",
+                                         "--camera-r", "60",   "--camera-theta", "80",   "--fov",  "35",
+                                         "--width",    "40",   "--height",       "30"};
   std::vector<std::string> args = base;
   for (const std::string& a :
        std::vector<std::string>{"--disk-transparent", "--emissivity-index", "2.5", "--out", exr.string()})
@@ -530,7 +531,7 @@ TEST_F(KerrCli, DiskDrawnByItsLightSplitsItsIntensityByOrder) {
   double flux_sum = 0.0;
   for (const char* k : keys) flux_sum += grtrace::tool_tests::json_number(r.out, k);
   const double flux = grtrace::tool_tests::json_number(r.out, "flux");
-  EXPECT_NEAR(flux_sum, flux, 1e-8 * flux);  // the JSON line's digits
+  EXPECT_NEAR(flux_sum, flux, 1e-8 * flux);                            // the JSON line's digits
   EXPECT_GT(grtrace::tool_tests::json_number(r.out, "flux_n1"), 0.0);  // the first ring, seen through the disk
   for (const auto& entry : fs::directory_iterator(base_ / "out")) fs::remove(entry.path());
 

@@ -166,8 +166,7 @@ TEST(KerrMino, DrawsTheSameDiskFrameAsTheGeneralTracer) {
         // the sky (a captured ray's order counts the crossings before the tracer's horizon guard, which Kerr-Schild,
         // a chart through the horizon, puts inside it: it may cross the plane once more on the way).
         for (const RayOutcome* g : {&at(bl, col, row), &at(ref, col, row)})
-          if (!is_failure(g->status) && g->object == m.object && m.status != RayStatus::captured &&
-              g->order != m.order)
+          if (!is_failure(g->status) && g->object == m.object && m.status != RayStatus::captured && g->order != m.order)
             ++order_differs;
         if (m.status == RayStatus::hit && m.order >= 1) ++ring_hits;
         ASSERT_FALSE(is_failure(m.status)) << "pixel " << col << ", " << row << ": " << to_string(m.status);
@@ -198,10 +197,10 @@ TEST(KerrMino, DrawsTheSameDiskFrameAsTheGeneralTracer) {
     EXPECT_LT(redshift_err, 1e-7);
     EXPECT_LT(sky_err, 1e-6);
     EXPECT_EQ(order_differs, 0);
-    std::printf("  [%s] %d hits (%d of order >= 1), %d sky pixels, %d silhouette mismatches; max rel. radius %.2e, "
-                "redshift %.2e, sky %.2e rad; off by more than 1e-7: Boyer-Lindquist at %d pixels, Kerr-Schild at %d\n",
-                describe(c).c_str(), hits, ring_hits, sky, silhouettes, radius_err, redshift_err, sky_err, bl_worse,
-                ks_worse);
+    std::printf(
+        "  [%s] %d hits (%d of order >= 1), %d sky pixels, %d silhouette mismatches; max rel. radius %.2e, "
+        "redshift %.2e, sky %.2e rad; off by more than 1e-7: Boyer-Lindquist at %d pixels, Kerr-Schild at %d\n",
+        describe(c).c_str(), hits, ring_hits, sky, silhouettes, radius_err, redshift_err, sky_err, bl_worse, ks_worse);
   }
 }
 

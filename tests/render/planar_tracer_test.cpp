@@ -384,10 +384,11 @@ Comparison compare_frames(const Planar& planar, const General& general, const Ca
 }
 
 void expect_agreement(const Comparison& c, long fallbacks, long fallback_bound, const std::string& what) {
-  std::printf("%s: hits %d (%d of order >= 1) sky %d horizon %d silhouettes %d fallbacks %ld | worst r %.2e g %.2e "
-              "sky %.2e\n",
-              what.c_str(), c.hits, c.ring_hits, c.skies, c.horizons, c.silhouettes, fallbacks, c.worst_r, c.worst_g,
-              c.worst_sky);
+  std::printf(
+      "%s: hits %d (%d of order >= 1) sky %d horizon %d silhouettes %d fallbacks %ld | worst r %.2e g %.2e "
+      "sky %.2e\n",
+      what.c_str(), c.hits, c.ring_hits, c.skies, c.horizons, c.silhouettes, fallbacks, c.worst_r, c.worst_g,
+      c.worst_sky);
   EXPECT_EQ(c.order_differs, 0);
   EXPECT_GT(c.hits, 20);
   EXPECT_GT(c.skies, 20);

@@ -10,7 +10,8 @@
 // Takes:   a Camera (observer/camera.hpp) and any SceneTracer (trace/scene_tracer_concept.hpp); RenderOptions
 //          (threads, tiles, progress: render/parallel_render.hpp); optionally a vector to receive every pixel's
 //          sky direction in double precision (the channels are float), e.g. for error maps.
-// Returns: the Image (channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps, order) and its RenderStats.
+// Returns: the Image (channels R, G, B, object, status, redshift, sky_theta, sky_phi, steps, order) and its
+//          RenderStats.
 //          Metadata written: tracer, mirrors (the reflections used: render/mirror_symmetry.hpp; a frame whose
 //          metric, scene and camera are mirror symmetric traces only half or a quarter of its pixels, see
 //          RenderStats::traced_rays; RenderOptions::mirror_symmetry = false traces every pixel),

@@ -83,7 +83,6 @@ struct TraceResult {
   int crossings = -1;
 };
 
-
 /// Optional: how many interior points of each step an event samples (to catch a surface entered and left
 /// within one step). Events declare `static constexpr int interior_samples = n;`; default 0.
 template <class E>

@@ -90,7 +90,8 @@ inline double first_equator_crossing(const PlanarGeometry& g) {
   if (!(std::hypot(nz, tz) > 1e-12)) return std::numeric_limits<double>::quiet_NaN();
   double psi = std::atan2(tz, nz) + 0.5 * pi;
   psi -= pi * static_cast<double>(floor_to_long(psi / pi));  // the first zero in [0, pi)
-  if (psi <= 0.0 || (std::abs(nz) <= kOnEquatorialPlane && psi < 0.5 * pi)) psi += pi;  // the start is no crossing
+  // The start itself is no crossing, nor is a zero within round-off of it (a camera in the plane).
+  if (psi <= 0.0 || (std::abs(nz) <= kOnEquatorialPlane && psi < 0.5 * pi)) psi += pi;
   return psi;
 }
 

@@ -91,12 +91,13 @@ DiskEmissivity disk_emissivity(const DiskLightRequest& q, const std::string& wha
   return emissivity;
 }
 
+/// The light in words, for headers and reports (after disk_emissivity has checked it).
 std::string describe_disk_light(const DiskLightRequest& q) {
-  const DiskEmissivity e = disk_emissivity(q, "");
   return std::string(q.transparent ? "transparent" : "opaque") + ", emissivity r^-" +
-         shortest_number_text(e.index_inner) +
+         shortest_number_text(q.emissivity_index) +
          (q.emissivity_break ? " inside " + shortest_number_text(*q.emissivity_break) + " M, r^-" +
-                                   shortest_number_text(e.index_outer) + " beyond"
+                                   shortest_number_text(q.emissivity_index_outer.value_or(q.emissivity_index)) +
+                                   " beyond"
                              : "");
 }
 
@@ -772,8 +773,9 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
     counts.emplace_back(std::string(kRayStatusNames[i]), r.stats.status_counts[i]);
   add("status_counts", counts);
   if (!is_medium_scene(q.scene)) {  // the pixels that show an object, by the order of its image
-    const auto& o = r.stats.hits_by_order;
-    add("hits_by_order", ReportEntry::Counts{{"n0", o[0]}, {"n1", o[1]}, {"n2", o[2]}, {"n3_up", o[3]}});
+    ReportEntry::Counts by_order;
+    for (std::size_t n = 0; n < kOrderNames.size(); ++n) by_order.emplace_back(kOrderNames[n], r.stats.hits_by_order[n]);
+    add("hits_by_order", by_order);
   }
   add("tracer", r.tracer);
   add("tableau", q.method.tableau);

@@ -32,7 +32,6 @@
 #include "grtrace/spectra/disk_mesh.hpp"
 
 #include <array>
-#include <atomic>
 #include <string>
 
 namespace grtrace {
@@ -48,7 +47,7 @@ concept DiskRays = requires(const Rays& rays, const GeodesicState& y) {
 
 struct DiskLightFrame {
   Frame frame;
-  long uncovered = 0;  ///< pixels whose ray the map does not follow (dark, status max_steps)
+  long uncovered = 0;  ///< pixels whose ray the map does not follow (dark: the frame's max_steps count)
 };
 
 template <DiskRays Rays>
@@ -59,7 +58,6 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
   float* const total = image.add_channel("intensity").data();
   std::array<float*, kDiskLightOrderChannels.size()> by_order{};
   for (std::size_t c = 0; c < by_order.size(); ++c) by_order[c] = image.add_channel(kDiskLightOrderChannels[c]).data();
-  std::atomic<long> uncovered{0};
   const int orders = std::min(light.orders, DiskRaySample::kOrders);
   out.frame.stats = render_image(
       image,
@@ -67,8 +65,7 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
         const DiskRaySample ray = rays.sample(camera.pixel_state(x, y));
         const std::size_t i = image.index(x, y);
         PixelSample s;
-        if (!ray.covered) {
-          uncovered.fetch_add(1, std::memory_order_relaxed);
+        if (!ray.covered) {  // counted by the loop as max_steps
           s.status = RayStatus::max_steps;
           s.rgb = {0.0f, 0.0f, 0.0f};
           return s;
@@ -102,7 +99,7 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
       },
       options);
   shade_intensity(image, exponent);
-  out.uncovered = uncovered.load();
+  out.uncovered = out.frame.stats.count(RayStatus::max_steps);
   image.metadata["disk_transparent"] = light.transparent ? "true" : "false";
   image.metadata["redshift_power"] = exact_number(light.redshift_power);
   image.metadata["uncovered_rays"] = std::to_string(out.uncovered);

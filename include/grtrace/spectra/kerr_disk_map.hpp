@@ -135,9 +135,6 @@ class KerrDiskMap {
   /// only rays the closed form leaves are vortical (eta <= 0), which never reach the plane.
   DiskRaySample sample(double alpha, double beta) const { return rays_.sample(ray(alpha, beta)); }
 
-  /// g of the disk's gas on its circular orbit at r, for a ray of lowered momentum k_low.
-  double redshift(double r, const Vec4& k_low) const { return rays_.redshift(r, k_low); }
-
  private:
   KerrDiskRays rays_;
   Vec4 x0_;

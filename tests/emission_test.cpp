@@ -1,10 +1,14 @@
 // The light of an emitting medium collected along a ray (trace/emission_system.hpp) against exact answers:
 // a uniform sphere in flat space (the chord times j, and the source function where it is optically thick), and the
 // spherically accreting Schwarzschild hole of Narayan, Johnson & Gammie (2019) (medium/spherical_accretion.hpp,
-// gas at rest and in free fall) against an independent quadrature along the exact ray, in long double.
+// gas at rest and in free fall) against an independent quadrature along the exact ray, in long double; and the
+// light split by image order: a thin glowing layer on a Kerr hole's equator against its crossings in closed form.
 #include "grtrace/medium/emitting_medium.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
+#include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
+#include "grtrace/observer/observers.hpp"
+#include "grtrace/spectra/kerr_disk_map.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/tableau/verner65.hpp"
 #include "grtrace/trace/emission_system.hpp"
@@ -15,6 +19,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <vector>
 
 namespace {
 
@@ -224,6 +229,91 @@ TEST(Emission, TheIntensityConvergesWithTheTolerance) {
     EXPECT_LT(fine, 1e-7);
     EXPECT_LT(fine, coarse / 100.0) << coarse << " -> " << fine;
   }
+}
+
+/// A thin glowing layer on a Kerr hole's equator: j = eps(r) / (2 h) within the proper height h of the plane
+/// (r |pi/2 - theta| < h: its boundary), eps = ((r - r_in) (r_out - r) / r^2)^2 between the radii (going to 0
+/// smoothly at both), the gas on prograde Keplerian circles (inside r_in, where eps = 0: the ZAMO's frame).
+/// Optically thin. As h -> 0 a ray collects at each crossing of the plane eps / (2 h) times its path through the
+/// layer in the gas's frame, 2 h / mu (mu the cosine of its angle to the normal there): the intensity g^3 eps / mu.
+struct GlowingLayer {
+  static constexpr std::string_view kind = "glowing-layer";
+  double h, r_in, r_out;
+  double outer_radius() const { return r_out; }
+  double eps(double r) const {
+    if (!(r > r_in && r < r_out)) return 0.0;
+    const double q = (r - r_in) * (r_out - r) / (r * r);
+    return q * q;
+  }
+  double boundary(const KerrMetric&, const Vec4& x) const { return x[1] * std::abs(0.5 * std::numbers::pi - x[2]) - h; }
+  MediumCoefficients coefficients(const KerrMetric&, const Vec4& x, double) const { return {eps(x[1]) / (2.0 * h), 0.0}; }
+  Vec4 fluid_velocity(const KerrMetric& m, const Vec4& x) const {
+    const Mat4 g = m.metric(x);
+    if (!(x[1] > r_in)) return *zamo_velocity(g);
+    // Bardeen, Press & Teukolsky (1972): prograde Omega = sqrt(M) / (r^(3/2) + a sqrt(M)).
+    const double sqrt_m = std::sqrt(m.mass);
+    const Vec4 u(1.0, 0.0, 0.0, sqrt_m / (x[1] * std::sqrt(x[1]) + m.spin * sqrt_m));
+    return u / std::sqrt(u.dot(g * u));
+  }
+};
+
+TEST(Emission, AThinGlowingLayersLightByOrderIsEachCrossingsInClosedForm) {
+  // Rays of a distant camera across the hole (beta fixed), out to the disk's edge and densely about the shadow's
+  // edges, where the orders n = 1, 2, 3 are: each piece of the split against sum over the crossings of that order of
+  // g^3 eps / mu, mu = g sqrt(Q) / r (the ray's momentum along the plane's normal, |k_theta| / r = sqrt(Q) / r at the
+  // plane, over its energy in the gas's frame, 1 / g in the units of a camera's pixel), from the closed form's
+  // radius and redshift (KerrDiskRays). A split at the crossings themselves would put half of each image in the
+  // next order.
+  const KerrMetric metric{1.0, 0.9};
+  const GlowingLayer layer{2e-4, 2.5, 14.0};
+  const double r_o = 300.0, sky = 3000.0, beta = 0.7;
+  const KerrDiskMap screen(metric, r_o, 75.0 * std::numbers::pi / 180.0, layer.r_in, layer.r_out);
+  const KerrDiskRays rays(metric, layer.r_in, layer.r_out, +1, sky);
+  const TraceSettings s = settings(1e-12, sky);
+  std::vector<double> alphas;
+  for (int i = 0; i <= 80; ++i) alphas.push_back(-16.0 + 0.4 * i);
+  for (const double side : {-1.0, 1.0}) {  // the shadow's edge on this side: where the ray stops escaping
+    double in = 0.0, out = 16.0 * side;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (in + out);
+      (screen.sample(mid, beta).escaped ? out : in) = mid;
+    }
+    for (int i = 0; i <= 24; ++i) alphas.push_back(out + side * 0.3 * std::pow(1e-5, i / 24.0));
+  }
+  std::array<int, 4> seen{};  // rays whose piece of that order is lit
+  double worst = 0.0;
+  for (const double alpha : alphas) {
+    const GeodesicState y0 = screen.ray(alpha, beta);
+    const DiskRaySample d = rays.sample(y0);
+    ASSERT_TRUE(d.covered);
+    const Vec4 x = y0.head<4>(), k_low = metric.metric(x) * y0.tail<4>();
+    const double c = std::cos(x[2]), s2 = std::sin(x[2]) * std::sin(x[2]);
+    const double carter =
+        k_low[2] * k_low[2] + c * c * (-metric.spin * metric.spin * k_low[0] * k_low[0] + k_low[3] * k_low[3] / s2);
+    std::array<double, 4> ref{};
+    for (std::size_t n = 0; n < DiskRaySample::kOrders; ++n) {
+      if (d.where[n] != DiskRaySample::on_disk) continue;
+      const double g = d.redshift[n], r = d.radius[n];
+      ref[std::min<std::size_t>(n, 3)] += g * g * layer.eps(r) * r / std::sqrt(carter);
+    }
+    const EmissionResult e = trace_emission<Fehlberg78, IController>(metric, layer, s, y0, 1.0, 1.0);
+    SCOPED_TRACE(::testing::Message() << "alpha = " << alpha);
+    ASSERT_EQ(e.trace.status, d.escaped ? RayStatus::escaped : RayStatus::captured);
+    const double total = ref[0] + ref[1] + ref[2] + ref[3];
+    double sum = 0.0;
+    for (std::size_t n = 0; n < 4; ++n) {
+      sum += e.intensity_by_order[n];
+      EXPECT_NEAR(e.intensity_by_order[n], ref[n], 2e-4 * total) << "order " << n;
+      if (total > 0.0) worst = std::max(worst, std::abs(e.intensity_by_order[n] - ref[n]) / total);
+      if (ref[n] > 1e-3 * total) ++seen[n];
+    }
+    EXPECT_NEAR(sum, e.intensity, 1e-14 * e.intensity);
+  }
+  std::printf("thin layer by order: worst error %.2e of a ray's light; rays lit by n = 0..3: %d %d %d %d\n", worst,
+              seen[0], seen[1], seen[2], seen[3]);
+  EXPECT_GT(seen[1], 20);  // the test sees the rings it is about
+  EXPECT_GT(seen[2], 10);
+  EXPECT_GT(seen[3], 10);
 }
 
 }  // namespace

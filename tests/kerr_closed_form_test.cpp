@@ -414,7 +414,7 @@ TEST(KerrDiskLight, OpaqueFrameIsTheClosedFormTracersDiskAndTransparentAddsTheOr
         // Every order's channel sums to the total, in the frame's own float additions.
         for (const Image* im : {&a, &b}) {
           float sum = 0.0f;
-          for (const char* name : kDiskLightOrderChannels) sum += im->channel(name)[i];
+          for (const char* name : kOrderIntensityChannels) sum += im->channel(name)[i];
           EXPECT_EQ(sum, im->channel("intensity")[i]);
         }
         if (o.status != RayStatus::hit) {
@@ -424,13 +424,13 @@ TEST(KerrDiskLight, OpaqueFrameIsTheClosedFormTracersDiskAndTransparentAddsTheOr
         ++hits;
         if (o.order >= 1) ++rings;
         const double expected = std::pow(o.redshift, 3.0) * std::pow(o.radius, -3.0);
-        const float got = a.channel(kDiskLightOrderChannels[static_cast<std::size_t>(std::min(o.order, 3))])[i];
+        const float got = a.channel(kOrderIntensityChannels[static_cast<std::size_t>(std::min(o.order, 3))])[i];
         worst = std::max(worst, std::abs(static_cast<double>(got) / expected - 1.0));
         EXPECT_NEAR(got, expected, 1e-6 * expected) << describe(c) << " pixel " << col << "," << row;
         EXPECT_EQ(got, a.channel("intensity")[i]) << "an opaque disk shows one order";
         // A transparent disk shows the same first image and adds what lies behind it, never less.
         const auto first = static_cast<std::size_t>(std::min(o.order, 3));
-        EXPECT_EQ(b.channel(kDiskLightOrderChannels[first])[i] >= got, true);
+        EXPECT_EQ(b.channel(kOrderIntensityChannels[first])[i] >= got, true);
         if (b.channel("intensity")[i] > got) ++behind;
       }
     std::printf(

@@ -232,7 +232,7 @@ TEST(RingImage, PixelsHoldEachOrdersFlux) {
     const Camera camera = make_camera(kerr(0.9), cs);
     const KerrDiskRays rays(kerr(0.9), 2.321, 30.0, +1, 1e8);
     const DiskLightFrame frame = render_disk_light_frame(camera, rays, light);
-    const std::array<double, 4> flux = disk_light_flux(camera, frame.frame.image);
+    const std::array<double, 4> flux = flux_by_order(camera, frame.frame.image);
     std::printf("  a camera's frame, %d x %d: %.6e %.6e %.6e %.6e (%ld rays not followed)\n", cs.width, cs.height,
                 flux[0] * 1e14, flux[1] * 1e14, flux[2] * 1e14, flux[3] * 1e14, frame.uncovered);
     // Measured: n = 0 1e-4, n = 1 4e-4, n = 2 1.2e-2 (at 640 x 480: 2.4e-3, 1.0e-2, 0.18).

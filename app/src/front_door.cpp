@@ -458,8 +458,10 @@ CheckedRequest check_request(const RenderRequest& in) {
   {  // the image's memory, before anything is allocated: the channels (+ error channel and double directions with
      // the error map) and the 8-bit previews
     const double pixels = static_cast<double>(c.width) * static_cast<double>(c.height);
-    // + the light's channels: a medium's intensity and optical depth, a disk's intensity and its four orders
-    const std::size_t light_channels = medium ? 2 : draws_light(q) ? 1 + kDiskLightOrderChannels.size() : 0;
+    // + the light's channels: a medium's intensity and optical depth (and its four orders where split: counted
+    // always), a disk's intensity and its four orders
+    const std::size_t orders = kOrderIntensityChannels.size();
+    const std::size_t light_channels = medium ? 2 + orders : draws_light(q) ? 1 + orders : 0;
     const double channels =
         static_cast<double>(Image::kStandardChannels.size() + light_channels + (q.error_map ? 1 : 0));
     const double bytes = image_bytes(static_cast<double>(c.width), static_cast<double>(c.height), channels) +

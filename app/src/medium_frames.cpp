@@ -7,6 +7,7 @@
 //     pixel integrated, geometric units;
 //   --scene riaf: RiafFlow (medium/riaf.hpp) around Kerr in Boyer-Lindquist coordinates, every pixel integrated,
 //     its intensity in cgs, its flux in janskys and its pixel in microarcseconds at the source's distance.
+// Every pixel integrated splits the intensity by image order (the table does not: trace/medium_tracers.hpp);
 // and the frames of the thin disk drawn by its light (--scene disk --disk-light: render/disk_light_frame.hpp, every
 // ray's crossings in closed form), whose intensity is split by image order.
 #include "frame_tracers.hpp"
@@ -60,6 +61,7 @@ class MediumFrameRenderer final : public FrameRenderer {
     if constexpr (requires { tracer_.fallback_rays(); })
       facts.tracer.fallback_rays = tracer_.fallback_rays() - fallbacks_before;
     facts.flux = medium_frame_flux(camera(), frame.image);
+    if constexpr (splits_by_order<Tracer>()) facts.flux_by_order = flux_by_order(camera(), frame.image);
     if (scale_) {  // physical units: the camera far away (check_request), its angles scaled by r / D
       const double r_cam = checked_.request.camera.r;
       facts.flux_jy = scale_->janskys(*facts.flux, r_cam);
@@ -104,7 +106,7 @@ class DiskLightRenderer final : public FrameRenderer {
     DiskLightFrame f = render_disk_light_frame(camera(), rays_, light_, options);
     facts.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     facts.tracer.name = "kerr-closed-form";
-    facts.flux_by_order = disk_light_flux(camera(), f.frame.image);
+    facts.flux_by_order = flux_by_order(camera(), f.frame.image);
     facts.flux = medium_frame_flux(camera(), f.frame.image);
     facts.uncovered_rays = f.uncovered;
     return finish_render(checked_, std::move(f.frame), facts, setup_seconds_, {});

@@ -566,7 +566,7 @@ TEST(AppLayer, ADiskDrawnByItsLightIsTheLibrarysDiskLightFrame) {
     ASSERT_EQ(a.size(), b.size()) << c;
     for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << c << " " << i;
   }
-  const std::array<double, 4> flux = disk_light_flux(checked.camera, library.frame.image);
+  const std::array<double, 4> flux = flux_by_order(checked.camera, library.frame.image);
   ASSERT_TRUE(r.report.flux_by_order);
   for (std::size_t n = 0; n < 4; ++n) EXPECT_EQ((*r.report.flux_by_order)[n], flux[n]) << n;
   EXPECT_GT(flux[1], 0.0);

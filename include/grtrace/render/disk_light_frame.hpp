@@ -17,7 +17,8 @@
 //                                                   the sky (escaped) or the horizon (captured), which are not
 //                                                   drawn (order -1, redshift and sky direction NaN)
 //            R, G, B                                the intensity in the hot-gas map (render/medium_frame.hpp)
-//          and the statistics; the frame's flux per order is disk_light_flux below.
+//          and the statistics; the frame's flux per order is flux_by_order
+//          (render/medium_frame.hpp).
 // Pixels whose ray the map does not follow (DiskRaySample::covered false; KerrDiskRays: vortical rays, which never
 // reach the plane, and rays from a camera inside their potential barrier) are dark, counted in the returned
 // `uncovered` and marked status max_steps (a failure the loop counts, in the frame's status map), never NaN.
@@ -36,10 +37,6 @@
 
 namespace grtrace {
 
-/// The channels of the orders n = 0, 1, 2 and >= 3, in that order.
-inline constexpr std::array<const char*, 4> kDiskLightOrderChannels = {"intensity_n0", "intensity_n1", "intensity_n2",
-                                                                       "intensity_n3_up"};
-
 template <class Rays>
 concept DiskRays = requires(const Rays& rays, const GeodesicState& y) {
   { rays.sample(y) } -> std::same_as<DiskRaySample>;
@@ -56,8 +53,8 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
   DiskLightFrame out{Frame{Image(camera.width(), camera.height()), {}}, 0};
   Image& image = out.frame.image;
   float* const total = image.add_channel("intensity").data();
-  std::array<float*, kDiskLightOrderChannels.size()> by_order{};
-  for (std::size_t c = 0; c < by_order.size(); ++c) by_order[c] = image.add_channel(kDiskLightOrderChannels[c]).data();
+  std::array<float*, kOrderIntensityChannels.size()> by_order{};
+  for (std::size_t c = 0; c < by_order.size(); ++c) by_order[c] = image.add_channel(kOrderIntensityChannels[c]).data();
   const int orders = std::min(light.orders, DiskRaySample::kOrders);
   out.frame.stats = render_image(
       image,
@@ -70,7 +67,7 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
           s.rgb = {0.0f, 0.0f, 0.0f};
           return s;
         }
-        std::array<double, kDiskLightOrderChannels.size()> light_of{};
+        std::array<double, kOrderIntensityChannels.size()> light_of{};
         bool lit = false;  // an opaque disk has stopped the ray
         for (int n = 0; n < DiskRaySample::kOrders && !lit; ++n) {
           const auto k = static_cast<std::size_t>(n);
@@ -104,13 +101,6 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
   image.metadata["redshift_power"] = exact_number(light.redshift_power);
   image.metadata["uncovered_rays"] = std::to_string(out.uncovered);
   return out;
-}
-
-/// The flux of each order channel (n = 0, 1, 2, >= 3) in the camera's sky: medium_frame_flux of each.
-inline std::array<double, 4> disk_light_flux(const Camera& camera, const Image& image) {
-  std::array<double, 4> flux{};
-  for (std::size_t c = 0; c < flux.size(); ++c) flux[c] = medium_frame_flux(camera, image, kDiskLightOrderChannels[c]);
-  return flux;
 }
 
 }  // namespace grtrace

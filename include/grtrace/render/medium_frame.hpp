@@ -8,7 +8,11 @@
 //            intensity       I_nu at nu_obs (the medium's units times a length: geometric, per the tracer's frequency)
 //            optical_depth   tau along the ray
 //            redshift        the emission-weighted g = nu_obs / nu_fluid of the light (NaN where there is none)
-//            status, steps   as every frame's (object: 0 escaped, 1 captured; sky direction NaN)
+//            intensity_n0, _n1, _n2, _n3_up   by image order (trace/emission_system.hpp), where the tracer splits
+//                            it (splits_by_order: the general tracer); `intensity` is then their sum, the same
+//                            float additions
+//            status, steps   as every frame's (object: 0 escaped, 1 captured; sky direction NaN), and order (the
+//                            ray's crossings of the equatorial plane, where the tracer counts them)
 //            R, G, B         the intensity over the frame's brightest pixel, raised to `exponent` (1: linear, as
 //                            the EHT shows images; 1/2 lifts the faint gas), in a black-red-yellow-white map
 //          and in its metadata the peak intensity the picture is scaled to ("intensity_peak").
@@ -22,10 +26,15 @@
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
 namespace grtrace {
+
+/// The channels of the intensity by image order n = 0, 1, 2 and >= 3, in that order (a medium's and a disk's light).
+inline constexpr std::array<const char*, 4> kOrderIntensityChannels = {"intensity_n0", "intensity_n1", "intensity_n2",
+                                                                       "intensity_n3_up"};
 
 /// Colours R, G, B from the image's "intensity" channel (see the top of this file); records intensity_peak.
 inline void shade_intensity(Image& image, double exponent = 1.0) {
@@ -75,12 +84,24 @@ inline double medium_frame_flux(const Camera& camera, const Image& image, const 
   return flux;
 }
 
+/// The flux of each order channel (kOrderIntensityChannels) in the camera's sky: medium_frame_flux of each.
+inline std::array<double, 4> flux_by_order(const Camera& camera, const Image& image) {
+  std::array<double, 4> flux{};
+  for (std::size_t c = 0; c < flux.size(); ++c) flux[c] = medium_frame_flux(camera, image, kOrderIntensityChannels[c]);
+  return flux;
+}
+
 template <class Tracer>
 Frame render_medium_frame(const Camera& camera, const Tracer& tracer, const RenderOptions& options = {},
                           double exponent = 1.0) {
   Frame frame{Image(camera.width(), camera.height()), {}};
   float* const intensity = frame.image.add_channel("intensity").data();
   float* const depth = frame.image.add_channel("optical_depth").data();
+  constexpr bool by_order = splits_by_order<Tracer>();
+  std::array<float*, kOrderIntensityChannels.size()> order_light{};
+  if constexpr (by_order)
+    for (std::size_t c = 0; c < order_light.size(); ++c)
+      order_light[c] = frame.image.add_channel(kOrderIntensityChannels[c]).data();
   const Image& image = frame.image;
   frame.stats = render_image(
       frame.image,
@@ -88,11 +109,20 @@ Frame render_medium_frame(const Camera& camera, const Tracer& tracer, const Rend
         const MediumSample m = tracer.trace(camera.pixel_state(x, y));
         const std::size_t i = image.index(x, y);
         intensity[i] = static_cast<float>(m.intensity);
+        if constexpr (by_order) {
+          float sum = 0.0f;
+          for (std::size_t c = 0; c < order_light.size(); ++c) {
+            order_light[c][i] = static_cast<float>(m.intensity_by_order[c]);
+            sum += order_light[c][i];
+          }
+          intensity[i] = sum;
+        }
         depth[i] = static_cast<float>(m.optical_depth);
         PixelSample s;
         s.status = m.status;
         s.object = m.status == RayStatus::captured ? 1 : 0;
         s.steps = m.steps;
+        s.order = m.order;
         s.redshift = static_cast<float>(m.redshift);
         return s;
       },

@@ -27,6 +27,15 @@
 //          whose transmission e^-tau falls below min_transmission (default 1e-16: nothing behind it can show) ends
 //          there, as RayStatus::hit (EmissionResult::opaque); with alpha = 0, sigma = 1 and the parameter is the
 //          affine one.
+// By order: the light is also split by the order n of the image it belongs to (EmissionResult::intensity_by_order:
+//          n = 0, 1, 2, >= 3). A thin disk's n-th image is where the ray crosses the equatorial plane the (n+1)-th
+//          time; a ray through glowing matter is cut, from the camera backwards, at the first polar turning point
+//          after each crossing (where it stops moving away from the plane: the latitude's rate changes sign), so
+//          that piece n holds the (n+1)-th crossing and the gas around it, whatever side of the plane. The limit of
+//          a thin glowing layer is then the thin disk's split; cutting at the crossings themselves would split each
+//          image of a layer in two. The cut is located on the step's dense output, its intensity read off the
+//          step map (as a surface's hit); a ray over a spherical chart's pole (re-charted there) is cut where it
+//          is re-charted, at the end of that step. The pieces sum to the intensity up to rounding.
 // Assumes: the ray starts at the camera (tau = 0, I = 0 there); the horizon, the sky sphere and the settings end
 //          it as they end any ray (trace/geodesic_tracer.hpp).
 #pragma once
@@ -42,6 +51,7 @@
 #include "grtrace/trace/geodesic_tracer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -106,6 +116,16 @@ struct EmissionSystem {
   GRTRACE_HD double constraint_violation(const State& z) const { return ray.constraint_violation(head(z)); }
   GRTRACE_HD double constraint_drift(const State& z) const { return ray.constraint_drift(head(z)); }
   GRTRACE_HD double equatorial_latitude(const State& z) const { return ray.equatorial_latitude(head(z)); }
+  /// The rate of equatorial_latitude along the ray's k (positive: moving north), of which the split by order uses
+  /// the sign.
+  GRTRACE_HD double equatorial_latitude_rate(const State& z) const {
+    if constexpr (Metric::chart == Chart::spherical) {
+      return -z[6];
+    } else {  // z / |x|: (k_z |x|^2 - z (x . k)) / |x|^3
+      const double r2 = z[1] * z[1] + z[2] * z[2] + z[3] * z[3], xk = z[1] * z[5] + z[2] * z[6] + z[3] * z[7];
+      return (z[7] * r2 - z[3] * xk) / (r2 * std::sqrt(r2));
+    }
+  }
   /// The ray's re-charting at a spherical chart's axis, and its move onto the axis (MetricGeodesicSystem); the
   /// light's slots are kept.
   GRTRACE_HD bool wrap_chart(State& z) const {
@@ -126,6 +146,10 @@ struct EmissionSystem {
 };
 
 namespace detail {
+/// A boundary crossing within this step fraction of a step's start is the boundary the step started on (see
+/// end_step_on_boundary).
+inline constexpr double kOnItsStart = 1e-9;
+
 /// An observer of the tracing loop that keeps the fraction of the last step it was shown (1, or where a surface
 /// ended the ray).
 struct StepFraction {
@@ -142,59 +166,185 @@ concept MediumWithBoundary = requires(const Medium m, const Metric g, const Vec4
   { m.boundary(g, x) } -> std::convertible_to<double>;
 };
 
+/// Golden section on [a, b] towards the largest value of a unimodal f, stopping at the first probe that `found`
+/// accepts: returns its step fraction and f there, or nothing once the bracket is 1e-12 wide.
+template <class F, class Found>
+Optional<EventCrossing> golden_search(const F& f, double a, double b, const Found& found) {
+  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = a, hi = b, t1 = hi - golden * (hi - lo), t2 = lo + golden * (hi - lo), f1 = f(t1), f2 = f(t2);
+  for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
+    if (found(f1)) return EventCrossing{t1, f1};
+    if (found(f2)) return EventCrossing{t2, f2};
+    if (f1 > f2) {
+      hi = t2;
+      t2 = t1;
+      f2 = f1;
+      t1 = hi - golden * (hi - lo);
+      f1 = f(t1);
+    } else {
+      lo = t1;
+      t1 = t2;
+      f1 = f2;
+      t2 = lo + golden * (hi - lo);
+      f2 = f(t2);
+    }
+  }
+  return no_value;
+}
+
+/// Where a step first crosses a boundary g (> 0 on the side it starts on; its step fraction t -> g): bracketed by
+/// g at the step's ends and four points inside, then located (locate_first_crossing). A layer thinner than the
+/// step is found too: where no sample lies across the boundary but g dips (its smallest sample is inside the step,
+/// or at an end it falls away from), the dip's lowest point by golden section; and a step that starts on the
+/// boundary and is across it at the first sample is searched for the point in between where it was still on its
+/// side (leaving the layer it just entered). Without these, a glowing layer 1e-3 M thick on the equator went
+/// unseen by rays whose steps there were a few M long.
+template <class G>
+Optional<EventCrossing> locate_first_entry(const G& g, double g0, double g1) {
+  constexpr int kPieces = 5;
+  constexpr double kPiece = 1.0 / kPieces;
+  // Where g's slope at an end is read: close enough that a layer a thousandth of the step wide starts beyond it.
+  constexpr double kSlopeProbe = 1e-6;
+  std::array<double, kPieces + 1> v{};
+  v[0] = g0;
+  v[kPieces] = g1;
+  for (int j = 1; j < kPieces; ++j) v[static_cast<std::size_t>(j)] = g(j * kPiece);
+  // The crossing located between two samples a < b (g(a) > 0, g(b) <= 0 or not finite).
+  const auto between = [&](double a, double ga, double b, double gb) {
+    const auto c = locate_first_crossing([&](double t) { return g(a + t * (b - a)); }, ga, gb);
+    return EventCrossing{a + c->theta * (b - a), c->value};
+  };
+  for (int j = 1; j <= kPieces; ++j) {
+    const double gb = v[static_cast<std::size_t>(j)];
+    if (gb > 0.0) continue;
+    const EventCrossing c = between((j - 1) * kPiece, v[static_cast<std::size_t>(j - 1)], j * kPiece, gb);
+    if (j == 1 && !(c.theta > kOnItsStart))
+      if (const auto on_side = golden_search(g, 0.0, kPiece, [](double x) { return x > 0.0; }))
+        return between(on_side->theta, on_side->value, kPiece, gb);
+    return c;
+  }
+  const auto lowest = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
+  double a = (lowest - 1) * kPiece, b = (lowest + 1) * kPiece;
+  if (lowest == 0) {  // g falls away from the start?
+    if (!(g(kSlopeProbe) < g0)) return no_value;
+    a = 0.0;
+  } else if (lowest == kPieces) {  // g rises towards the end?
+    if (!(g(1.0 - kSlopeProbe) < g1)) return no_value;
+    b = 1.0;
+  }
+  const double ga = v[static_cast<std::size_t>(std::max(lowest - 1, 0))];
+  const auto across = golden_search([&](double t) { return -g(t); }, a, b, [](double minus_g) { return !(minus_g < 0.0); });
+  if (!across) return no_value;
+  return between(a, ga, across->theta, -across->value);
+}
+
 /// Ends a step where it crossed the medium's boundary (a hard edge, a torus's surface), so that no step is
 /// integrated across it: there j and alpha jump or kink, and an error estimate that assumes a smooth solution does
 /// not see the error (a hard edge: 1 % of the intensity; a torus's surface where rho ~ depth^3: 6e-5 at rtol 1e-9).
 /// Each step is integrated with the light of the side it starts on (EmissionSystem::boundary_side: none outside,
 /// the medium's coefficients continued smoothly inside), so the step is smooth; the crossing is bracketed on its
-/// dense output (its ends and four points inside: a layer entered and left within one step is found too), refined
+/// dense output (locate_first_entry: a layer entered and left within one step is found too), refined
 /// on the step map (refine_located), and the integration resumed there on the other side, the step size to come
-/// unchanged. Takes the integrator right after an accepted step, the side it was on and whether the step was a
-/// retake (below); returns the side the integration goes on from.
+/// unchanged. Takes the integrator right after an accepted step, the side it was on (the variable the system reads:
+/// EmissionSystem::boundary_side) and whether the step was a retake (below); sets the side the integration goes on
+/// from, and `kept`, the fraction of the step that stands (1 whole, 0 taken again, else where it was cut).
 template <class Medium, class Metric, class System, class Integrator>
-int end_step_on_boundary(const Medium& medium, const Metric& metric, const System& system, Integrator& integ,
-                         int side, bool& retaken) {
-  if (!(integ.last_step() != 0.0)) return side;
+void end_step_on_boundary(const Medium& medium, const Metric& metric, const System& system, Integrator& integ,
+                          int& side, bool& retaken, double& kept) {
+  kept = 1.0;
+  if (!(integ.last_step() != 0.0)) return;
   const double sign = side > 0 ? 1.0 : -1.0;  // g > 0: still on the step's side
   const auto g_state = [&](const typename System::State& z) {
     return sign * medium.boundary(metric, Vec4(z.template head<4>()));
   };
   const auto g_dense = [&](double t) { return g_state(integ.dense(t)); };
+  // The integration goes on from z on the other side: the derivative there is that side's (the system reads
+  // `side`), and the next step's first stage is that derivative.
+  const auto resume_across = [&](const typename System::State& z, double lambda) {
+    side = -side;
+    auto counters = integ.counters();
+    counters.lambda = lambda;
+    integ.resume_at(z, integ.evaluate(system, z), counters);
+  };
   // A step that starts on the boundary (after a cut) starts on its own side, whatever the rounding there says.
   const double g0 = std::max(g_state(integ.dense(0.0)), std::numeric_limits<double>::min());
   const double g1 = g_state(integ.state());
-  const auto c = locate_first_crossing(g_dense, g0, g1, 4);
+  const auto c = locate_first_entry(g_dense, g0, g1);
   if (!c) {
     retaken = false;
-    return side;
+    return;
   }
-  // A crossing within 1e-9 of the step's start is the boundary it started on: after a cut, or where a ray grazes
+  // A crossing within kOnItsStart of the step's start is the boundary it started on: after a cut, or where a ray grazes
   // the surface along its tangent (cutting there again and again would never move on). The step stays whole; it
   // goes on from the side its end is on.
-  if (!(c->theta > 1e-9)) {
-    if (!(g1 < 0.0)) return side;
+  if (!(c->theta > kOnItsStart)) {
+    if (!(g1 < 0.0)) return;
     // The whole step lies on the other side (it left the boundary the other way): taken again from its start with
     // that side's light, once (a ray exactly along the surface would otherwise turn back and forth there).
-    side = -side;
     if (!retaken) {
-      const typename System::State z0 = integ.dense(0.0);
-      auto counters = integ.counters();
-      counters.lambda = integ.previous_lambda();
-      integ.resume_at(z0, integ.evaluate(system, z0), counters);
+      kept = 0.0;
+      resume_across(integ.dense(0.0), integ.previous_lambda());
       retaken = true;
-      return side;
+      return;
     }
+    side = -side;
+    return;
   }
   retaken = false;
-  if (!(c->theta > 1e-9)) return side;
-  if (c->theta >= 1.0 - 1e-12) return -side;  // the step ends on it
+  if (c->theta >= 1.0 - 1e-12) {  // the step ends on it
+    resume_across(integ.state(), integ.lambda());
+    return;
+  }
   const auto [theta, z] = refine_located(integ, system, g_dense, g_state, *c, true);
-  auto counters = integ.counters();
-  counters.lambda = integ.previous_lambda() + theta * integ.last_step();
-  side = -side;  // before the derivative at z is taken: it is the other side's
-  integ.resume_at(z, integ.evaluate(system, z), counters);
-  return side;
+  kept = theta;
+  resume_across(z, integ.previous_lambda() + theta * integ.last_step());
 }
+
+/// Splits a ray's light by image order (see the top of this file), fed after every accepted step.
+class OrderSplit {
+ public:
+  struct Cut {
+    double theta;      ///< the step fraction of the polar turning point
+    double intensity;  ///< the intensity there
+  };
+
+  /// Where the light of the current order ends in the last accepted step of integ, of which the part [0, theta_hi]
+  /// stands (1: all of it; less: a surface ended the ray there), given the crossings of the plane counted up to
+  /// theta_hi: nothing while the ray has not crossed the plane once more or still moves away from it.
+  template <class System, class Integrator>
+  GRTRACE_HD Optional<Cut> find(const System& system, Integrator& integ, int crossings, double theta_hi) const {
+    constexpr int kI = System::kIntensity;
+    if (crossings <= order_) return no_value;
+    if (!(integ.last_step() != 0.0)) return Cut{1.0, integ.state()[kI]};  // re-charted at the pole: cut there
+    const typename System::State z_hi = theta_hi == 1.0 ? integ.state() : integ.dense(theta_hi);
+    const double side = system.equatorial_latitude(z_hi) < 0.0 ? -1.0 : 1.0;
+    const auto away = [&](double t) { return side * system.equatorial_latitude_rate(integ.dense(t * theta_hi)); };
+    const double away_hi = side * system.equatorial_latitude_rate(z_hi);
+    if (away_hi > 0.0) return no_value;  // the turning point is ahead
+    const auto c = locate_first_crossing(away, away(0.0), away_hi);
+    const double theta = c ? c->theta * theta_hi : theta_hi;
+    if (!(theta > 0.0)) return Cut{0.0, integ.previous_state()[kI]};
+    return Cut{theta, integ.step_from_previous(system, theta)[kI]};
+  }
+
+  /// The current order's light ends at the intensity `at` (a cut find() returned).
+  GRTRACE_HD void take(double at) {
+    pieces_[static_cast<std::size_t>(std::min(order_, 3))] += at - start_;
+    start_ = at;
+    ++order_;
+  }
+
+  /// The pieces, the last one ending at the ray's end, where the intensity is `end`.
+  GRTRACE_HD std::array<double, 4> finish(double end) {
+    take(end);
+    return pieces_;
+  }
+
+ private:
+  int order_ = 0;       ///< of the light being collected
+  double start_ = 0.0;  ///< the intensity where it began
+  std::array<double, 4> pieces_{};
+};
 }  // namespace detail
 
 /// What trace_emission returns: the ray's trace, and the light it collected (see the top of this file).
@@ -204,6 +354,8 @@ struct EmissionResult {
   double optical_depth = 0.0;  ///< tau from the camera to the ray's end
   double redshift = std::numeric_limits<double>::quiet_NaN();  ///< emission-weighted g (NaN: no light)
   bool opaque = false;         ///< the transmission fell below min_transmission: the ray ended in the medium
+  /// The intensity by image order n = 0, 1, 2, >= 3 (see the top of this file); sums to `intensity` up to rounding.
+  std::array<double, 4> intensity_by_order{};
 };
 
 /// The transmission e^-tau below which a ray through a medium ends where no value is named (see the top of this
@@ -239,18 +391,30 @@ EmissionResult trace_emission(const Metric& metric, const Medium& medium, const 
   // surface cut the last step, that step taken again to the cut (the step map, as accurate as the integration; the
   // interpolant of a long last step towards the sky sphere was 5e-7 off at rtol 1e-10).
   detail::StepFraction observer;
+  detail::OrderSplit split;
   const double tau_stop = -std::log(min_transmission);
   for (;;) {
     if (integ.accepted() >= settings.max_steps) {
       out.trace = loop.out_of_steps(integ, progress);
       break;
     }
+    const typename Loop::Progress before = progress;
     if (auto ended = loop.step(integ, progress, observer)) {
       out.trace = *ended;
       break;
     }
-    if constexpr (detail::MediumWithBoundary<Medium, Metric>)
-      side = detail::end_step_on_boundary(medium, metric, system, integ, side, retaken);
+    // The turning point that ends an order, found on the whole step, stands only where the step does.
+    const auto cut = split.find(system, integ, progress.crossings, 1.0);
+    double kept = 1.0;
+    if constexpr (detail::MediumWithBoundary<Medium, Metric>) {
+      detail::end_step_on_boundary(medium, metric, system, integ, side, retaken, kept);
+      if (kept < 1.0) {  // resumed inside the step: its crossings of the plane are counted from there on
+        progress.crossings = before.crossings;
+        progress.latitude_prev = before.latitude_prev;
+        loop.note_latitude(integ.state(), progress);
+      }
+    }
+    if (cut && cut->theta <= kept) split.take(cut->intensity);
     if (integ.state()[System::kOpticalDepth] > tau_stop) {  // opaque: nothing behind this point can show
       // The loop's end of a ray at its last accepted point (with its constraint check), as hit: no surface of the
       // scene (hit_event -1), the medium itself.
@@ -263,6 +427,9 @@ EmissionResult trace_emission(const Metric& metric, const Medium& medium, const 
   const typename System::State end =
       observer.theta_end == 1.0 ? integ.state() : integ.step_from_previous(system, observer.theta_end);
   out.intensity = end[System::kIntensity];
+  if (observer.theta_end < 1.0)  // a surface ended the ray in its last step: a turning point before it
+    if (const auto cut = split.find(system, integ, out.trace.crossings, observer.theta_end)) split.take(cut->intensity);
+  out.intensity_by_order = split.finish(out.intensity);
   out.optical_depth = end[System::kOpticalDepth];
   if (out.intensity > 0.0) out.redshift = end[System::kRedshiftWeight] / out.intensity;
   return out;

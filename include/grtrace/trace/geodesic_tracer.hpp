@@ -324,6 +324,23 @@ class TraceLoop {
     return finish(RayStatus::max_steps, integ.state(), integ.lambda(), integ, p);
   }
 
+  /// The system's optional equatorial_latitude (trace/geodesic_system.hpp): a change of side since the last
+  /// accepted point off the plane is a crossing. A step crosses the plane at most once where it matters: a second
+  /// crossing takes half an orbit, far longer than the steps near the hole, and a ray far away is a straight line.
+  static constexpr bool counts_crossings = requires(const System s, const State z) {
+    { s.equatorial_latitude(z) } -> std::convertible_to<double>;
+  };
+  /// Moves p's count of crossings on to the accepted point z (step() does it; a caller that resumes the
+  /// integration inside the last step, trace/emission_system.hpp, counts from its progress before the step).
+  GRTRACE_HD void note_latitude(const State& z, Progress& p) const {
+    if constexpr (counts_crossings) {
+      const double latitude = system_.equatorial_latitude(z);
+      if (!(std::abs(latitude) > kOnEquatorialPlane)) return;
+      if (latitude * p.latitude_prev < 0.0) ++p.crossings;
+      p.latitude_prev = latitude;
+    }
+  }
+
   /// For a step taken outside run() (a batched lane) from an accepted point with progress p to the accepted point
   /// z: true when run() would do nothing after it but go on (no surface to locate, no constraint check that fails,
   /// no change of the guard or the chart); p then moves on to z exactly as run() would move it. False leaves p
@@ -383,20 +400,6 @@ class TraceLoop {
   GRTRACE_HD bool violated(const State& z) const {
     const double guard = settings_.constraint_tolerance;
     return guard > 0.0 && system_.constraint_violation(z) > guard;
-  }
-  // The system's optional equatorial_latitude (trace/geodesic_system.hpp): a change of side since the last
-  // accepted point off the plane is a crossing. A step crosses the plane at most once where it matters: a second
-  // crossing takes half an orbit, far longer than the steps near the hole, and a ray far away is a straight line.
-  static constexpr bool counts_crossings = requires(const System s, const State z) {
-    { s.equatorial_latitude(z) } -> std::convertible_to<double>;
-  };
-  GRTRACE_HD void note_latitude(const State& z, Progress& p) const {
-    if constexpr (counts_crossings) {
-      const double latitude = system_.equatorial_latitude(z);
-      if (!(std::abs(latitude) > kOnEquatorialPlane)) return;
-      if (latitude * p.latitude_prev < 0.0) ++p.crossings;
-      p.latitude_prev = latitude;
-    }
   }
   // The result of a ray that ends at z (event: the surface that ended it, for status hit).
   GRTRACE_GPU_CALLED GRTRACE_HD TraceResult finish(RayStatus status, const State& z, double lambda,

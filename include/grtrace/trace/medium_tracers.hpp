@@ -6,7 +6,11 @@
 // Takes:   the metric, the medium, trace settings (tolerances, sky radius, horizon guard), the camera (its
 //          4-velocity: the photon's energy E_cam it measures) and the observed frequency nu_obs.
 // Returns: per pixel a MediumSample: the ray's status, the intensity I_nu(nu_obs) at the camera, the optical depth
-//          along the ray, the accepted steps.
+//          along the ray, the accepted steps; from the general tracer also the intensity by image order and the
+//          ray's order (trace/emission_system.hpp). The table's rays lie in the equatorial plane, so they cannot
+//          say where a pixel's ray, in a plane of its own, crosses it or turns: the table tracer does not split by
+//          order (a spherically symmetric scene has no plane of its own either; the general tracer splits it by
+//          the chart's).
 //
 // Why one table serves a spherical medium (SphericalMediumTracer): the ray, the fluid along it and so the light it
 // collects depend only on the ray's angle delta to the outward radial in the static frame at the camera
@@ -35,6 +39,7 @@
 #include "grtrace/trace/planar_scene_tracer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -58,13 +63,25 @@ struct MediumSample {
   double optical_depth = 0.0;  ///< tau along the ray, from the camera to its end
   int steps = 0;               ///< accepted steps (the table tracer: the nearest table ray's)
   double redshift = std::numeric_limits<double>::quiet_NaN();  ///< emission-weighted g = nu_obs / nu_fluid
+  /// The intensity by image order n = 0, 1, 2, >= 3 (EmissionResult's), where the tracer splits it (its
+  /// `splits_by_order`); zero otherwise.
+  std::array<double, 4> intensity_by_order{};
+  int order = -1;  ///< the ray's crossings of the equatorial plane (RayOutcome::order); -1: not counted
 };
+
+/// Whether a medium tracer's samples carry the intensity by order (a `static constexpr bool splits_by_order`).
+template <class Tracer>
+constexpr bool splits_by_order() {
+  if constexpr (requires { Tracer::splits_by_order; }) return Tracer::splits_by_order;
+  else return false;
+}
 
 /// Every pixel's ray integrated with its light (trace_emission), seen by the camera's 4-velocity.
 template <MetricPolicy Metric, ExplicitTableau T, StepController C, class Medium>
 class GeneralMediumTracer {
  public:
   static constexpr const char* name = "general";
+  static constexpr bool splits_by_order = true;
 
   GeneralMediumTracer(Metric metric, Medium medium, const TraceSettings& settings, const Vec4& camera_velocity,
                       double frequency, C controller = {})
@@ -80,7 +97,8 @@ class GeneralMediumTracer {
   MediumSample trace(const GeodesicState& y0) const {
     const EmissionResult r =
         trace_emission_seen_by<T>(metric_, medium_, settings_, y0, velocity_, frequency_, controller_);
-    return {r.trace.status, r.intensity, r.optical_depth, r.trace.accepted, r.redshift};
+    return {r.trace.status,  r.intensity,          r.optical_depth, r.trace.accepted,
+            r.redshift,      r.intensity_by_order, r.trace.crossings};
   }
 
   const Metric& metric() const { return metric_; }
@@ -244,6 +262,7 @@ class SphericalMediumTracer {
 
  public:
   static constexpr const char* name = "planar";
+  static constexpr bool splits_by_order = false;  ///< its table's rays do not know a pixel's plane (see the top)
 
   /// Builds the table for the camera's pixels at nu_obs. Assumes (checked by the table) horizon guard < camera
   /// radius < sky radius, and the camera's chart is the metric's spherical one.

@@ -213,8 +213,9 @@ struct RenderReport {
   std::optional<double> flux;
   /// A medium in physical units (riaf): the flux at the telescope in janskys and a pixel's width there.
   std::optional<double> flux_jy, microarcseconds_per_pixel;
-  /// A disk drawn by its light: the flux of each order (n = 0, 1, 2, >= 3; they sum to `flux`), and the pixels whose
-  /// ray the closed form does not follow (dark: render/disk_light_frame.hpp).
+  /// A disk drawn by its light, or a medium whose every pixel is integrated (not the accreting gas's table): the
+  /// flux of each image order (n = 0, 1, 2, >= 3; they sum to `flux`); a disk's pixels whose ray the closed form
+  /// does not follow (dark: render/disk_light_frame.hpp).
   std::optional<std::array<double, 4>> flux_by_order;
   long uncovered_rays = 0;
 };

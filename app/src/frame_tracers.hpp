@@ -99,7 +99,7 @@ struct FrameFacts {
   std::optional<double> flux;  ///< an emitting medium's frame: the intensity summed over the pixels' solid angles
   std::optional<double> flux_jy, microarcseconds_per_pixel;  ///< the same in physical units (riaf)
   std::optional<std::array<double, 4>> flux_by_order;  ///< a disk drawn by its light, a medium integrated: n = 0, 1, 2, >= 3
-  long uncovered_rays = 0;                                   ///< its pixels not followed in closed form
+  std::optional<long> uncovered_rays;                        ///< a disk drawn by its light: pixels not followed
 };
 
 /// The render loop's options of a request and a control (threads, mirrors, progress, cancel).

@@ -649,8 +649,8 @@ void record_report(Image& image, const RenderReport& r) {
   if (r.flux_by_order) {
     for (std::size_t n = 0; n < r.flux_by_order->size(); ++n)
       m[std::string("flux_") + kOrderNames[n]] = exact_number((*r.flux_by_order)[n]);
-    m["uncovered_rays"] = std::to_string(r.uncovered_rays);
   }
+  if (r.uncovered_rays) m["uncovered_rays"] = std::to_string(*r.uncovered_rays);
   if (r.error) {
     m["error_max"] = exact_number(r.error->max);
     m["error_median"] = exact_number(r.error->median);
@@ -807,8 +807,10 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
   if (r.flux_by_order) {
     for (std::size_t n = 0; n < r.flux_by_order->size(); ++n)
       add(std::string("flux_") + kOrderNames[n], (*r.flux_by_order)[n]);
-    add("uncovered_rays", r.uncovered_rays);
-    add("disk", std::string(q.disk_light && q.disk_light->transparent ? "transparent" : "opaque"));
+  }
+  if (q.disk_light) {
+    add("uncovered_rays", r.uncovered_rays.value_or(0));
+    add("disk", std::string(q.disk_light->transparent ? "transparent" : "opaque"));
   }
   if (r.tracer == "planar") {
     add("table_rays", r.table_rays);

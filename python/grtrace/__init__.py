@@ -193,7 +193,10 @@ def render(*, progress: Union[None, bool, ProgressCallback] = None, **options: A
     ``fov``, ``width``, ``height``), the method (``tableau``, ``control``, ``rtol``, ``atol``, ``step``,
     ``max_steps``), ``tracer``, ``device`` (auto, cpu, cuda: chosen as grtrace-render chooses), ``threads`` and the
     rest; the disk drawn by its light with ``disk_light=True`` or ``disk_transparent=True`` (channels intensity and
-    intensity_n0 .. intensity_n3_up by image order; ``emissivity_index``, ``redshift_power``). ``progress``: True draws a bar on stderr; a callable gets (pixels done, pixels in all) every 20 ms.
+    intensity_n0 .. intensity_n3_up by image order; ``emissivity_index``, ``redshift_power``); a medium
+    (``scene``: accretion, riaf, torus) whose every pixel is integrated also splits its intensity by image order
+    (the same channels; the report's flux_n0 .. flux_n3_up). ``progress``: True draws a bar on stderr; a callable
+    gets (pixels done, pixels in all) every 20 ms.
 
     Raises ValueError (the tool's message) for a bad keyword or value, before any work; KeyboardInterrupt when
     interrupted (Ctrl-C), within a tile's time, leaving nothing behind.

@@ -1,5 +1,6 @@
 """The example notebook runs (nbclient, small frames), draws its figures and its fit recovers the spin and the
-inclination; it is its plain script's cells; and the script runs without Jupyter."""
+inclination; it is its plain script's cells; and the script runs without Jupyter. The torus-by-order script runs
+and its fluxes by order sum to the total."""
 
 import os
 import pathlib
@@ -59,3 +60,16 @@ def test_the_script_runs_without_jupyter(tmp_path):
     assert abs(spin - true_spin) < 0.02 and abs(theta - true_theta) < 0.5
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "kerr_disk_fit.png", "kerr_disk_frame.png", "kerr_disk_rays.png"]
+
+
+def test_the_torus_by_order_script_draws_its_orders(tmp_path):
+    done = subprocess.run([sys.executable, str(EXAMPLES / "torus_orders.py")], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=600, env=dict(os.environ, GRTRACE_EXAMPLE_SIZE="32"))
+    assert done.returncode == 0, done.stderr
+    m = re.search(r"flux ([-0-9.e+]+), by order n0 ([-0-9.e+]+) .*n1 ([-0-9.e+]+) .*n2 ([-0-9.e+]+) .*n3_up "
+                  r"([-0-9.e+]+)", done.stdout)
+    assert m, done.stdout
+    total, *orders = [float(v) for v in m.groups()]
+    assert sum(orders) == pytest.approx(total, rel=1e-3)  # four printed digits each
+    assert orders[0] > orders[1] > 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["torus_orders.png"]

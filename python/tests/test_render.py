@@ -121,6 +121,15 @@ def test_a_riaf_frame_is_the_tools_in_physical_units(run_tool):
     assert frame.report["microarcseconds_per_pixel"] == pytest.approx(4.84 * 1000 * 2 * np.tan(np.radians(1.15)) / 11,
                                                                       rel=1e-3)
     assert tool.header["source"] == "sgr-a" and tool.header["medium"] == "riaf"
+    # Its light by image order: the tool's channels, summing to the intensity, and the same fluxes by order.
+    total = np.zeros_like(frame["intensity"])
+    for n in ("n0", "n1", "n2", "n3_up"):
+        assert np.array_equal(bits(frame["intensity_" + n]), bits(tool["intensity_" + n])), n
+        total += frame["intensity_" + n]
+        assert frame.report["flux_" + n] == line["flux_" + n] == float(tool.header["flux_" + n])
+    assert np.array_equal(total, frame["intensity"])
+    assert line["flux_n0"] > line["flux_n1"] > 0
+    assert sum(line["flux_" + n] for n in ("n0", "n1", "n2", "n3_up")) == pytest.approx(line["flux"], rel=1e-6)
 
 
 def test_channels_are_views_of_the_frames_memory():

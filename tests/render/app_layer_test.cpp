@@ -672,15 +672,34 @@ TEST(AppLayer, ATorusFrameIsTheLibrarysGeneralTracersFrame) {
   const PolishDoughnut<KerrMetric> torus(metric, 6.0, 10.0, 3.0, 1.0, 0.5);
   const GeneralMediumTracer<KerrMetric, Fehlberg78, IController, PolishDoughnut<KerrMetric>> tracer(
       metric, torus, checked.settings, checked.camera.tetrad().e[0], 1.0);
+  // Its light split by image order (trace/emission_system.hpp): each order's channel the tracer's piece, the
+  // intensity their sum (the same float additions) and the tracer's intensity up to that rounding, the order
+  // channel the ray's crossings; the report's flux by order sums to its flux.
   const auto& intensity = r.image.channel("intensity");
+  const auto& order = r.image.channel("order");
   double lit = 0.0;
   for (int y = 0; y < 12; ++y)
     for (int x = 0; x < 12; ++x) {
       const MediumSample s = tracer.trace(checked.camera.pixel_state(x, y));
-      EXPECT_EQ(intensity[r.image.index(x, y)], static_cast<float>(s.intensity));
+      const std::size_t i = r.image.index(x, y);
+      float sum = 0.0f;
+      for (std::size_t n = 0; n < kOrderIntensityChannels.size(); ++n) {
+        const float piece = r.image.channel(kOrderIntensityChannels[n])[i];
+        EXPECT_EQ(piece, static_cast<float>(s.intensity_by_order[n]));
+        sum += piece;
+      }
+      EXPECT_EQ(intensity[i], sum);
+      EXPECT_NEAR(intensity[i], s.intensity, 1e-6 * s.intensity);
+      EXPECT_EQ(order[i], static_cast<float>(s.order));
       lit += s.intensity > 0.0 ? 1.0 : 0.0;
     }
   EXPECT_GT(lit, 10.0);  // the torus is in the frame
+  ASSERT_TRUE(r.report.flux_by_order.has_value());
+  const std::array<double, 4>& by_order = *r.report.flux_by_order;
+  EXPECT_NEAR(by_order[0] + by_order[1] + by_order[2] + by_order[3], *r.report.flux, 1e-6 * *r.report.flux);
+  std::printf("torus flux by order: %.4g %.4g %.4g %.4g\n", by_order[0], by_order[1], by_order[2], by_order[3]);
+  EXPECT_GT(by_order[0], by_order[1]);  // the photon ring is fainter than the direct image, and lit
+  EXPECT_GT(by_order[1], 0.0);
   EXPECT_EQ(r.image.metadata.at("medium"), "polish-doughnut");
   EXPECT_NEAR(std::stod(r.image.metadata.at("torus_outer")), torus.outer_radius(), 1e-9);
   EXPECT_GT(*r.report.flux, 0.0);

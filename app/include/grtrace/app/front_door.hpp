@@ -217,7 +217,7 @@ struct RenderReport {
   /// flux of each image order (n = 0, 1, 2, >= 3; they sum to `flux`); a disk's pixels whose ray the closed form
   /// does not follow (dark: render/disk_light_frame.hpp).
   std::optional<std::array<double, 4>> flux_by_order;
-  long uncovered_rays = 0;
+  std::optional<long> uncovered_rays;
 };
 
 /// One entry of a report as the JSON line and the Python dict give it.

@@ -246,7 +246,9 @@ struct GlowingLayer {
     return q * q;
   }
   double boundary(const KerrMetric&, const Vec4& x) const { return x[1] * std::abs(0.5 * std::numbers::pi - x[2]) - h; }
-  MediumCoefficients coefficients(const KerrMetric&, const Vec4& x, double) const { return {eps(x[1]) / (2.0 * h), 0.0}; }
+  MediumCoefficients coefficients(const KerrMetric&, const Vec4& x, double) const {
+    return {eps(x[1]) / (2.0 * h), 0.0};
+  }
   Vec4 fluid_velocity(const KerrMetric& m, const Vec4& x) const {
     const Mat4 g = m.metric(x);
     if (!(x[1] > r_in)) return *zamo_velocity(g);

@@ -98,7 +98,7 @@ struct FrameFacts {
   double trace_seconds = 0.0;  ///< the wall time of the frame's tracing and shading
   std::optional<double> flux;  ///< an emitting medium's frame: the intensity summed over the pixels' solid angles
   std::optional<double> flux_jy, microarcseconds_per_pixel;  ///< the same in physical units (riaf)
-  std::optional<std::array<double, 4>> flux_by_order;  ///< a disk drawn by its light, a medium integrated: n = 0, 1, 2, >= 3
+  std::optional<std::array<double, 4>> flux_by_order;        ///< n = 0, 1, 2, >= 3: a disk's light, a medium's
   std::optional<long> uncovered_rays;                        ///< a disk drawn by its light: pixels not followed
 };
 

@@ -35,7 +35,8 @@
 //          a thin glowing layer is then the thin disk's split; cutting at the crossings themselves would split each
 //          image of a layer in two. The cut is located on the step's dense output, its intensity read off the
 //          step map (as a surface's hit); a ray over a spherical chart's pole (re-charted there) is cut where it
-//          is re-charted, at the end of that step. The pieces sum to the intensity up to rounding.
+//          is re-charted, at the end of that step. The pieces sum to the intensity up to rounding (and, where a
+//          cut's intensity lies above the ray's end by the integration's error, that error: no piece is negative).
 // Assumes: the ray starts at the camera (tau = 0, I = 0 there); the horizon, the sky sphere and the settings end
 //          it as they end any ray (trace/geodesic_tracer.hpp).
 #pragma once
@@ -233,7 +234,8 @@ Optional<EventCrossing> locate_first_entry(const G& g, double g0, double g1) {
     b = 1.0;
   }
   const double ga = v[static_cast<std::size_t>(std::max(lowest - 1, 0))];
-  const auto across = golden_search([&](double t) { return -g(t); }, a, b, [](double minus_g) { return !(minus_g < 0.0); });
+  const auto across =
+      golden_search([&](double t) { return -g(t); }, a, b, [](double minus_g) { return !(minus_g < 0.0); });
   if (!across) return no_value;
   return between(a, ga, across->theta, -across->value);
 }
@@ -274,9 +276,9 @@ void end_step_on_boundary(const Medium& medium, const Metric& metric, const Syst
     retaken = false;
     return;
   }
-  // A crossing within kOnItsStart of the step's start is the boundary it started on: after a cut, or where a ray grazes
-  // the surface along its tangent (cutting there again and again would never move on). The step stays whole; it
-  // goes on from the side its end is on.
+  // A crossing within kOnItsStart of the step's start is the boundary it started on: after a cut, or where a ray
+  // grazes the surface along its tangent (cutting there again and again would never move on). The step stays whole;
+  // it goes on from the side its end is on.
   if (!(c->theta > kOnItsStart)) {
     if (!(g1 < 0.0)) return;
     // The whole step lies on the other side (it left the boundary the other way): taken again from its start with
@@ -327,10 +329,12 @@ class OrderSplit {
     return Cut{theta, integ.step_from_previous(system, theta)[kI]};
   }
 
-  /// The current order's light ends at the intensity `at` (a cut find() returned).
+  /// The current order's light ends at the intensity `at` (a cut find() returned). A piece is never negative: a
+  /// cut read off the step map may lie above the intensity the integration goes on with by its error (or a
+  /// rounding) where no more light comes.
   GRTRACE_HD void take(double at) {
-    pieces_[static_cast<std::size_t>(std::min(order_, 3))] += at - start_;
-    start_ = at;
+    pieces_[static_cast<std::size_t>(std::min(order_, 3))] += std::max(at - start_, 0.0);
+    start_ = std::max(at, start_);
     ++order_;
   }
 
@@ -354,7 +358,8 @@ struct EmissionResult {
   double optical_depth = 0.0;  ///< tau from the camera to the ray's end
   double redshift = std::numeric_limits<double>::quiet_NaN();  ///< emission-weighted g (NaN: no light)
   bool opaque = false;         ///< the transmission fell below min_transmission: the ray ended in the medium
-  /// The intensity by image order n = 0, 1, 2, >= 3 (see the top of this file); sums to `intensity` up to rounding.
+  /// The intensity by image order n = 0, 1, 2, >= 3 (see the top of this file); sums to `intensity` up to rounding
+  /// (and the integration's error).
   std::array<double, 4> intensity_by_order{};
 };
 

@@ -97,8 +97,8 @@ class GeneralMediumTracer {
   MediumSample trace(const GeodesicState& y0) const {
     const EmissionResult r =
         trace_emission_seen_by<T>(metric_, medium_, settings_, y0, velocity_, frequency_, controller_);
-    return {r.trace.status,  r.intensity,          r.optical_depth, r.trace.accepted,
-            r.redshift,      r.intensity_by_order, r.trace.crossings};
+    return {r.trace.status, r.intensity,          r.optical_depth,  r.trace.accepted,
+            r.redshift,     r.intensity_by_order, r.trace.crossings};
   }
 
   const Metric& metric() const { return metric_; }

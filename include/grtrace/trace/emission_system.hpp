@@ -325,7 +325,10 @@ class OrderSplit {
     if (away_hi > 0.0) return no_value;  // the turning point is ahead
     const auto c = locate_first_crossing(away, away(0.0), away_hi);
     const double theta = c ? c->theta * theta_hi : theta_hi;
-    if (!(theta > 0.0)) return Cut{0.0, integ.previous_state()[kI]};
+    const double start = integ.previous_state()[kI];
+    // A step without light (most turning points: far out, or outside the gas) gives the cut's intensity exactly
+    // without taking the step again.
+    if (!(theta > 0.0) || integ.state()[kI] == start) return Cut{theta, start};
     return Cut{theta, integ.step_from_previous(system, theta)[kI]};
   }
 

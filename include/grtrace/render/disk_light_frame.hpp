@@ -53,8 +53,7 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
   DiskLightFrame out{Frame{Image(camera.width(), camera.height()), {}}, 0};
   Image& image = out.frame.image;
   float* const total = image.add_channel("intensity").data();
-  std::array<float*, kOrderIntensityChannels.size()> by_order{};
-  for (std::size_t c = 0; c < by_order.size(); ++c) by_order[c] = image.add_channel(kOrderIntensityChannels[c]).data();
+  const std::array<float*, kOrderIntensityChannels.size()> by_order = add_order_channels(image);
   const int orders = std::min(light.orders, DiskRaySample::kOrders);
   out.frame.stats = render_image(
       image,
@@ -82,12 +81,7 @@ DiskLightFrame render_disk_light_frame(const Camera& camera, const Rays& rays, c
           }
           lit = !light.transparent;
         }
-        float sum = 0.0f;
-        for (std::size_t c = 0; c < light_of.size(); ++c) {
-          by_order[c][i] = static_cast<float>(light_of[c]);
-          sum += by_order[c][i];
-        }
-        total[i] = sum;
+        total[i] = store_by_order(by_order, i, light_of);
         if (s.status != RayStatus::hit) {
           s.status = ray.escaped ? RayStatus::escaped : RayStatus::captured;
           s.object = ray.escaped ? kSkyObject : kHorizonObject;

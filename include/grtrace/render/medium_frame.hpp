@@ -36,6 +36,25 @@ namespace grtrace {
 inline constexpr std::array<const char*, 4> kOrderIntensityChannels = {"intensity_n0", "intensity_n1", "intensity_n2",
                                                                        "intensity_n3_up"};
 
+/// Adds the order channels (kOrderIntensityChannels) to an image; their data, in that order.
+inline std::array<float*, kOrderIntensityChannels.size()> add_order_channels(Image& image) {
+  std::array<float*, kOrderIntensityChannels.size()> out{};
+  for (std::size_t c = 0; c < out.size(); ++c) out[c] = image.add_channel(kOrderIntensityChannels[c]).data();
+  return out;
+}
+
+/// Writes a pixel's light by order into the order channels and returns their float sum, the same additions in
+/// the same order for every frame, so that `intensity` (this sum) equals the order channels added up exactly.
+inline float store_by_order(const std::array<float*, kOrderIntensityChannels.size()>& channels, std::size_t i,
+                            const std::array<double, kOrderIntensityChannels.size()>& pieces) {
+  float sum = 0.0f;
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    channels[c][i] = static_cast<float>(pieces[c]);
+    sum += channels[c][i];
+  }
+  return sum;
+}
+
 /// Colours R, G, B from the image's "intensity" channel (see the top of this file); records intensity_peak.
 inline void shade_intensity(Image& image, double exponent = 1.0) {
   const std::vector<float>& intensity = image.channel("intensity");
@@ -99,24 +118,15 @@ Frame render_medium_frame(const Camera& camera, const Tracer& tracer, const Rend
   float* const depth = frame.image.add_channel("optical_depth").data();
   constexpr bool by_order = splits_by_order<Tracer>();
   std::array<float*, kOrderIntensityChannels.size()> order_light{};
-  if constexpr (by_order)
-    for (std::size_t c = 0; c < order_light.size(); ++c)
-      order_light[c] = frame.image.add_channel(kOrderIntensityChannels[c]).data();
+  if constexpr (by_order) order_light = add_order_channels(frame.image);
   const Image& image = frame.image;
   frame.stats = render_image(
       frame.image,
       [&](int x, int y) {
         const MediumSample m = tracer.trace(camera.pixel_state(x, y));
         const std::size_t i = image.index(x, y);
-        intensity[i] = static_cast<float>(m.intensity);
-        if constexpr (by_order) {
-          float sum = 0.0f;
-          for (std::size_t c = 0; c < order_light.size(); ++c) {
-            order_light[c][i] = static_cast<float>(m.intensity_by_order[c]);
-            sum += order_light[c][i];
-          }
-          intensity[i] = sum;
-        }
+        if constexpr (by_order) intensity[i] = store_by_order(order_light, i, m.intensity_by_order);
+        else intensity[i] = static_cast<float>(m.intensity);
         depth[i] = static_cast<float>(m.optical_depth);
         PixelSample s;
         s.status = m.status;

@@ -11,8 +11,8 @@
 //          DLMF 19.36.2). F(phi|m) = s R_F(c^2, 1 - m s^2, 1) and Pi(n; phi|m) = F + (n/3) s^3 R_J(c^2, 1 - m s^2, 1,
 //          1 - n s^2) (DLMF 19.25.5 and 19.25.14, s = sin phi, c = cos phi) on [-pi/2, pi/2], extended by
 //          F(phi + j pi) = F(phi) + 2 j K. Pi with n > 1 is the Cauchy principal value (DLMF 19.7.9 with R_C's
-//          value for a negative second argument, DLMF 19.2.20). sn, cn, dn by the descending Landen transformation
-//          (the arithmetic-geometric mean, DLMF 22.20.1-22.20.2), one sin and cos for all three.
+//          value for a negative second argument, DLMF 19.2.20). sn, cn, dn by Gauss's transformation (the
+//          arithmetic-geometric mean, DLMF 22.7 and 22.20(ii), in Bulirsch's recursion), one sin and cos for all three.
 // One source for the CPU and the GPU (no recursion, no library special functions).
 #pragma once
 
@@ -21,6 +21,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 #include <numbers>
 
 namespace grtrace {
@@ -48,41 +50,70 @@ struct CarlsonPair {
   double rf, rj;
 };
 
-inline GRTRACE_HD CarlsonPair carlson_rf_rj(double x, double y, double z, double p) {
-  const double x0 = x, y0 = y, z0 = z, a0 = (x + y + z + 2.0 * p) / 5.0;
-  const double delta = (p - x) * (p - y) * (p - z);
-  // Carlson's stopping rule: 4^-j Q < |A_j| with Q = (4 / eps)^(1/6) max |A0 - v|; eps = 1e-17 gives (4e17)^(1/6).
-  const double q =
-      860.0 * std::max(std::max(std::abs(a0 - x), std::abs(a0 - y)), std::max(std::abs(a0 - z), std::abs(a0 - p)));
-  double a = a0, scale = 1.0, sum = 0.0, cube = 1.0;  // scale = 4^-j, cube = 4^-3j
-  for (int j = 0; j < 64 && !(scale * q < std::abs(a)); ++j) {
-    const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z), sp = std::sqrt(p);
+namespace detail {
+/// R_F(x, y, z) and R_J(x, y, z, p_i) for N values p_i at once: one duplication of x, y and z for all (the i-th R_J
+/// into rj[i]; returns R_F).
+template <std::size_t N>
+GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p_in)[N], double (&rj)[N]) {
+  const double x0 = x, y0 = y, z0 = z;
+  double p[N], a0[N], a[N], delta[N], sum[N], q = 0.0;
+  for (std::size_t i = 0; i < N; ++i) {
+    p[i] = p_in[i];
+    a[i] = a0[i] = (x + y + z + 2.0 * p[i]) / 5.0;
+    delta[i] = (p[i] - x) * (p[i] - y) * (p[i] - z);
+    sum[i] = 0.0;
+    // Carlson's stopping rule: 4^-j Q < |A_j| with Q = (4 / eps)^(1/6) max |A0 - v|; eps = 1e-17 gives
+    // (4e17)^(1/6). One Q for all (the largest): each R_J is duplicated at least as far as its own rule asks.
+    q = std::max(q, 860.0 * std::max(std::max(std::abs(a0[i] - x), std::abs(a0[i] - y)),
+                                     std::max(std::abs(a0[i] - z), std::abs(a0[i] - p[i]))));
+  }
+  double scale = 1.0, cube = 1.0;  // scale = 4^-j, cube = 4^-3j
+  auto converged = [&] {
+    for (std::size_t i = 0; i < N; ++i)
+      if (!(scale * q < std::abs(a[i]))) return false;
+    return true;
+  };
+  for (int j = 0; j < 64 && !converged(); ++j) {
+    const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z);
     const double lambda = sx * (sy + sz) + sy * sz;
-    const double d = (sp + sx) * (sp + sy) * (sp + sz);
-    sum += scale * carlson_rc(1.0, 1.0 + cube * delta / (d * d)) / d;
+    for (std::size_t i = 0; i < N; ++i) {
+      const double sp = std::sqrt(p[i]);
+      const double d = (sp + sx) * (sp + sy) * (sp + sz);
+      sum[i] += scale * carlson_rc(1.0, 1.0 + cube * delta[i] / (d * d)) / d;
+      p[i] = 0.25 * (p[i] + lambda);
+      a[i] = 0.25 * (a[i] + lambda);
+    }
     x = 0.25 * (x + lambda);
     y = 0.25 * (y + lambda);
     z = 0.25 * (z + lambda);
-    p = 0.25 * (p + lambda);
-    a = 0.25 * (a + lambda);
     scale *= 0.25;
     cube *= 1.0 / 64.0;
   }
-  // The original arguments' deviations from A0 scaled by 4^-j / A_j, and the series (Carlson 1995 eq. 2.17-2.18).
-  const double f = scale / a;
-  const double X = (a0 - x0) * f, Y = (a0 - y0) * f, Z = (a0 - z0) * f, P = -0.5 * (X + Y + Z);
-  const double e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
-  const double e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P;
-  const double e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
-  const double e5 = X * Y * Z * P * P;
-  const double series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 -
-                        9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0;
+  for (std::size_t i = 0; i < N; ++i) {
+    // The original arguments' deviations from A0 scaled by 4^-j / A_j, and the series (Carlson 1995 eq. 2.17-2.18).
+    const double f = scale / a[i];
+    const double X = (a0[i] - x0) * f, Y = (a0[i] - y0) * f, Z = (a0[i] - z0) * f, P = -0.5 * (X + Y + Z);
+    const double e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
+    const double e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P;
+    const double e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
+    const double e5 = X * Y * Z * P * P;
+    const double series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 -
+                          9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0;
+    rj[i] = scale * series / (a[i] * std::sqrt(a[i])) + 6.0 * sum[i];
+  }
   // R_F from the same duplicated x, y, z: its own series about their mean (DLMF 19.36.1); the loop above ran at
   // least until R_F's own rule (deviations below 1.5e-3 of the mean) was met, R_J's being the stricter.
   const double af = (x + y + z) / 3.0, dx = 1.0 - x / af, dy = 1.0 - y / af, dz = -(dx + dy);
   const double f2 = dx * dy - dz * dz, f3 = dx * dy * dz;
-  const double rf = (1.0 + f2 * (-0.1 + f2 / 24.0 - 3.0 * f3 / 44.0) + f3 / 14.0) / std::sqrt(af);
-  return {rf, scale * series / (a * std::sqrt(a)) + 6.0 * sum};
+  return (1.0 + f2 * (-0.1 + f2 / 24.0 - 3.0 * f3 / 44.0) + f3 / 14.0) / std::sqrt(af);
+}
+}  // namespace detail
+
+inline GRTRACE_HD CarlsonPair carlson_rf_rj(double x, double y, double z, double p) {
+  const double ps[1] = {p};
+  double rj[1];
+  const double rf = detail::carlson_rf_rj_n<1>(x, y, z, ps, rj);
+  return {rf, rj[0]};
 }
 
 inline GRTRACE_HD double carlson_rj(double x, double y, double z, double p) { return carlson_rf_rj(x, y, z, p).rj; }
@@ -113,33 +144,53 @@ inline GRTRACE_HD double legendre_f_sc(double s, double c, double m, double k) {
   return c >= 0.0 ? f : 2.0 * k - f;  // beyond pi/2: F(phi) = 2K - F(pi - phi)
 }
 
-/// Pi(n; phi | m) from sin(phi) = s and cos(phi) = c >= 0 (|phi| <= pi/2), where 1 - n s^2 > 0 (n < 1, or before
-/// the pole).
+/// Pi(n; phi | m) from sin(phi) = s and cos(phi) = c >= 0 (|phi| <= pi/2), n < 1, or n > 1 as the Cauchy principal
+/// value: what a caller that knows the amplitude's sine and cosine calls instead of Pi(n; asin s | m).
 inline GRTRACE_HD double legendre_pi_sc(double n, double s, double c, double m) {
-  const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s * s, 1.0, 1.0 - n * s * s);
-  return s * cp.rf + n / 3.0 * s * s * s * cp.rj;
+  const double s2 = s * s;
+  if (n < 1.0 || 1.0 - n * s2 > 0.25) {
+    const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n * s2);
+    return s * cp.rf + n / 3.0 * s * s2 * cp.rj;
+  }
+  // Near and beyond the pole: DLMF 19.7.9, Pi(n; t) = F(t) - Pi(m / n; t) + sqrt(cc) R_C((cc - 1)(cc - m),
+  // (cc - n)(cc - m / n)), cc = 1 / sin^2 t, for 0 < |t| <= pi / 2 (odd in t).
+  const double n2 = m / n, cc = 1.0 / s2;
+  const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n2 * s2);
+  const double rf = cp.rf, pi2 = rf + n2 / 3.0 * s2 * cp.rj;  // Pi(n2; |t|) / |s|
+  const double rc = std::sqrt(cc) * carlson_rc((cc - 1.0) * (cc - m), (cc - n) * (cc - n2));
+  return s * rf - s * pi2 + (s < 0.0 ? -rc : rc);
+}
+
+/// Pi(n1; phi | m) and Pi(n2; phi | m) together, as legendre_pi_sc gives each: where neither is near its pole, one
+/// duplication of R_F's arguments serves both (what a sum over the two roots of a radial integrand needs).
+struct PiPair {
+  double first, second;
+};
+inline GRTRACE_HD PiPair legendre_pi_pair_sc(double n1, double n2, double s, double c, double m) {
+  const double s2 = s * s;
+  if (!((n1 < 1.0 || 1.0 - n1 * s2 > 0.25) && (n2 < 1.0 || 1.0 - n2 * s2 > 0.25)))
+    return {legendre_pi_sc(n1, s, c, m), legendre_pi_sc(n2, s, c, m)};
+  const double ps[2] = {1.0 - n1 * s2, 1.0 - n2 * s2};
+  double rj[2];
+  const double rf = detail::carlson_rf_rj_n<2>(c * c, 1.0 - m * s2, 1.0, ps, rj);
+  return {s * rf + n1 / 3.0 * s * s2 * rj[0], s * rf + n2 / 3.0 * s * s2 * rj[1]};
 }
 
 /// Legendre's Pi(n; phi | m) = int_0^phi dt / ((1 - n sin^2 t) sqrt(1 - m sin^2 t)) for any real phi, m < 1, n < 1
 /// (no pole), or n > 1 as the Cauchy principal value: an antiderivative on each interval between poles
-/// (sin^2 phi = 1 / n), which is what a difference over a path that avoids them needs.
-inline GRTRACE_HD double legendre_pi(double n, double phi, double m) {
+/// (sin^2 phi = 1 / n), which is what a difference over a path that avoids them needs. `complete` is Pi(n | m)
+/// (complete_pi), read only where |phi| > pi / 2: a caller that evaluates many amplitudes of one n and m computes it
+/// once.
+inline GRTRACE_HD double legendre_pi(double n, double phi, double m, double complete) {
   const double j = std::floor(phi / std::numbers::pi + 0.5);
-  const double t = phi - j * std::numbers::pi, s = std::sin(t), c = std::cos(t), s2 = s * s;
-  double v = 0.0;
-  if (n < 1.0 || 1.0 - n * s2 > 0.25) {
-    const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n * s2);
-    v = s * cp.rf + n / 3.0 * s * s2 * cp.rj;
-  } else {
-    // Near and beyond the pole: DLMF 19.7.9, Pi(n; t) = F(t) - Pi(m / n; t) + sqrt(cc) R_C((cc - 1)(cc - m),
-    // (cc - n)(cc - m / n)), cc = 1 / sin^2 t, for 0 < |t| <= pi / 2 (odd in t).
-    const double n2 = m / n, cc = 1.0 / s2;
-    const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n2 * s2);
-    const double rf = cp.rf, pi2 = rf + n2 / 3.0 * s2 * cp.rj;  // Pi(n2; |t|) / |s|
-    const double rc = std::sqrt(cc) * carlson_rc((cc - 1.0) * (cc - m), (cc - n) * (cc - n2));
-    v = s * rf - s * pi2 + (s < 0.0 ? -rc : rc);
-  }
-  return j == 0.0 ? v : v + 2.0 * j * complete_pi(n, m);
+  const double t = phi - j * std::numbers::pi;
+  const double v = legendre_pi_sc(n, std::sin(t), std::cos(t), m);
+  return j == 0.0 ? v : v + 2.0 * j * complete;
+}
+
+inline GRTRACE_HD double legendre_pi(double n, double phi, double m) {
+  const bool wraps = std::floor(phi / std::numbers::pi + 0.5) != 0.0;  // as the four-argument form reads it
+  return legendre_pi(n, phi, m, wraps ? complete_pi(n, m) : 0.0);
 }
 
 /// sn, cn, dn of u for the parameter m < 1 (negative included), and the amplitude am(u) (continuous in u:
@@ -148,26 +199,51 @@ struct JacobiValues {
   double sn, cn, dn, am;
 };
 
-/// The Jacobi elliptic functions by the descending Landen transformation (the arithmetic-geometric mean of 1 and
-/// sqrt(1 - m), DLMF 22.20.1-22.20.2): the amplitude of the last mean, then back up to am(u).
+/// The Jacobi elliptic functions by Gauss's transformation (the arithmetic-geometric mean of 1 and sqrt(1 - m),
+/// DLMF 22.7.1-22.7.5; R. Bulirsch, Numer. Math. 7 (1965) 78-90): one sine and cosine of a_N u, the mean's limit
+/// times u (sn vanishes where that is a multiple of pi, as K = pi / (2 a_N)), then back up the means with one
+/// division a level; am(u) = j pi + atan2 of sn and cn turned to the half-turn j's sign (NaN where jacobi<false>
+/// is called: a caller that needs sn, cn and dn alone spares the arctangent).
+template <bool kAmplitude = true>
 inline GRTRACE_HD JacobiValues jacobi(double u, double m) {
-  // The mean converges quadratically: |a - b| halves its exponent each time; 8 levels reach 1e-300 from m = 1 - 1e-16.
-  constexpr int kLevels = 10;
-  double a[kLevels + 1], c[kLevels + 1];
-  a[0] = 1.0;
-  double b = std::sqrt(1.0 - m);
-  c[0] = 0.0;
-  int n = 0;
-  while (n < kLevels && std::abs(a[n] - b) > 1e-16 * a[n]) {
-    const double an = 0.5 * (a[n] + b);
-    c[n + 1] = 0.5 * (a[n] - b);
-    b = std::sqrt(a[n] * b);
-    a[++n] = an;
+  // The mean converges quadratically: a relative gap of 1e-9 leaves the next mean within 1e-19; 8 levels reach it
+  // from m = 1 - 1e-16, 6 from m = -1e4.
+  constexpr int kLevels = 12;
+  double mean[kLevels], root[kLevels];
+  double kc = 1.0 - m, a = 1.0, c = 1.0;
+  int levels = 0;
+  while (levels < kLevels) {
+    mean[levels] = a;
+    root[levels] = kc = std::sqrt(kc);
+    ++levels;
+    c = 0.5 * (a + kc);
+    if (std::abs(a - kc) <= 1e-9 * a) break;
+    kc *= a;
+    a = c;
   }
-  double phi = std::ldexp(a[n] * u, n);
-  for (int i = n; i > 0; --i) phi = 0.5 * (phi + std::asin(c[i] / a[i] * std::sin(phi)));
-  const double sn = std::sin(phi), cn = std::cos(phi);
-  return {sn, cn, std::sqrt(1.0 - m * sn * sn), phi};
+  const double phase = u * c;
+  double sn = std::sin(phase), cn = std::cos(phase), dn = 1.0;
+  if (sn != 0.0) {
+    // The ratio cn / sn of each level from the last one's (Bulirsch's recursion), then sn from it.
+    double ratio = cn / sn;
+    c *= ratio;
+    for (int i = levels - 1; i >= 0; --i) {
+      const double b = mean[i];
+      ratio *= c;
+      c *= dn;
+      dn = (root[i] + ratio) / (b + ratio);
+      ratio = c / b;
+    }
+    const double s = 1.0 / std::sqrt(c * c + 1.0);
+    sn = sn >= 0.0 ? s : -s;
+    cn = c * sn;
+  }
+  if constexpr (!kAmplitude) return {sn, cn, dn, std::numeric_limits<double>::quiet_NaN()};
+  // am = j pi + t, |t| <= pi / 2: j counts the half-turns of the phase (am passes (j + 1/2) pi where u = (2 j + 1)
+  // K), and (sin t, cos t) = (-1)^j (sn, cn).
+  const double j = std::floor(phase / std::numbers::pi + 0.5);
+  const double turn = std::fmod(j, 2.0) == 0.0 ? 1.0 : -1.0;
+  return {sn, cn, dn, j * std::numbers::pi + std::atan2(turn * sn, turn * cn)};
 }
 
 /// R1(alpha; u | m) = int_0^u dv / (1 + alpha cn(v | m)) for 0 <= m < 1 and any alpha with 1 + alpha cn != 0 on

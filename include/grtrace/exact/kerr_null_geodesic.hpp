@@ -57,8 +57,9 @@ class KerrNullGeodesic {
   GRTRACE_HD KerrNullGeodesic(const KerrMetric& metric, const GeodesicState& y0, double escape_radius,
                               double guard_radius)
       : mass_(metric.mass), a_(metric.spin), r_escape_(escape_radius), r_guard_(guard_radius) {
-    energy_ = metric.energy(y0);
-    const double l = metric.angular_momentum(y0), q = metric.carter_constant(y0);
+    const KerrMetric::ConstantsOfMotion constants = metric.constants_of_motion(y0);
+    energy_ = constants.energy;
+    const double l = constants.angular_momentum, q = constants.carter;
     lambda_ = l / energy_;
     eta_ = q / (energy_ * energy_);
     r_o_ = y0[1];
@@ -97,15 +98,30 @@ class KerrNullGeodesic {
   GRTRACE_HD GeodesicState state_at(double tau) const {
     const double y = y_o_ + nu_ * sqrt_a_ * tau;
     const JacobiValues j = jacobi(y, m_theta_);
-    return make_state(tau, y, j.sn, j.cn, j.dn, j.am);
+    const double polar[2] = {y, j.am};
+    return make_state(tau, j.sn, j.cn, j.dn, polar);
   }
 
   /// The state at the n-th equatorial crossing (theta = pi / 2 exactly; no Jacobi function needed there).
   GRTRACE_HD GeodesicState crossing_state(int n) const {
+    GeodesicState y = crossing_state_without_phi(n);
+    y[3] = crossing_phi(n);
+    return y;
+  }
+
+  /// The same with phi NaN: all of it but the azimuth's two Pi integrals (what a test of where the ray crosses an
+  /// axisymmetric object needs; crossing_phi(n) completes it).
+  GRTRACE_HD GeodesicState crossing_state_without_phi(int n) const {
+    const int j = n + j0_;  // Y = nu * 2 j K: sn = 0, cn = (-1)^j
+    return make_state(crossing_mino_time(n), 0.0, (j % 2 == 0) ? 1.0 : -1.0, 1.0, nullptr);
+  }
+
+  /// phi at the n-th equatorial crossing (continuous, not reduced).
+  GRTRACE_HD double crossing_phi(int n) const {
     const double tau = crossing_mino_time(n);
-    const int j = n + j0_;  // Y = nu * 2 j K: sn = 0, cn = (-1)^j, am = nu j pi
-    const double cn = (j % 2 == 0) ? 1.0 : -1.0;
-    return make_state(tau, nu_ * 2.0 * j * k_theta_, 0.0, cn, 1.0, nu_ * j * std::numbers::pi);
+    const int j = n + j0_;
+    const double x = x_of_t(t_o_ - s_r_ * tau);
+    return phi_at(tau, nu_ * 2.0 * j * k_theta_, nu_ * j * std::numbers::pi, radial_amplitude(radius_at_t(t_o_ - s_r_ * tau), x));
   }
 
   /// The direction at infinity (theta, phi; phi continuous) of an escaping ray.
@@ -115,18 +131,25 @@ class KerrNullGeodesic {
     theta = std::acos(std::clamp(sqrt_u_plus_ * j.sn, -1.0, 1.0));
     // At infinity X = -+F(asin sqrt(r31 / r41)): its amplitude is that asin.
     const double x = x_of_t(t_o_ - s_r_ * tau_infinity_);
-    const double am_r = case_ == KerrRadialCase::complex_pair
-                            ? 0.0
-                            : (x < 0.0 ? -1.0 : 1.0) * std::asin(std::sqrt((r3_ - r1_) / (r4_ - r1_)));
+    Amplitude am_r;
+    if (case_ != KerrRadialCase::complex_pair) {
+      const double s2 = (r3_ - r1_) / (r4_ - r1_);
+      am_r = {(x < 0.0 ? -1.0 : 1.0) * std::sqrt(s2), std::sqrt(std::max(0.0, 1.0 - s2))};
+    }
     phi = phi_at(tau_infinity_, y, j.am, am_r);
   }
 
   /// theta at Mino time tau (one Jacobi function: what the sky sphere's redshift needs of the state there).
   GRTRACE_HD double theta_at(double tau) const {
-    return std::acos(std::clamp(sqrt_u_plus_ * jacobi(y_o_ + nu_ * sqrt_a_ * tau, m_theta_).sn, -1.0, 1.0));
+    return std::acos(std::clamp(sqrt_u_plus_ * jacobi<false>(y_o_ + nu_ * sqrt_a_ * tau, m_theta_).sn, -1.0, 1.0));
   }
 
  private:
+  /// An amplitude in [-pi/2, pi/2] by its sine and cosine (cos >= 0).
+  struct Amplitude {
+    double sin = 0.0, cos = 1.0;
+  };
+
   // ---- polar motion ----------------------------------------------------------------------------------------
   GRTRACE_HD bool setup_polar(double k_theta) {
     const double a2 = a_ * a_, l2 = lambda_ * lambda_;
@@ -152,19 +175,22 @@ class KerrNullGeodesic {
     const double norm = std::hypot(x, cn);
     sin_o_ = norm > 0.0 ? x / norm : 0.0;
     cos_o_ = norm > 0.0 ? cn / norm : 1.0;
-    am_o_ = std::atan2(sin_o_, cos_o_);
     y_o_ = legendre_f_sc(sin_o_, cos_o_, m_theta_, k_theta_);
     // d cos(theta)/dtau = -sin(theta) dtheta/dtau = sqrt(u+ A) cn dn nu: nu = -sign(k^theta); at a turning point
     // (k^theta = 0) the ray heads for the equator.
     nu_ = k_theta != 0.0 ? (k_theta > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
     y_sign_ = nu_ * y_o_;
     j0_ = static_cast<int>(std::floor(y_sign_ / (2.0 * k_theta_))) + 1;
+    if (!through_axis_) polar_start_ = legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_);
     return std::isfinite(y_o_) && std::isfinite(k_theta_);
   }
 
-  // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A).
+  // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A); Pi(u+; am Y_o) is the start's,
+  // computed once, and the complete Pi(u+) once a ray, where a crossing first needs it.
   GRTRACE_HD double polar_phi_integral(double am) const {
-    return nu_ * (legendre_pi(u_plus_, am, m_theta_) - legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_)) / sqrt_a_;
+    const bool wraps = std::floor(am / std::numbers::pi + 0.5) != 0.0;
+    if (wraps && std::isnan(pi_complete_)) pi_complete_ = complete_pi(u_plus_, m_theta_);
+    return nu_ * (legendre_pi(u_plus_, am, m_theta_, wraps ? pi_complete_ : 0.0) - polar_start_) / sqrt_a_;
   }
 
   // Passes by the axis (sn = +-1: Y = (2 j + 1) K) between Y_o and Y, for a ray through it: each adds pi to phi.
@@ -245,6 +271,8 @@ class KerrNullGeodesic {
     const double dr = r_plus_ - r_minus_;
     c_plus_ = dr > 0.0 ? a_ * (2.0 * m * r_plus_ - a_ * lambda_) / dr : 0.0;
     c_minus_ = dr > 0.0 ? -a_ * (2.0 * m * r_minus_ - a_ * lambda_) / dr : 0.0;
+    const double x_o = x_of_t(t_o_);
+    radial_start_ = radial_phi_primitive(x_o, radial_amplitude(r_o_, x_o));
     return std::isfinite(t_o_) && std::isfinite(tau_end_) && tau_end_ > 0.0;
   }
 
@@ -274,7 +302,7 @@ class KerrNullGeodesic {
 
   GRTRACE_HD double radius_at_t(double t) const {
     const double x = x_of_t(t);
-    const JacobiValues j = jacobi(x, k_r_);
+    const JacobiValues j = jacobi<false>(x, k_r_);
     return radius_at_x(j.sn, j.cn);
   }
 
@@ -289,7 +317,7 @@ class KerrNullGeodesic {
   // H(X) = sum c_+- int_0^X dX' / (r(X') - r_+-), so that phi's radial part between X_a and X_b is
   // -sign(dr/dtau at the camera) g (H(X_b) - H(X_a)) (dtau = -s_r g dX).
   // am: the amplitude of X for four real roots (|X| < K there: am = asin(sn X), known from r at the ends).
-  GRTRACE_HD double radial_phi_primitive(double x, double am) const {
+  GRTRACE_HD double radial_phi_primitive(double x, Amplitude am) const {
     if (a_ == 0.0) return 0.0;
     double h = 0.0;
     if (case_ == KerrRadialCase::complex_pair) {
@@ -302,10 +330,11 @@ class KerrNullGeodesic {
       return h;
     }
     const double r31 = r3_ - r1_, r41 = r4_ - r1_, q = r41 / r31;
-    for (const auto& [c, rh] : {Pair{c_plus_, r_plus_}, Pair{c_minus_, r_minus_}}) {
-      const double r4h = r4_ - rh, r3h = r3_ - rh, n = q * r3h / r4h;
-      h += c / r4h * (q / n * x + (1.0 - q / n) * legendre_pi(n, am, k_r_));
-    }
+    const double r4p = r4_ - r_plus_, r4m = r4_ - r_minus_;
+    const double n_plus = q * (r3_ - r_plus_) / r4p, n_minus = q * (r3_ - r_minus_) / r4m;
+    const PiPair pi = legendre_pi_pair_sc(n_plus, n_minus, am.sin, am.cos, k_r_);
+    h += c_plus_ / r4p * (q / n_plus * x + (1.0 - q / n_plus) * pi.first);
+    h += c_minus_ / r4m * (q / n_minus * x + (1.0 - q / n_minus) * pi.second);
     return h;
   }
 
@@ -313,30 +342,29 @@ class KerrNullGeodesic {
     double c, r;
   };
 
-  // The amplitude of the radial phase X where the radius is r, for four real roots: sin^2 am = r31 (r - r4) /
-  // (r41 (r - r3)) (|X| < K: am = asin(sn X)), the sign of X's (negative on the ingoing leg).
-  GRTRACE_HD double radial_amplitude(double r, double x) const {
-    const double s = (r3_ - r1_) * (r - r4_) / ((r4_ - r1_) * (r - r3_));
-    const double am = std::asin(std::sqrt(std::clamp(s, 0.0, 1.0)));
-    return x < 0.0 ? -am : am;
+  // The amplitude of the radial phase X where the radius is r, for four real roots, by its sine and cosine: sin^2
+  // am = r31 (r - r4) / (r41 (r - r3)) (|X| < K: am = asin(sn X), cos am >= 0), the sign of X's (negative on the
+  // ingoing leg). Unread (zero) for a complex pair.
+  GRTRACE_HD Amplitude radial_amplitude(double r, double x) const {
+    if (case_ == KerrRadialCase::complex_pair) return {};
+    const double s = std::clamp((r3_ - r1_) * (r - r4_) / ((r4_ - r1_) * (r - r3_)), 0.0, 1.0);
+    return {x < 0.0 ? -std::sqrt(s) : std::sqrt(s), std::sqrt(1.0 - s)};
   }
 
   // phi at Mino time tau, the polar phase being Y there with amplitude am, the radial phase X with amplitude am_r
   // (read only for four real roots).
-  GRTRACE_HD double phi_at(double tau, double y, double am, double am_r) const {
-    const double x_o = x_of_t(t_o_);
-    const double start =
-        radial_phi_primitive(x_o, case_ == KerrRadialCase::complex_pair ? 0.0 : radial_amplitude(r_o_, x_o));
-    const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau), am_r) - start);
+  GRTRACE_HD double phi_at(double tau, double y, double am, Amplitude am_r) const {
+    const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau), am_r) - radial_start_);
     const double polar =
         through_axis_ ? std::numbers::pi * axis_passes(y) * (nu_ > 0.0 ? 1.0 : -1.0) : lambda_ * polar_phi_integral(am);
     // d phi / dtau = sign(E) (a (2 M r - a lambda) / Delta + lambda / sin^2 theta) (k = dx / d(affine), E = p_t).
     return phi_o_ + (energy_ > 0.0 ? 1.0 : -1.0) * (radial + polar);
   }
 
-  GRTRACE_HD GeodesicState make_state(double tau, double y, double sn, double cn, double dn, double am) const {
+  // The state at Mino time tau from the polar phase's sn, cn, dn; polar = {Y, am Y} for phi, or null for phi NaN.
+  GRTRACE_HD GeodesicState make_state(double tau, double sn, double cn, double dn, const double* polar) const {
     const double t = t_o_ - s_r_ * tau, x = x_of_t(t);
-    const JacobiValues jr = jacobi(x, k_r_);
+    const JacobiValues jr = jacobi<false>(x, k_r_);
     const double r = radius_at_x(jr.sn, jr.cn);
     const double cos_t = std::clamp(sqrt_u_plus_ * sn, -1.0, 1.0), theta = std::acos(cos_t);
     const double sin2 = 1.0 - cos_t * cos_t, sin_t = std::sqrt(sin2);
@@ -351,7 +379,7 @@ class KerrNullGeodesic {
     out[0] = nan;
     out[1] = r;
     out[2] = theta;
-    out[3] = phi_at(tau, y, am, case_ == KerrRadialCase::complex_pair ? 0.0 : radial_amplitude(r, x));
+    out[3] = polar ? phi_at(tau, polar[0], polar[1], radial_amplitude(r, x)) : nan;
     out[4] = e * ((r * r + a2) * w / delta - a_ * (a_ * sin2 - lambda_)) / sigma;
     out[5] = radial_sign * abs_e * std::sqrt(rr) / sigma;
     out[6] = -dcos / sin_t * abs_e / sigma;
@@ -365,13 +393,15 @@ class KerrNullGeodesic {
   KerrRadialCase case_ = KerrRadialCase::unsupported;
   // polar
   double u_plus_ = 0.0, sqrt_u_plus_ = 0.0, m_theta_ = 0.0, sqrt_a_ = 1.0, k_theta_ = 1.0;
-  double am_o_ = 0.0, sin_o_ = 0.0, cos_o_ = 1.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
+  double sin_o_ = 0.0, cos_o_ = 1.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
+  double polar_start_ = 0.0;         ///< Pi(u+; am Y_o | m)
+  mutable double pi_complete_ = nan;  ///< Pi(u+ | m), once a ray needs it
   int j0_ = 0;
   // radial
   double ca_ = 0.0, cb_ = 0.0;  ///< R's r^2 and r coefficients
   double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
   double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, k_complete_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0;
-  double t_o_ = 0.0;
+  double t_o_ = 0.0, radial_start_ = 0.0;  ///< radial_start_: phi's radial primitive at the camera
   double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0;
 };
 

@@ -315,7 +315,13 @@ struct KerrMetric {
   }
   /// Carter's constant Q = p_th^2 - cos^2 th (a^2 (E^2 - mu^2) - L_z^2 / sin^2 th), p_th = -Sigma k^th,
   /// mu^2 = g(k, k) (0 for light). Q >= 0 for rays that cross the equatorial plane.
-  GRTRACE_HD double carter_constant(const GeodesicState& y) const {
+  GRTRACE_HD double carter_constant(const GeodesicState& y) const { return constants_of_motion(y).carter; }
+
+  /// E, L_z and Q together, from one evaluation of the metric (what a closed-form ray needs of its start).
+  struct ConstantsOfMotion {
+    double energy, angular_momentum, carter;
+  };
+  GRTRACE_HD ConstantsOfMotion constants_of_motion(const GeodesicState& y) const {
     const KerrBLTerms q = terms(y.head<4>());
     const double e = q.g_tt * y[4] + q.g_tph * y[7];
     const double lz = -(q.g_tph * y[4] + q.g_phph * y[7]);
@@ -323,7 +329,7 @@ struct KerrMetric {
                        q.g_thth * y[6] * y[6] + q.g_phph * y[7] * y[7];
     const double p_th = -q.sigma * y[6];
     const double c2 = q.cos_theta * q.cos_theta, s2 = q.sin_theta * q.sin_theta;
-    return p_th * p_th - c2 * (spin * spin * (e * e - mu2) - lz * lz / s2);
+    return {e, lz, p_th * p_th - c2 * (spin * spin * (e * e - mu2) - lz * lz / s2)};
   }
 
   /// Kretschmann scalar R_abcd R^abcd = 48 M^2 (r^6 - 15 a^2 r^4 c^2 + 15 a^4 r^2 c^4 - a^6 c^6) / Sigma^6.

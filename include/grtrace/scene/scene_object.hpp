@@ -28,6 +28,11 @@
 //                                                   accepts() says where in the plane); the planar tracer
 //                                                   (trace/planar_scene_tracer.hpp) draws only such objects;
 //                                                   default false
+//   static constexpr bool axisymmetric = true;      where the object is and what accepts() takes do not depend on
+//                                                   phi (its matter may orbit, its colour may vary); a tracer for
+//                                                   which phi costs (trace/kerr_closed_form_tracer.hpp) then tests
+//                                                   crossings with phi NaN and computes it at the hit alone;
+//                                                   default false
 //   static constexpr bool stationary = true;        the object and its matter's motion do not depend on t (its
 //                                                   event never reads y[0]); tracers that do not follow t (the
 //                                                   reduced Kerr tracer, trace/kerr_mino_tracer.hpp) draw only
@@ -116,6 +121,14 @@ template <class O>
 constexpr GRTRACE_HD bool object_is_stationary() {
   if constexpr (requires { O::stationary; }) return O::stationary;
   else return object_is_equatorial<O>();
+}
+
+/// True when the object declares that where it is and what it accepts do not depend on phi (see the top of this
+/// file).
+template <class O>
+constexpr GRTRACE_HD bool object_is_axisymmetric() {
+  if constexpr (requires { O::axisymmetric; }) return O::axisymmetric;
+  else return false;
 }
 
 /// True when the object declares itself unchanged by the reflection theta -> pi - theta (see the top of this file).

@@ -33,6 +33,7 @@ struct ThinDisk {
   static constexpr bool two_sided = true;
   static constexpr bool equatorial = true;  ///< lies in theta = pi / 2: the planar tracer can draw it
   static constexpr bool stationary = true;  ///< nothing depends on t: the reduced Kerr tracer can draw it
+  static constexpr bool axisymmetric = true;  ///< an annulus: accepts() reads the radius alone
   /// The plane, the annulus and the orbits are unchanged by theta -> pi - theta (not by phi -> -phi: the gas
   /// orbits): mirror-symmetric frames trace half their rows (render/mirror_symmetry.hpp).
   static constexpr bool equator_mirror_symmetric = true;

@@ -79,8 +79,18 @@ class KerrClosedFormTracer {
     const double end = ray.end_mino_time();
     int n = 0;
     for (; ray.crossing_mino_time(n) < end; ++n) {
-      const GeodesicState y = ray.crossing_state(n);
-      if (std::optional<RayOutcome> hit = hit_at(y)) {
+      std::optional<RayOutcome> hit;
+      if constexpr (kAxisymmetric) {
+        // phi (two Pi integrals) only where an object takes the crossing: most crossings miss the objects.
+        GeodesicState y = ray.crossing_state_without_phi(n);
+        if (accepted(y)) {
+          y[3] = ray.crossing_phi(n);
+          hit = hit_at(y);
+        }
+      } else {
+        hit = hit_at(ray.crossing_state(n));
+      }
+      if (hit) {
         hit->order = n;
         return *hit;
       }
@@ -135,6 +145,15 @@ class KerrClosedFormTracer {
         : mino(metric, settings, controller, correction, std::move(scene)) {}
     RayOutcome trace(const GeodesicState& y0) const override { return mino.trace(y0); }
   };
+
+  static constexpr bool kAxisymmetric = every_object_of<SceneT>([]<class O>() { return object_is_axisymmetric<O>(); });
+
+  // Whether an object accepts the crossing state y.
+  bool accepted(const GeodesicState& y) const {
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+      return (bind_to_metric(std::get<I>(scene().objects), metric_).accepts(y) || ...);
+    }(std::make_index_sequence<SceneT::object_count>{});
+  }
 
   // The outcome of the first object (in scene order) that accepts the crossing state y, if any.
   std::optional<RayOutcome> hit_at(const GeodesicState& y) const {

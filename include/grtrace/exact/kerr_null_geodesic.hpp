@@ -181,12 +181,11 @@ class KerrNullGeodesic {
     nu_ = k_theta != 0.0 ? (k_theta > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
     y_sign_ = nu_ * y_o_;
     j0_ = static_cast<int>(std::floor(y_sign_ / (2.0 * k_theta_))) + 1;
-    if (!through_axis_) polar_start_ = legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_);
     return std::isfinite(y_o_) && std::isfinite(k_theta_);
   }
 
-  // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A); Pi(u+; am Y_o) is the start's,
-  // computed once, and the complete Pi(u+) once a ray, where a crossing first needs it.
+  // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A); Pi(u+; am Y_o) is the start's
+  // (phi_at), the complete Pi(u+) computed once a ray, where a crossing first needs it.
   GRTRACE_HD double polar_phi_integral(double am) const {
     const bool wraps = std::floor(am / std::numbers::pi + 0.5) != 0.0;
     if (wraps && std::isnan(pi_complete_)) pi_complete_ = complete_pi(u_plus_, m_theta_);
@@ -271,8 +270,6 @@ class KerrNullGeodesic {
     const double dr = r_plus_ - r_minus_;
     c_plus_ = dr > 0.0 ? a_ * (2.0 * m * r_plus_ - a_ * lambda_) / dr : 0.0;
     c_minus_ = dr > 0.0 ? -a_ * (2.0 * m * r_minus_ - a_ * lambda_) / dr : 0.0;
-    const double x_o = x_of_t(t_o_);
-    radial_start_ = radial_phi_primitive(x_o, radial_amplitude(r_o_, x_o));
     return std::isfinite(t_o_) && std::isfinite(tau_end_) && tau_end_ > 0.0;
   }
 
@@ -354,6 +351,13 @@ class KerrNullGeodesic {
   // phi at Mino time tau, the polar phase being Y there with amplitude am, the radial phase X with amplitude am_r
   // (read only for four real roots).
   GRTRACE_HD double phi_at(double tau, double y, double am, Amplitude am_r) const {
+    if (!phi_start_ready_) {
+      // The start's terms, once a ray and only for one whose phi is asked for (a disk drawn by its light is not).
+      const double x_o = x_of_t(t_o_);
+      radial_start_ = radial_phi_primitive(x_o, radial_amplitude(r_o_, x_o));
+      if (!through_axis_) polar_start_ = legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_);
+      phi_start_ready_ = true;
+    }
     const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau), am_r) - radial_start_);
     const double polar =
         through_axis_ ? std::numbers::pi * axis_passes(y) * (nu_ > 0.0 ? 1.0 : -1.0) : lambda_ * polar_phi_integral(am);
@@ -394,14 +398,16 @@ class KerrNullGeodesic {
   // polar
   double u_plus_ = 0.0, sqrt_u_plus_ = 0.0, m_theta_ = 0.0, sqrt_a_ = 1.0, k_theta_ = 1.0;
   double sin_o_ = 0.0, cos_o_ = 1.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
-  double polar_start_ = 0.0;         ///< Pi(u+; am Y_o | m)
-  mutable double pi_complete_ = nan;  ///< Pi(u+ | m), once a ray needs it
+  // phi's terms of the start (Pi(u+; am Y_o | m) and the radial primitive at the camera) and the complete Pi(u+ | m):
+  // computed where a ray's phi is first asked for.
+  mutable bool phi_start_ready_ = false;
+  mutable double polar_start_ = 0.0, radial_start_ = 0.0, pi_complete_ = nan;
   int j0_ = 0;
   // radial
   double ca_ = 0.0, cb_ = 0.0;  ///< R's r^2 and r coefficients
   double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
   double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, k_complete_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0;
-  double t_o_ = 0.0, radial_start_ = 0.0;  ///< radial_start_: phi's radial primitive at the camera
+  double t_o_ = 0.0;
   double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0;
 };
 

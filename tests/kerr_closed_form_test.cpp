@@ -118,7 +118,8 @@ TEST(JacobiElliptic, TwoPiOfOneAmplitudeTogetherEqualEachAlone) {
   // pair falls back to two calls).
   for (const double m : {-5.0, 0.0, 0.6, 0.999999})
     for (const double phi : {-1.5, -0.4, 0.05, 0.9, 1.5707963})
-      for (const auto& [n1, n2] : {std::pair{-2.0, 0.5}, std::pair{0.9, 3.0}, std::pair{1.2, 40.0}, std::pair{-30.0, 1.01}}) {
+      for (const auto& [n1, n2] :
+           {std::pair{-2.0, 0.5}, std::pair{0.9, 3.0}, std::pair{1.2, 40.0}, std::pair{-30.0, 1.01}}) {
         const PiPair pair = legendre_pi_pair_sc(n1, n2, std::sin(phi), std::cos(phi), m);
         EXPECT_NEAR(pair.first, legendre_pi(n1, phi, m), 4e-15 * std::max(1.0, std::abs(pair.first)))
             << "n " << n1 << " m " << m << " phi " << phi;
@@ -327,16 +328,22 @@ TEST(KerrClosedForm, StateAtAnyMinoTimeEqualsTheSeparatedEquationsIntegrated) {
 
 // ---- (d) whole frames ------------------------------------------------------------------------------------------
 
+// The disk of the frame tests: from the prograde ISCO to 25 M.
+template <class Disk>
+Disk frame_disk(double spin) {
+  Disk disk;
+  disk.r_in = exact::isco_radius(spin, exact::Orbit::prograde);
+  disk.r_out = 25.0;
+  return disk;
+}
+
 TEST(KerrClosedForm, DiskFramesEqualTheReducedTracers) {
   for (const CameraCase& c : camera_cases()) {
     const KerrMetric metric{1.0, c.spin};
     const int pixels = 40;
     const Camera cam = camera_of(metric, c, pixels);
     const TraceSettings s = test_settings::settings_at(1e-12, 2000.0);
-    ThinDisk disk;
-    disk.r_in = exact::isco_radius(c.spin, exact::Orbit::prograde);
-    disk.r_out = 25.0;
-    const auto scene = make_scene(StarFieldSky{}, HorizonPaint{}, disk);
+    const auto scene = make_scene(StarFieldSky{}, HorizonPaint{}, frame_disk<ThinDisk>(c.spin));
     const auto closed = make_kerr_closed_form_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, scene);
     const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, scene);
     int differ = 0, hits = 0, sky = 0, captured = 0, order_differs = 0;
@@ -403,9 +410,7 @@ TEST(KerrClosedForm, AnObjectWhoseExtentReadsPhiIsTestedWithIt) {
     const int pixels = 30;
     const Camera cam = camera_of(metric, c, pixels);
     const TraceSettings s = test_settings::settings_at(1e-12, 2000.0);
-    HalfDisk disk;
-    disk.r_in = exact::isco_radius(c.spin, exact::Orbit::prograde);
-    disk.r_out = 25.0;
+    const HalfDisk disk = frame_disk<HalfDisk>(c.spin);
     const auto scene = make_scene(StarFieldSky{}, HorizonPaint{}, disk);
     const auto closed = make_kerr_closed_form_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, scene);
     const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, scene);
@@ -436,7 +441,7 @@ TEST(KerrClosedForm, AnObjectWhoseExtentReadsPhiIsTestedWithIt) {
   }
 }
 
-// ---- (e) the disk-light frame// ---- (e) the disk-light frame ----------------------------------------------------------------------------------
+// ---- (e) the disk-light frame ----------------------------------------------------------------------------------
 
 TEST(KerrDiskLight, OpaqueFrameIsTheClosedFormTracersDiskAndTransparentAddsTheOrdersBehind) {
   int behind_all = 0;  // pixels where a transparent disk shows more than the opaque one (none for the a = -0.9 case:

@@ -25,6 +25,9 @@
 //           T - J). The radial part of phi, int a (2 M r - a lambda) / Delta dtau, splits in 1 / (r - r_+-), which
 //           are Pi(n; am | k) (four real roots: a Moebius function of sn^2) and R1 (complex roots: of cn;
 //           core/jacobi_elliptic.hpp).
+// Cost:    the constructor's five Legendre F and the potential's roots; phi's terms at the camera (three Pi) are
+//          computed the first time the ray's phi is asked for and kept, so an object is one ray's, read by one
+//          thread at a time (its const functions fill that cache).
 // Not covered (supported() false: a tracer integrates these): eta <= 0 (vortical rays, which never cross the
 //          equator, and the rays along it), all four roots complex (only for eta < 0), a camera inside the
 //          potential's barrier (four real roots, r_o < r4) or on the axis, a radial or polar speed of exactly zero at
@@ -121,7 +124,8 @@ class KerrNullGeodesic {
     const double tau = crossing_mino_time(n);
     const int j = n + j0_;
     const double x = x_of_t(t_o_ - s_r_ * tau);
-    return phi_at(tau, nu_ * 2.0 * j * k_theta_, nu_ * j * std::numbers::pi, radial_amplitude(radius_at_t(t_o_ - s_r_ * tau), x));
+    return phi_at(tau, nu_ * 2.0 * j * k_theta_, nu_ * j * std::numbers::pi,
+                  radial_amplitude(radius_at_t(t_o_ - s_r_ * tau), x));
   }
 
   /// The direction at infinity (theta, phi; phi continuous) of an escaping ray.

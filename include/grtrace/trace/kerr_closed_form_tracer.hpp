@@ -13,7 +13,9 @@
 //          exact; the sky sphere's point or the flat continuation under the other corrections). t is NaN (not
 //          followed), steps 0 (nothing integrated).
 // Per ray: the constants of motion, the radial potential's roots, the polar motion's period; then each crossing
-//          n = 0, 1, ... before the end at a Mino time known at once, its radius by one Jacobi function.
+//          n = 0, 1, ... before the end at a Mino time known at once, its radius by one Jacobi function; phi (two
+//          Pi integrals) at the hit alone where every object declares itself axisymmetric (scene/scene_object.hpp),
+//          at every crossing otherwise.
 // Assumes: rays the closed form does not cover (exact/kerr_null_geodesic.hpp: vortical rays, a camera inside the
 //          potential's barrier or on the axis) are traced by the reduced Kerr tracer instead: exact to its
 //          tolerance, slower; fallback_rays() counts them.
@@ -37,6 +39,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
@@ -150,9 +153,8 @@ class KerrClosedFormTracer {
 
   // Whether an object accepts the crossing state y.
   bool accepted(const GeodesicState& y) const {
-    return [&]<std::size_t... I>(std::index_sequence<I...>) {
-      return (bind_to_metric(std::get<I>(scene().objects), metric_).accepts(y) || ...);
-    }(std::make_index_sequence<SceneT::object_count>{});
+    return std::apply([&](const auto&... o) { return (bind_to_metric(o, metric_).accepts(y) || ...); },
+                      scene().objects);
   }
 
   // The outcome of the first object (in scene order) that accepts the crossing state y, if any.

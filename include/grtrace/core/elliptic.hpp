@@ -18,10 +18,25 @@
 
 namespace grtrace {
 
+namespace detail {
+/// R_F(x, y, z) by its Taylor series about the arguments' mean A, once duplication has drawn them within 1e-2 of A.
+inline GRTRACE_HD double carlson_rf_series(double x, double y, double z) {
+  const double a = (x + y + z) / 3.0;
+  const double dx = 1.0 - x / a, dy = 1.0 - y / a, dz = -(dx + dy);
+  const double e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
+  // DLMF 19.36.1 to seventh order: 1 - E2/10 + E3/14 + E2^2/24 - 3 E2 E3/44 - 5 E2^3/208 + 3 E3^2/104 +
+  // E2^2 E3/16, divided by sqrt(A): two more terms than the fifth order's spare one or two duplications (four square
+  // roots each).
+  return (1.0 + e2 * (-0.1 + e2 * (1.0 / 24.0 - 5.0 / 208.0 * e2 + e3 / 16.0) - 3.0 * e3 / 44.0) +
+          e3 * (1.0 / 14.0 + 3.0 / 104.0 * e3)) /
+         std::sqrt(a);
+}
+}  // namespace detail
+
 /// Carlson's R_F(x, y, z) = (1/2) int_0^inf dt / sqrt((t + x)(t + y)(t + z)) for x, y, z >= 0, at most one zero.
 inline GRTRACE_HD double carlson_rf(double x, double y, double z) {
   // Duplication: R_F(x, y, z) = R_F((x + l)/4, (y + l)/4, (z + l)/4), l = sqrt(xy) + sqrt(yz) + sqrt(zx), which
-  // draws the three arguments together; then the fifth-order Taylor series about their mean A.
+  // draws the three arguments together; then the seventh-order Taylor series about their mean A.
   for (int i = 0; i < 64; ++i) {
     const double a = (x + y + z) / 3.0;
     const double deviation = std::max(std::abs(a - x), std::max(std::abs(a - y), std::abs(a - z)));
@@ -32,14 +47,7 @@ inline GRTRACE_HD double carlson_rf(double x, double y, double z) {
     y = 0.25 * (y + l);
     z = 0.25 * (z + l);
   }
-  const double a = (x + y + z) / 3.0;
-  const double dx = 1.0 - x / a, dy = 1.0 - y / a, dz = -(dx + dy);
-  const double e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
-  // DLMF 19.36.1 to seventh order: 1 - E2/10 + E3/14 + E2^2/24 - 3 E2 E3/44 - 5 E2^3/208 + 3 E3^2/104 +
-  // E2^2 E3/16, divided by sqrt(A): two more terms that spare one or two duplications (four square roots each).
-  return (1.0 + e2 * (-0.1 + e2 * (1.0 / 24.0 - 5.0 / 208.0 * e2 + e3 / 16.0) - 3.0 * e3 / 44.0) +
-          e3 * (1.0 / 14.0 + 3.0 / 104.0 * e3)) /
-         std::sqrt(a);
+  return detail::carlson_rf_series(x, y, z);
 }
 
 /// K(k) = F(pi/2, k).

@@ -101,11 +101,9 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
                           9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0;
     rj[i] = scale * series / (a[i] * std::sqrt(a[i])) + 6.0 * sum[i];
   }
-  // R_F from the same duplicated x, y, z: its own series about their mean (DLMF 19.36.1); the loop above ran at
-  // least until R_F's own rule (deviations below 1.5e-3 of the mean) was met, R_J's being the stricter.
-  const double af = (x + y + z) / 3.0, dx = 1.0 - x / af, dy = 1.0 - y / af, dz = -(dx + dy);
-  const double f2 = dx * dy - dz * dz, f3 = dx * dy * dz;
-  return (1.0 + f2 * (-0.1 + f2 / 24.0 - 3.0 * f3 / 44.0) + f3 / 14.0) / std::sqrt(af);
+  // R_F from the same duplicated x, y, z: its own series about their mean; the loop above ran at least until R_F's
+  // own rule (deviations below 1e-2 of the mean) was met, R_J's being the stricter.
+  return carlson_rf_series(x, y, z);
 }
 }  // namespace detail
 
@@ -128,9 +126,13 @@ inline GRTRACE_HD double complete_pi(double n, double m) {
   return c.rf + n / 3.0 * c.rj;
 }
 
+/// The half turns j of an amplitude phi = j pi + t, |t| <= pi / 2: where the integrals of any real amplitude add
+/// 2 j times the complete one to that of t.
+inline GRTRACE_HD double half_turns(double phi) { return std::floor(phi / std::numbers::pi + 0.5); }
+
 /// Legendre's F(phi | m) = int_0^phi dt / sqrt(1 - m sin^2 t) for any real phi and m < 1.
 inline GRTRACE_HD double legendre_f(double phi, double m) {
-  const double j = std::floor(phi / std::numbers::pi + 0.5);
+  const double j = half_turns(phi);
   const double t = phi - j * std::numbers::pi, s = std::sin(t), c = std::cos(t);
   const double f = s * carlson_rf(c * c, 1.0 - m * s * s, 1.0);
   return j == 0.0 ? f : f + 2.0 * j * complete_f(m);
@@ -146,9 +148,15 @@ inline GRTRACE_HD double legendre_f_sc(double s, double c, double m, double k) {
 
 /// Pi(n; phi | m) from sin(phi) = s and cos(phi) = c >= 0 (|phi| <= pi/2), n < 1, or n > 1 as the Cauchy principal
 /// value: what a caller that knows the amplitude's sine and cosine calls instead of Pi(n; asin s | m).
+namespace detail {
+/// Whether Pi(n; t) at sin^2 t = s2 is taken by its Carlson form (n < 1, or 1 - n s2 away from the pole of n > 1);
+/// otherwise by DLMF 19.7.9's principal value.
+inline GRTRACE_HD bool pi_away_from_pole(double n, double s2) { return n < 1.0 || 1.0 - n * s2 > 0.25; }
+}  // namespace detail
+
 inline GRTRACE_HD double legendre_pi_sc(double n, double s, double c, double m) {
   const double s2 = s * s;
-  if (n < 1.0 || 1.0 - n * s2 > 0.25) {
+  if (detail::pi_away_from_pole(n, s2)) {
     const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n * s2);
     return s * cp.rf + n / 3.0 * s * s2 * cp.rj;
   }
@@ -168,7 +176,7 @@ struct PiPair {
 };
 inline GRTRACE_HD PiPair legendre_pi_pair_sc(double n1, double n2, double s, double c, double m) {
   const double s2 = s * s;
-  if (!((n1 < 1.0 || 1.0 - n1 * s2 > 0.25) && (n2 < 1.0 || 1.0 - n2 * s2 > 0.25)))
+  if (!(detail::pi_away_from_pole(n1, s2) && detail::pi_away_from_pole(n2, s2)))
     return {legendre_pi_sc(n1, s, c, m), legendre_pi_sc(n2, s, c, m)};
   const double ps[2] = {1.0 - n1 * s2, 1.0 - n2 * s2};
   double rj[2];
@@ -179,18 +187,17 @@ inline GRTRACE_HD PiPair legendre_pi_pair_sc(double n1, double n2, double s, dou
 /// Legendre's Pi(n; phi | m) = int_0^phi dt / ((1 - n sin^2 t) sqrt(1 - m sin^2 t)) for any real phi, m < 1, n < 1
 /// (no pole), or n > 1 as the Cauchy principal value: an antiderivative on each interval between poles
 /// (sin^2 phi = 1 / n), which is what a difference over a path that avoids them needs. `complete` is Pi(n | m)
-/// (complete_pi), read only where |phi| > pi / 2: a caller that evaluates many amplitudes of one n and m computes it
-/// once.
+/// (complete_pi), read only where half_turns(phi) != 0: a caller that evaluates many amplitudes of one n and m
+/// computes it once.
 inline GRTRACE_HD double legendre_pi(double n, double phi, double m, double complete) {
-  const double j = std::floor(phi / std::numbers::pi + 0.5);
+  const double j = half_turns(phi);
   const double t = phi - j * std::numbers::pi;
   const double v = legendre_pi_sc(n, std::sin(t), std::cos(t), m);
   return j == 0.0 ? v : v + 2.0 * j * complete;
 }
 
 inline GRTRACE_HD double legendre_pi(double n, double phi, double m) {
-  const bool wraps = std::floor(phi / std::numbers::pi + 0.5) != 0.0;  // as the four-argument form reads it
-  return legendre_pi(n, phi, m, wraps ? complete_pi(n, m) : 0.0);
+  return legendre_pi(n, phi, m, half_turns(phi) != 0.0 ? complete_pi(n, m) : 0.0);
 }
 
 /// sn, cn, dn of u for the parameter m < 1 (negative included), and the amplitude am(u) (continuous in u:
@@ -241,7 +248,7 @@ inline GRTRACE_HD JacobiValues jacobi(double u, double m) {
   if constexpr (!kAmplitude) return {sn, cn, dn, std::numeric_limits<double>::quiet_NaN()};
   // am = j pi + t, |t| <= pi / 2: j counts the half-turns of the phase (am passes (j + 1/2) pi where u = (2 j + 1)
   // K), and (sin t, cos t) = (-1)^j (sn, cn).
-  const double j = std::floor(phase / std::numbers::pi + 0.5);
+  const double j = half_turns(phase);
   const double turn = std::fmod(j, 2.0) == 0.0 ? 1.0 : -1.0;
   return {sn, cn, dn, j * std::numbers::pi + std::atan2(turn * sn, turn * cn)};
 }

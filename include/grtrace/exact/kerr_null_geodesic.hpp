@@ -108,25 +108,26 @@ class KerrNullGeodesic {
   /// The state at the n-th equatorial crossing (theta = pi / 2 exactly; no Jacobi function needed there).
   GRTRACE_HD GeodesicState crossing_state(int n) const {
     GeodesicState y = crossing_state_without_phi(n);
-    y[3] = crossing_phi(n);
+    y[3] = crossing_phi(n, y[1]);
     return y;
   }
 
   /// The same with phi NaN: all of it but the azimuth's two Pi integrals (what a test of where the ray crosses an
-  /// axisymmetric object needs; crossing_phi(n) completes it).
+  /// axisymmetric object needs; crossing_phi(n, y[1]) completes it).
   GRTRACE_HD GeodesicState crossing_state_without_phi(int n) const {
     const int j = n + j0_;  // Y = nu * 2 j K: sn = 0, cn = (-1)^j
     return make_state(crossing_mino_time(n), 0.0, (j % 2 == 0) ? 1.0 : -1.0, 1.0, nullptr);
   }
 
-  /// phi at the n-th equatorial crossing (continuous, not reduced).
-  GRTRACE_HD double crossing_phi(int n) const {
+  /// phi at the n-th equatorial crossing (continuous, not reduced), whose radius r is known (crossing_state's or
+  /// radius_at's; the one-argument form finds it).
+  GRTRACE_HD double crossing_phi(int n, double r) const {
     const double tau = crossing_mino_time(n);
     const int j = n + j0_;
-    const double x = x_of_t(t_o_ - s_r_ * tau);
     return phi_at(tau, nu_ * 2.0 * j * k_theta_, nu_ * j * std::numbers::pi,
-                  radial_amplitude(radius_at_t(t_o_ - s_r_ * tau), x));
+                  radial_amplitude(r, x_of_t(t_o_ - s_r_ * tau)));
   }
+  GRTRACE_HD double crossing_phi(int n) const { return crossing_phi(n, radius_at(crossing_mino_time(n))); }
 
   /// The direction at infinity (theta, phi; phi continuous) of an escaping ray.
   GRTRACE_HD void direction_at_infinity(double& theta, double& phi) const {
@@ -191,7 +192,7 @@ class KerrNullGeodesic {
   // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A); Pi(u+; am Y_o) is the start's
   // (phi_at), the complete Pi(u+) computed once a ray, where a crossing first needs it.
   GRTRACE_HD double polar_phi_integral(double am) const {
-    const bool wraps = std::floor(am / std::numbers::pi + 0.5) != 0.0;
+    const bool wraps = half_turns(am) != 0.0;
     if (wraps && std::isnan(pi_complete_)) pi_complete_ = complete_pi(u_plus_, m_theta_);
     return nu_ * (legendre_pi(u_plus_, am, m_theta_, wraps ? pi_complete_ : 0.0) - polar_start_) / sqrt_a_;
   }

@@ -87,7 +87,7 @@ class KerrClosedFormTracer {
         // phi (two Pi integrals) only where an object takes the crossing: most crossings miss the objects.
         GeodesicState y = ray.crossing_state_without_phi(n);
         if (accepted(y)) {
-          y[3] = ray.crossing_phi(n);
+          y[3] = ray.crossing_phi(n, y[1]);
           hit = hit_at(y);
         }
       } else {

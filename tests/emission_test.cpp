@@ -238,6 +238,7 @@ TEST(Emission, TheIntensityConvergesWithTheTolerance) {
 /// layer in the gas's frame, 2 h / mu (mu the cosine of its angle to the normal there): the intensity g^3 eps / mu.
 struct GlowingLayer {
   static constexpr std::string_view kind = "glowing-layer";
+  static constexpr bool stationary = true;
   double h, r_in, r_out;
   double outer_radius() const { return r_out; }
   double eps(double r) const {
@@ -259,7 +260,9 @@ struct GlowingLayer {
   }
 };
 
-TEST(Emission, AThinGlowingLayersLightByOrderIsEachCrossingsInClosedForm) {
+/// The test below, each ray's light from `trace(metric, layer, settings, y0)`.
+template <class Trace>
+void thin_layer_by_order_in_closed_form(const Trace& trace) {
   // Rays of a distant camera across the hole (beta fixed), out to the disk's edge and densely about the shadow's
   // edges, where the orders n = 1, 2, 3 are: each piece of the split against sum over the crossings of that order of
   // g^3 eps / mu, mu = g sqrt(Q) / r (the ray's momentum along the plane's normal, |k_theta| / r = sqrt(Q) / r at the
@@ -298,7 +301,7 @@ TEST(Emission, AThinGlowingLayersLightByOrderIsEachCrossingsInClosedForm) {
       const double g = d.redshift[n], r = d.radius[n];
       ref[std::min<std::size_t>(n, 3)] += g * g * layer.eps(r) * r / std::sqrt(carter);
     }
-    const EmissionResult e = trace_emission<Fehlberg78, IController>(metric, layer, s, y0, 1.0, 1.0);
+    const EmissionResult e = trace(metric, layer, s, y0);
     SCOPED_TRACE(::testing::Message() << "alpha = " << alpha);
     ASSERT_EQ(e.trace.status, d.escaped ? RayStatus::escaped : RayStatus::captured);
     const double total = ref[0] + ref[1] + ref[2] + ref[3];
@@ -316,6 +319,21 @@ TEST(Emission, AThinGlowingLayersLightByOrderIsEachCrossingsInClosedForm) {
   EXPECT_GT(seen[1], 20);  // the test sees the rings it is about
   EXPECT_GT(seen[2], 10);
   EXPECT_GT(seen[3], 10);
+}
+
+TEST(Emission, AThinGlowingLayersLightByOrderIsEachCrossingsInClosedForm) {
+  thin_layer_by_order_in_closed_form(
+      [](const KerrMetric& metric, const GlowingLayer& layer, const TraceSettings& s, const GeodesicState& y0) {
+        return trace_emission<Fehlberg78, IController>(metric, layer, s, y0, 1.0, 1.0);
+      });
+}
+
+TEST(Emission, AThinGlowingLayersLightInMinoTimeIsEachCrossingsInClosedFormToo) {
+  // The same light on Kerr's separated equations (trace_kerr_mino_emission), with Verner 6(5).
+  thin_layer_by_order_in_closed_form(
+      [](const KerrMetric& metric, const GlowingLayer& layer, const TraceSettings& s, const GeodesicState& y0) {
+        return trace_kerr_mino_emission<Verner65, IController>(metric, layer, s, y0, 1.0, 1.0);
+      });
 }
 
 }  // namespace

@@ -251,7 +251,16 @@ void check_tracer(const RenderRequest& q) {
                        "--tracer general");
 }
 
-/// What an emitting medium's scene needs: its hole (accretion: Schwarzschild; riaf, torus: Kerr), the default method (the one the application library compiles media with), a tracer that draws media, the CPU.
+/// Whether a request's method is the one media are drawn with, or the tools' default (which a request that names
+/// no method has, and which a medium replaces by its own).
+bool is_media_method(const MethodRequest& m) {
+  for (const std::size_t i : {std::size_t{0}, kMediaMethod})
+    if (m.tableau == kToolMethods[i].tableau && m.control == kToolMethods[i].control) return true;
+  return false;
+}
+
+/// What an emitting medium's scene needs: its hole (accretion: Schwarzschild; riaf, torus: Kerr), the media's method
+/// (kMediaMethod, the one the application library compiles media with), a tracer that draws media, the CPU.
 void check_medium_request(const RenderRequest& q) {
   if (q.scene == "riaf" || q.scene == "torus") {
     if (q.metric.name != "kerr" || q.metric.chart != "bl")
@@ -268,15 +277,16 @@ void check_medium_request(const RenderRequest& q) {
                        " falls onto a Schwarzschild hole in the tools: use --metric schwarzschild (other static "
                        "spherically symmetric holes: SphericalMediumTracer in a program of your own)");
   }
-  const ToolMethod& d = kToolMethods[0];
-  if (q.method.tableau != d.tableau || q.method.control != d.control)
-    throw RequestError("--scene " + q.scene + " is drawn with the default method (--tableau " +
-                       std::string(d.tableau) + " --control " + std::string(d.control) +
-                       "); leave --tableau and --control out");
-  if ((q.scene == "riaf" || q.scene == "torus") && q.tracer != "auto" && q.tracer != "general")
+  const ToolMethod& m = kToolMethods[kMediaMethod];
+  if (!is_media_method(q.method))
+    throw RequestError("--scene " + q.scene + " is drawn with --tableau " + std::string(m.tableau) + " --control " +
+                       std::string(m.control) +
+                       " (an error estimate that sees the light integrated along a ray; the default rkf78's does "
+                       "not); leave --tableau and --control out");
+  if ((q.scene == "riaf" || q.scene == "torus") && q.tracer != "auto" && q.tracer != "kerr-mino")
     throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene +
-                       "; use auto or general (every pixel integrated)");
-  if (q.tracer != "auto" && q.tracer != "planar" && q.tracer != "general")
+                       "; use auto or kerr-mino (every pixel integrated on Kerr's separated equations in Mino time)");
+  if (q.scene == "accretion" && q.tracer != "auto" && q.tracer != "planar" && q.tracer != "general")
     throw RequestError("--tracer " + q.tracer + " cannot draw --scene " + q.scene +
                        "; use auto or planar (one table of rays) or general (every pixel integrated)");
   if (q.error_map)
@@ -422,7 +432,12 @@ CheckedRequest check_request(const RenderRequest& in) {
   const bool disk = q.scene == "disk";
   refusal_as_request_error("", [&] { check_metric_spec(q.metric); });
   const MetricSpec& ms = q.metric;
-  if (medium) check_medium_request(q);
+  if (medium) {
+    check_medium_request(q);
+    // The media's method in place of the default the request left as it was (check_medium_request).
+    q.method.tableau = kToolMethods[kMediaMethod].tableau;
+    q.method.control = kToolMethods[kMediaMethod].control;
+  }
   if (q.disk_light && !disk) throw RequestError("--disk-light draws the disk scene: add --scene disk");
   if (draws_light(q) && !medium) check_disk_light_request(q);
   if (ms.name == "minkowski" && disk)

@@ -1,12 +1,13 @@
-// Frames of emitting media, with the tools' default method only (the one declared method media are offered with),
-// on the CPU:
+// Frames of emitting media, with one declared method (kMediaMethod: Verner 6(5), whose error estimate sees the
+// light's integral, which Fehlberg 7(8)'s, the tools' default, does not: trace/emission_system.hpp), on the CPU:
 //   --scene accretion: SphericalAccretion (medium/spherical_accretion.hpp) onto a Schwarzschild hole (one metric:
 //     each is another instantiation of the tracers; check_request refuses the others): one table of rays
 //     (SphericalMediumTracer: tracer auto or planar) or every pixel integrated (GeneralMediumTracer: general);
 //   --scene torus: PolishDoughnut (medium/polish_doughnut.hpp) around Kerr in Boyer-Lindquist coordinates, every
-//     pixel integrated, geometric units;
-//   --scene riaf: RiafFlow (medium/riaf.hpp) around Kerr in Boyer-Lindquist coordinates, every pixel integrated,
-//     its intensity in cgs, its flux in janskys and its pixel in microarcseconds at the source's distance.
+//     pixel integrated on Kerr's separated equations in Mino time (KerrMinoMediumTracer), geometric units;
+//   --scene riaf: RiafFlow (medium/riaf.hpp) around Kerr in Boyer-Lindquist coordinates, every pixel integrated
+//     as the torus's, its intensity in cgs, its flux in janskys and its pixel in microarcseconds at the source's
+//     distance.
 // Every pixel integrated splits the intensity by image order (the table does not: trace/medium_tracers.hpp);
 // and the frames of the thin disk drawn by its light (--scene disk --disk-light: render/disk_light_frame.hpp, every
 // ray's crossings in closed form), whose intensity is split by image order.
@@ -34,8 +35,8 @@ namespace grtrace::app {
 
 namespace {
 
-static_assert(kToolMethods[0].tableau == Fehlberg78::name && kToolMethods[0].control == IController::name,
-              "medium_frames.cpp instantiates media with the tools' default method: keep it the first of kToolMethods");
+static_assert(kToolMethods[kMediaMethod].tableau == Verner65::name && kToolMethods[kMediaMethod].control == IController::name,
+              "medium_frames.cpp instantiates media with Verner65 + IController: keep kMediaMethod pointing at it");
 
 /// The renderer of one medium tracer, which it owns (built in place: the table tracer holds an atomic).
 template <class Tracer>
@@ -137,7 +138,7 @@ std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checke
   if (q.scene == "torus") {  // Kerr in Boyer-Lindquist coordinates (check_request)
     const KerrMetric metric{q.metric.mass, q.metric.spin};
     return own_medium_tracer(checked, [&] {
-      return GeneralMediumTracer<KerrMetric, Fehlberg78, IController, PolishDoughnut<KerrMetric>>(
+      return KerrMinoMediumTracer<Verner65, IController, PolishDoughnut<KerrMetric>>(
           metric, polish_doughnut(q), checked.settings, checked.camera.tetrad().e[0], 1.0);
     });
   }
@@ -147,7 +148,7 @@ std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checke
     return own_medium_tracer(
         checked,
         [&] {
-          return GeneralMediumTracer<KerrMetric, Fehlberg78, IController, RiafFlow<KerrMetric>>(
+          return KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>>(
               metric, RiafFlow<KerrMetric>(metric, p), checked.settings, checked.camera.tetrad().e[0],
               q.frequency_ghz * 1e9);
         },
@@ -158,12 +159,12 @@ std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checke
   const SchwarzschildMetric metric{q.metric.mass};
   if (q.tracer == "general") {
     return own_medium_tracer(checked, [&] {
-      return GeneralMediumTracer<SchwarzschildMetric, Fehlberg78, IController, SphericalAccretion>(
+      return GeneralMediumTracer<SchwarzschildMetric, Verner65, IController, SphericalAccretion>(
           metric, gas, checked.settings, checked.camera.tetrad().e[0], 1.0);
     });
   }
   return own_medium_tracer(checked, [&] {
-    return SphericalMediumTracer<SchwarzschildMetric, Fehlberg78, IController, SphericalAccretion>(
+    return SphericalMediumTracer<SchwarzschildMetric, Verner65, IController, SphericalAccretion>(
         metric, gas, checked.settings, checked.camera, 1.0, q.table_rays);
   });
 }

@@ -31,7 +31,8 @@ std::vector<OptionInfo> make_render_options() {
                "checker | sky | redshift | disk | accretion (glowing gas falling onto --metric schwarzschild; "
                "channels intensity, optical_depth and the emission-weighted redshift) | riaf (the hot flow of M87* or "
                "Sgr A* around --metric kerr, thermal synchrotron in physical units: intensity in cgs, flux in Jy) | "
-               "torus (a thick torus of constant angular momentum around --metric kerr); a medium whose every pixel "
+               "torus (a thick torus of constant angular momentum around --metric kerr; riaf and torus are traced on "
+               "Kerr's separated equations in Mino time); media are drawn with vern6 + i; a medium whose every pixel "
                "is integrated (riaf, torus, accretion with --tracer general) splits its intensity by image order: "
                "channels intensity_n0 .. intensity_n3_up, flux_n0 .. flux_n3_up in the report"});
   std::string metrics;

@@ -1,7 +1,8 @@
 // examples/scenes/kerr_torus.cpp
 // A thick torus of glowing gas around a Kerr hole (a = 0.9): a Polish doughnut of constant angular momentum
 // (medium/polish_doughnut.hpp), inner edge 6 M, pressure maximum 10 M, emitting and absorbing in proportion to its
-// density (a grey source function). Every pixel's ray is integrated with its light (GeneralMediumTracer); the
+// density (a grey source function). Every pixel's ray is integrated with its light on Kerr's separated equations in
+// Mino time (KerrMinoMediumTracer), with Verner 6(5), whose error estimate sees the light's integral; the
 // approaching side is Doppler-brightened, the far side is lensed over the hole, and steps end on the torus's
 // surface (its boundary), where the density has a kink.
 //   kerr_torus [--out torus.exr] [--size 256] [--opacity 0.3] [--inclination 75]   writes the EXR and a PNG
@@ -10,7 +11,7 @@
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/medium_frame.hpp"
-#include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/tableau/verner65.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
 #include <numbers>
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
     TraceSettings settings;
     settings.integrator.tolerance = {1e-8, 1e-10};
     settings.escape_radius = 1000.0;
-    const GeneralMediumTracer<KerrMetric, Fehlberg78, IController, PolishDoughnut<KerrMetric>> tracer(
+    const KerrMinoMediumTracer<Verner65, IController, PolishDoughnut<KerrMetric>> tracer(
         metric, torus, settings, camera.tetrad().e[0], 1.0);
     Frame frame = render_medium_frame(camera, tracer);
     frame.image.metadata["medium"] = std::string(PolishDoughnut<KerrMetric>::kind);

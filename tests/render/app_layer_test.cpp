@@ -20,6 +20,7 @@
 #include "grtrace/tableau/dormand_prince54.hpp"
 #include "grtrace/tableau/fehlberg78.hpp"
 #include "grtrace/tableau/tsitouras54.hpp"
+#include "grtrace/tableau/verner65.hpp"
 #include "grtrace/trace/auto_tracer.hpp"
 #include "grtrace/trace/kerr_mino_tracer.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
@@ -489,7 +490,7 @@ TEST(AppLayer, AnAccretionRequestItsTracersCannotDrawIsRefused) {
       {kerr, "--scene accretion falls onto a Schwarzschild hole in the tools: use --metric schwarzschild"},
       {accretion_request("wormhole", "auto", 1e-9), "--scene accretion falls onto a Schwarzschild hole"},
       {accretion_request("rn", "auto", 1e-9), "--scene accretion falls onto a Schwarzschild hole"},
-      {tsit5, "--scene accretion is drawn with the default method (--tableau rkf78 --control i)"},
+      {tsit5, "--scene accretion is drawn with --tableau vern6 --control i"},
       {accretion_request("schwarzschild", "kerr-mino", 1e-9), "--tracer kerr-mino cannot draw --scene accretion"},
       {on_gpu, "--device cuda: --scene accretion is drawn on the CPU"},
       {error_map, "leave --error-map out"},
@@ -596,7 +597,8 @@ TEST(AppLayer, ADiskDrawnByItsLightIsTheLibrarysDiskLightFrame) {
 TEST(AppLayer, ARiafFrameIsInPhysicalUnits) {
   const app::RenderRequest q = riaf_request();
   const app::RenderResult r = app::render(q);
-  EXPECT_EQ(r.report.tracer, "general");
+  EXPECT_EQ(r.report.tracer, "kerr-mino");
+  EXPECT_EQ(r.image.metadata.at("tableau"), "vern6");  // the media's method: rkf78's estimate cannot see the light
   EXPECT_EQ(r.report.stats.failures(), 0);
   // The flux at the telescope is the camera's times (r_cam / D)^2, in janskys: Sgr A*'s order (2.4 Jy measured).
   const SourceScale s = SourceScale::sgr_a();
@@ -633,8 +635,10 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
   rate.accretion_rate = 0.0;
   app::RenderRequest frequency = riaf_request();
   frequency.frequency_ghz = -230.0;
-  app::RenderRequest mino = riaf_request();
-  mino.tracer = "kerr-mino";
+  app::RenderRequest general = riaf_request();
+  general.tracer = "general";
+  app::RenderRequest tsit5 = riaf_request();
+  tsit5.method.tableau = "tsit5";
   const std::vector<Refused> cases = {
       {schwarzschild, "--scene riaf flows around a Kerr hole in Boyer-Lindquist coordinates"},
       {ks, "--scene riaf flows around a Kerr hole in Boyer-Lindquist coordinates"},
@@ -643,7 +647,8 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
       {source, "unknown --source 'cyg-x1'; choose m87 or sgr-a"},
       {rate, "--accretion-rate must lie in (0, 1e3]"},
       {frequency, "--frequency must lie in (0, 1e7] GHz"},
-      {mino, "--tracer kerr-mino cannot draw --scene riaf"},
+      {general, "--tracer general cannot draw --scene riaf; use auto or kerr-mino"},
+      {tsit5, "--scene riaf is drawn with --tableau vern6 --control i"},
   };
   for (const Refused& c : cases) expect_refused(c.says, [&] { (void)app::check_request(c.q); });
   const std::vector<std::pair<std::map<std::string, std::string>, std::string>> refused = {
@@ -653,7 +658,7 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
   for (const auto& [given, says] : refused) expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
 }
 
-TEST(AppLayer, ATorusFrameIsTheLibrarysGeneralTracersFrame) {
+TEST(AppLayer, ATorusFrameIsTheLibrarysMinoTimeTracersFrame) {
   // The tools' torus (Kerr a = 0.9, r_in 6, peak 10, grey) against the library's tracer on the same camera.
   app::RenderRequest q;
   q.metric.name = "kerr";
@@ -665,12 +670,12 @@ TEST(AppLayer, ATorusFrameIsTheLibrarysGeneralTracersFrame) {
   q.camera.fov_degrees = 36.0;
   q.camera.width = q.camera.height = 12;
   const app::RenderResult r = app::render(q);
-  EXPECT_EQ(r.report.tracer, "general");
+  EXPECT_EQ(r.report.tracer, "kerr-mino");
   EXPECT_EQ(r.report.stats.failures(), 0);
   const app::CheckedRequest checked = app::check_request(q);
   const KerrMetric metric{1.0, 0.9};
   const PolishDoughnut<KerrMetric> torus(metric, 6.0, 10.0, 3.0, 1.0, 0.5);
-  const GeneralMediumTracer<KerrMetric, Fehlberg78, IController, PolishDoughnut<KerrMetric>> tracer(
+  const KerrMinoMediumTracer<Verner65, IController, PolishDoughnut<KerrMetric>> tracer(
       metric, torus, checked.settings, checked.camera.tetrad().e[0], 1.0);
   // Its light split by image order (trace/emission_system.hpp): each order's channel the tracer's piece, the
   // intensity their sum (the same float additions) and the tracer's intensity up to that rounding, the order

@@ -17,6 +17,11 @@
 //          timelike (near the axis and the horizon): no gas. The angular velocity is
 //          Omega = -(g_tphi + l g_tt) / (g_phiphi + l g_tphi), given wherever that circle is timelike (on the
 //          surface too); where it is not, the zero angular momentum observer's (any timelike one would do: no gas).
+//          W also falls below W_in near the horizon (W -> -inf there: rho would grow without bound as g -> 0, and a
+//          ray grazing the horizon collected 8 times a torus ray's light there): that region lies inside the cusp,
+//          W's maximum on the equator between the horizon and r_in, and the gas is the part outside the cusp's
+//          radius (the torus through r_in lies within the critical equipotential's outer lobe, whose tip the cusp
+//          is).
 // Assumes: r_c beyond the marginally bound orbit, so that the torus closes (W_in < 0: a finite outer edge, found on
 //          the equator at construction; off the equator the surface lies inside that radius, as a constant-l
 //          torus's does: tests/medium_torus_test.cpp checks it on a grid).
@@ -56,6 +61,7 @@ class PolishDoughnut {
       : metric_(metric), r_in_(r_in), r_c_(r_c), n_(n), j0_(j0), kappa_(kappa) {
     if (!(r_in > 0.0 && r_c > r_in && n > 0.0 && j0 >= 0.0 && kappa >= 0.0))
       throw std::invalid_argument("PolishDoughnut: need 0 < r_in < r_c, n > 0, j0 >= 0, kappa >= 0");
+    if (n == std::round(n) && n <= 8.0) whole_n_ = static_cast<int>(n);
     const auto u = circular_orbit_velocity(metric, r_c, +1);
     if (!u) throw std::invalid_argument("PolishDoughnut: no circular orbit at r_c (inside the photon orbit)");
     const Vec4 lowered = metric.metric(Vec4(0.0, r_c, std::numbers::pi / 2.0, 0.0)) * *u;
@@ -80,9 +86,13 @@ class PolishDoughnut {
       (potential(equator(mid)) < w_in_ ? lo : hi) = mid;
     }
     r_out_ = hi;
+    r_cusp_ = cusp_radius();
   }
 
   double outer_radius() const { return r_out_; }
+  /// The equator's radius inside r_in where W is largest (the cusp of the critical equipotential, or the outer edge
+  /// of a band where no orbit of this l is timelike): the gas is outside it (see the top of this file).
+  double cusp_radius_inside() const { return r_cusp_; }
   double inner_edge() const { return r_in_; }
   double pressure_maximum() const { return r_c_; }
   double angular_momentum() const { return l_; }  ///< l = -u_phi / u_t
@@ -97,16 +107,18 @@ class PolishDoughnut {
 
   /// rho at x: 1 at the pressure maximum, 0 outside the torus.
   double density(const Vec4& x) const {
+    if (!(x[1] > r_cusp_)) return 0.0;
     const double w = potential(x);
     if (!(w < w_in_)) return 0.0;
-    return std::pow(std::expm1(w_in_ - w) / h_c_minus_1_, n_);
+    return signed_power(std::expm1(w_in_ - w) / h_c_minus_1_);
   }
 
-  /// Positive outside the torus, <= 0 inside (W - W_in, capped at 1 where no orbit of this l is timelike): the
-  /// tracer ends its steps on the surface, where rho ~ depth^n is not smooth.
+  /// Positive outside the torus, <= 0 inside (W - W_in, capped at 1 where no orbit of this l is timelike, and the
+  /// distance inside the cusp's radius, where W < W_in again near the horizon): the tracer ends its steps on the
+  /// surface, where rho ~ depth^n is not smooth.
   template <MetricPolicy M>
   double boundary(const M&, const Vec4& x) const {
-    return std::min(potential(x) - w_in_, 1.0);
+    return std::min(std::max(potential(x) - w_in_, r_cusp_ - x[1]), 1.0);
   }
 
   /// j and alpha from rho continued smoothly across the surface (odd in h - 1: negative outside), as the tracer
@@ -114,7 +126,7 @@ class PolishDoughnut {
   template <MetricPolicy M>
   MediumCoefficients coefficients(const M&, const Vec4& x, double /*nu*/) const {
     const double h1 = std::expm1(w_in_ - std::min(potential(x), w_in_ + 1.0));  // W = +inf (no orbit): h - 1 ~ -0.6
-    const double rho = std::copysign(std::pow(std::abs(h1) / h_c_minus_1_, n_), h1);
+    const double rho = signed_power(h1 / h_c_minus_1_);
     return {j0_ * rho, kappa_ * rho};
   }
 
@@ -134,11 +146,59 @@ class PolishDoughnut {
   }
 
  private:
+  /// |x|^n with the sign of x: by multiplication for a whole n up to 8 (pow is a tenth of a torus frame's time).
+  double signed_power(double x) const {
+    const double a = std::abs(x);
+    double p = 1.0;
+    if (whole_n_ > 0)
+      for (int i = 0; i < whole_n_; ++i) p *= a;
+    else
+      p = std::pow(a, n_);
+    return std::copysign(p, x);
+  }
+
   static Vec4 equator(double r) { return Vec4(0.0, r, std::numbers::pi / 2.0, 0.0); }
+
+  /// Where W is largest on the equator between the horizon and r_in: on a geometric grid of 256 radii, then by
+  /// golden section between the neighbours of the largest sample (W rises from -inf at the horizon to the cusp and
+  /// falls to W_c at r_c, where l is below the photon orbit's impact parameter); where l is above it, a band of
+  /// radii has no timelike orbit of this l (W = +inf), and its outer edge is found by bisection.
+  double cusp_radius() const {
+    const double r_h = std::max(metric_.horizon_radius(), 1e-3 * r_in_);
+    constexpr int kSamples = 256;
+    const double ratio = std::pow(r_in_ / r_h, 1.0 / kSamples);
+    int best = kSamples;
+    double w_best = -std::numeric_limits<double>::infinity(), r = r_in_;
+    for (int i = kSamples; i > 0; --i, r /= ratio) {
+      const double w = potential(equator(r));
+      if (w > w_best) {
+        w_best = w;
+        best = i;
+      }
+    }
+    const double at = r_h * std::pow(ratio, best);
+    if (!std::isfinite(w_best)) {  // the band's outer edge, by bisection between its last sample and the next
+      double in = at, out = std::min(at * ratio, r_in_);
+      for (int i = 0; i < 100 && out - in > 1e-13 * out; ++i) {
+        const double mid = 0.5 * (in + out);
+        (std::isfinite(potential(equator(mid))) ? out : in) = mid;
+      }
+      return out;
+    }
+    double lo = at / ratio, hi = std::min(at * ratio, r_in_);
+    const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int i = 0; i < 100 && hi - lo > 1e-12 * hi; ++i) {
+      const double a = hi - golden * (hi - lo), b = lo + golden * (hi - lo);
+      if (potential(equator(a)) > potential(equator(b))) hi = b;
+      else lo = a;
+    }
+    return 0.5 * (lo + hi);
+  }
 
   Metric metric_;
   double r_in_, r_c_, n_, j0_, kappa_;
-  double l_ = 0.0, w_in_ = 0.0, w_c_ = 0.0, h_c_minus_1_ = 1.0, r_out_ = 0.0;
+  int whole_n_ = 0;  ///< n where it is a whole number up to 8 (signed_power), else 0
+  double l_ = 0.0, w_in_ = 0.0, w_c_ = 0.0, h_c_minus_1_ = 1.0, r_out_ = 0.0, r_cusp_ = 0.0;
 };
 
 }  // namespace grtrace

@@ -1,8 +1,9 @@
 // grtrace/trace/emission_system.hpp
 // The light an emitting medium (medium/emitting_medium.hpp) sends along one camera ray, integrated with the ray
-// itself: the geodesic equation of a metric (MetricGeodesicSystem) with two more variables, the intensity that
-// reaches the camera and the optical depth from the camera, so that the step control bounds the intensity's error
-// as it bounds the ray's (a step that skips a thin bright layer is rejected like one that misses a turn).
+// itself: the ray's equations (the geodesic equation of any metric, MetricGeodesicSystem, or Kerr's separated
+// equations in Mino time, KerrMinoSystem, for a stationary medium) with more variables, the intensity that reaches
+// the camera and the optical depth from the camera, so that the step control bounds the intensity's error as it
+// bounds the ray's (a step that skips a thin bright layer is rejected like one that misses a turn).
 //
 // Takes:   a metric, a medium, a camera ray y0 (x, k) as a camera makes it (k past-directed: traced from the camera
 //          backwards), the energy of that photon measured by the camera, E_cam = |g(k0, u_cam)|, and the observed
@@ -37,6 +38,13 @@
 //          step map (as a surface's hit); a ray over a spherical chart's pole (re-charted there) is cut where it
 //          is re-charted, at the end of that step. The pieces sum to the intensity up to rounding (and, where a
 //          cut's intensity lies above the ray's end by the integration's error, that error: no piece is negative).
+// Method's error estimate: the light is an integral along the ray, and a tableau's embedded estimate must see the
+//          error of an integral to bound it (estimate_sees_integrals below): Fehlberg 7(8)'s does not (its stages 12
+//          and 13 sit at the times of stages 1 and 11, so for an integral its two weight sets give the same rule and
+//          the estimate is zero). The ray's own error then sets the steps, which the geodesic equation keeps short
+//          enough in practice, but Kerr's separated equations in Mino time are smooth enough to cross a torus in
+//          three steps: its light was 4e-4 off at rtol 1e-10, a RIAF's through the geodesic equation 2e-4. The
+//          tools draw media with Verner 6(5) (1e-6 at rtol 1e-8 on both, converging with the tolerance).
 // Assumes: the ray starts at the camera (tau = 0, I = 0 there); the horizon, the sky sphere and the settings end
 //          it as they end any ray (trace/geodesic_tracer.hpp).
 #pragma once
@@ -50,24 +58,51 @@
 #include "grtrace/tableau/butcher_tableau.hpp"
 #include "grtrace/trace/geodesic_system.hpp"
 #include "grtrace/trace/geodesic_tracer.hpp"
+#include "grtrace/trace/kerr_mino_system.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 namespace grtrace {
 
-/// A geodesic system (trace/geodesic_system.hpp) of eleven variables: the ray's (x, k), the camera's intensity, the
-/// optical depth and the intensity weighted by g (see the top of this file). Holds the metric and the medium by
-/// reference: they outlive the trace.
-template <MetricPolicy Metric, class Medium>
-struct EmissionSystem {
-  static constexpr int dimension = 11;
-  using State = Vector<11>;
-  static constexpr int kIntensity = 8, kOpticalDepth = 9, kRedshiftWeight = 10;  ///< I_nu, tau, integral g dI
+namespace detail {
+/// The metric of a ray's geodesic system: MetricGeodesicSystem holds a pointer to it, KerrMinoSystem a copy.
+template <class Ray>
+GRTRACE_HD const auto& ray_metric(const Ray& ray) {
+  if constexpr (std::is_pointer_v<decltype(ray.metric)>) return *ray.metric;
+  else return ray.metric;
+}
+template <class Ray>
+using RayMetric = std::remove_cvref_t<decltype(ray_metric(std::declval<const Ray&>()))>;
 
-  MetricGeodesicSystem<Metric> ray;
+/// Whether a ray's system follows t (KerrMinoSystem does not: `static constexpr bool follows_time = false;`).
+template <class Ray>
+constexpr bool ray_follows_time() {
+  if constexpr (requires { Ray::follows_time; }) return Ray::follows_time;
+  else return true;
+}
+}  // namespace detail
+
+/// A geodesic system (trace/geodesic_system.hpp) of the ray's own variables (Ray: MetricGeodesicSystem<Metric>, the
+/// geodesic equation of any metric, or KerrMinoSystem, Kerr's separated equations in Mino time) and three more: the
+/// camera's intensity, the optical depth and the intensity weighted by g (see the top of this file). The light's
+/// derivatives are in the affine parameter times the system's rate of it (Ray's optional affine_rate(z): Sigma in
+/// Mino time; 1 without it). Holds the metric (through the ray's system) and the medium by reference: they outlive
+/// the trace.
+template <class Ray, class Medium>
+struct RayEmissionSystem {
+  using Metric = detail::RayMetric<Ray>;
+  static constexpr int ray_dimension = Ray::dimension;
+  static constexpr int dimension = Ray::dimension + 3;
+  using State = Vector<dimension>;
+  static constexpr int kIntensity = ray_dimension, kOpticalDepth = ray_dimension + 1,
+                       kRedshiftWeight = ray_dimension + 2;  ///< I_nu, tau, integral g dI
+
+  Ray ray;
   const Medium* medium;
   double camera_energy;   ///< E_cam = |g(k0, u_cam)|
   double frequency;       ///< nu_obs
@@ -76,75 +111,118 @@ struct EmissionSystem {
   /// by trace_emission between steps, which end on the boundary. Null: the coefficients everywhere.
   const int* boundary_side = nullptr;
 
-  GRTRACE_HD EmissionSystem(const Metric& metric, const Medium& m, const GeodesicState& y0, double e_cam, double nu_obs)
-      : ray(metric, y0), medium(&m), camera_energy(e_cam), frequency(nu_obs) {
+  GRTRACE_HD RayEmissionSystem(const Metric& metric, const Medium& m, const GeodesicState& y0, double e_cam,
+                               double nu_obs)
+      : ray(metric, y0), medium(&m), camera_energy(e_cam), frequency(nu_obs),
+        rho_outer_(Ray::radial_coordinate_at(m.outer_radius())) {
     static_assert(check_emitting_medium<Medium, Metric>());
+    static_assert(detail::ray_follows_time<Ray>() || medium_is_stationary<Medium>(),
+                  "this ray's system does not follow t (Kerr's separated equations in Mino time): the medium must be "
+                  "stationary (declare `static constexpr bool stationary = true;` if it is); others need the "
+                  "geodesic equation (trace_emission)");
   }
 
-  /// (y0, I = 0, tau = 0).
+  /// (the ray's start, I = 0, tau = 0).
   GRTRACE_HD State initial_state(const GeodesicState& y0) const {
     State z = State::Zero();
-    z.template head<8>() = y0;
+    if constexpr (requires { ray.initial_state(y0); }) z.template head<ray_dimension>() = ray.initial_state(y0);
+    else z.template head<ray_dimension>() = y0;
     return z;
   }
 
   GRTRACE_HD State operator()(const State& z) const {
-    const GeodesicState y = z.template head<8>();
+    const RayState zr = ray_part(z);
     State dz;
-    dz.template head<8>() = ray(y);
+    dz.template head<ray_dimension>() = ray(zr);
     dz[kIntensity] = dz[kOpticalDepth] = dz[kRedshiftWeight] = 0.0;
-    const Vec4 x = y.head<4>(), k = y.tail<4>();
     if (boundary_side != nullptr) {  // the side of the boundary decides (no cut within a step: it is smooth)
       if (*boundary_side > 0) return dz;
-    } else if (!(ray.metric->radius(x) <= medium->outer_radius())) {
+    } else if (!(ray.radial_coordinate(zr) <= rho_outer_)) {  // beyond outer_radius (or past u = 0 in 1/r)
       return dz;
     }
-    const Vec4 u = medium->fluid_velocity(*ray.metric, x);
-    const double e_fluid = std::abs(inner_product(*ray.metric, x, k, u));
+    // A trial stage the ray's system refuses (NaN: KerrMinoSystem deep past a turning point) is not a place to ask
+    // the medium about.
+    if constexpr (!detail::ray_follows_time<Ray>())
+      if (!std::isfinite(dz[0])) return dz;
+    const GeodesicState y = ray.geodesic_state(zr);
+    const Vec4 x = medium_event(y), k = y.template tail<4>();
+    const Metric& metric = detail::ray_metric(ray);
+    const Vec4 u = medium->fluid_velocity(metric, x);
+    double e_fluid = std::abs(inner_product(metric, x, k, u));
     const double g = camera_energy / e_fluid;
-    const MediumCoefficients c = medium_coefficients(*medium, *ray.metric, x, k, u, frequency / g);
+    const MediumCoefficients c = medium_coefficients(*medium, metric, x, k, u, frequency / g);
+    if constexpr (requires { ray.affine_rate(zr); }) e_fluid *= ray.affine_rate(zr);  // dl per unit of s
     dz[kIntensity] = g * g * g * c.emission * std::exp(-z[kOpticalDepth]) * e_fluid;
     dz[kOpticalDepth] = c.absorption * e_fluid;
     dz[kRedshiftWeight] = g * dz[kIntensity];
-    if (c.absorption > 0.0) dz *= 1.0 / (1.0 + c.absorption * ray.metric->radius(x));  // sigma (top of this file)
+    if (c.absorption > 0.0) dz *= 1.0 / (1.0 + c.absorption * ray.radius(zr));  // sigma (top of this file)
     return dz;
   }
 
-  GRTRACE_HD double radius(const State& z) const { return ray.radius(head(z)); }
-  GRTRACE_HD double radial_coordinate(const State& z) const { return ray.radial_coordinate(head(z)); }
-  static GRTRACE_HD double radial_coordinate_at(double r) { return MetricGeodesicSystem<Metric>::radial_coordinate_at(r); }
-  GRTRACE_HD GeodesicState geodesic_state(const State& z) const { return head(z); }
-  GRTRACE_HD double constraint_violation(const State& z) const { return ray.constraint_violation(head(z)); }
-  GRTRACE_HD double constraint_drift(const State& z) const { return ray.constraint_drift(head(z)); }
-  GRTRACE_HD double equatorial_latitude(const State& z) const { return ray.equatorial_latitude(head(z)); }
+  /// The event of z where the medium is asked about it: the ray's x, its t 0 where the system does not follow it
+  /// (the medium is then stationary).
+  GRTRACE_HD Vec4 event(const State& z) const { return medium_event(ray.geodesic_state(ray_part(z))); }
+
+  /// The medium's boundary at z (medium/emitting_medium.hpp: positive outside the gas; for a medium that has one).
+  /// A system in u = 1/r passes beyond infinity (u < 0) within a step towards the sky: there no medium is asked
+  /// about its negative radius, and the point is outside (1).
+  GRTRACE_HD double boundary(const State& z) const {
+    if constexpr (!std::is_same_v<Ray, MetricGeodesicSystem<Metric>>)
+      if (!(radius(z) > 0.0)) return 1.0;
+    return medium->boundary(detail::ray_metric(ray), event(z));
+  }
+
+  GRTRACE_HD double radius(const State& z) const { return ray.radius(ray_part(z)); }
+  GRTRACE_HD double radial_coordinate(const State& z) const { return ray.radial_coordinate(ray_part(z)); }
+  static GRTRACE_HD double radial_coordinate_at(double r) { return Ray::radial_coordinate_at(r); }
+  GRTRACE_HD GeodesicState geodesic_state(const State& z) const { return ray.geodesic_state(ray_part(z)); }
+  GRTRACE_HD double constraint_violation(const State& z) const { return ray.constraint_violation(ray_part(z)); }
+  GRTRACE_HD double constraint_drift(const State& z) const { return ray.constraint_drift(ray_part(z)); }
+  GRTRACE_HD double equatorial_latitude(const State& z) const { return ray.equatorial_latitude(ray_part(z)); }
   /// The rate of equatorial_latitude along the ray's k (positive: moving north), of which the split by order uses
   /// the sign.
   GRTRACE_HD double equatorial_latitude_rate(const State& z) const {
+    const GeodesicState y = geodesic_state(z);
     if constexpr (Metric::chart == Chart::spherical) {
-      return -z[6];
+      return -y[6];
     } else {  // z / |x|: (k_z |x|^2 - z (x . k)) / |x|^3
-      const double r2 = z[1] * z[1] + z[2] * z[2] + z[3] * z[3], xk = z[1] * z[5] + z[2] * z[6] + z[3] * z[7];
-      return (z[7] * r2 - z[3] * xk) / (r2 * std::sqrt(r2));
+      const double r2 = y[1] * y[1] + y[2] * y[2] + y[3] * y[3], xk = y[1] * y[5] + y[2] * y[6] + y[3] * y[7];
+      return (y[7] * r2 - y[3] * xk) / (r2 * std::sqrt(r2));
     }
   }
-  /// The ray's re-charting at a spherical chart's axis, and its move onto the axis (MetricGeodesicSystem); the
-  /// light's slots are kept.
+  /// The ray's re-charting at a spherical chart's axis, and its move onto the axis (the ray's system, where it has
+  /// one); the light's slots are kept.
   GRTRACE_HD bool wrap_chart(State& z) const {
-    GeodesicState y = head(z);
-    if (!ray.wrap_chart(y)) return false;
-    z.template head<8>() = y;
+    RayState zr = ray_part(z);
+    if (!ray.wrap_chart(zr)) return false;
+    z.template head<ray_dimension>() = zr;
     return true;
   }
   GRTRACE_HD bool align_with_axis(State& z) const {
-    GeodesicState y = head(z);
-    if (!ray.align_with_axis(y)) return false;
-    z.template head<8>() = y;
-    return true;
+    if constexpr (requires(RayState zr) { { ray.align_with_axis(zr) } -> std::same_as<bool>; }) {
+      RayState zr = ray_part(z);
+      if (!ray.align_with_axis(zr)) return false;
+      z.template head<ray_dimension>() = zr;
+      return true;
+    } else {
+      return false;
+    }
   }
 
  private:
-  static GRTRACE_HD GeodesicState head(const State& z) { return z.template head<8>(); }
+  using RayState = typename Ray::State;
+  static GRTRACE_HD RayState ray_part(const State& z) { return z.template head<ray_dimension>(); }
+  static GRTRACE_HD Vec4 medium_event(const GeodesicState& y) {
+    Vec4 x = y.template head<4>();
+    if constexpr (!detail::ray_follows_time<Ray>()) x[0] = 0.0;
+    return x;
+  }
+  double rho_outer_;  ///< the ray's radial coordinate at the medium's outer_radius()
 };
+
+/// The light of a medium along the geodesic equation of any metric policy.
+template <MetricPolicy Metric, class Medium>
+using EmissionSystem = RayEmissionSystem<MetricGeodesicSystem<Metric>, Medium>;
 
 namespace detail {
 /// A boundary crossing within this step fraction of a step's start is the boundary the step started on (see
@@ -248,17 +326,19 @@ Optional<EventCrossing> locate_first_entry(const G& g, double g0, double g1) {
 /// dense output (locate_first_entry: a layer entered and left within one step is found too), refined
 /// on the step map (refine_located), and the integration resumed there on the other side, the step size to come
 /// unchanged. Takes the integrator right after an accepted step, the side it was on (the variable the system reads:
-/// EmissionSystem::boundary_side) and whether the step was a retake (below); sets the side the integration goes on
-/// from, and `kept`, the fraction of the step that stands (1 whole, 0 taken again, else where it was cut).
-template <class Medium, class Metric, class System, class Integrator>
-void end_step_on_boundary(const Medium& medium, const Metric& metric, const System& system, Integrator& integ,
-                          int& side, bool& retaken, double& kept) {
-  kept = 1.0;
+/// RayEmissionSystem::boundary_side), whether the step was a retake (below) and the fraction of the step that stands
+/// (1, or where a surface ended the ray: a crossing of the boundary before it is cut there all the same, and the ray
+/// goes on; without that, a step that left the gas and reached the sky sphere at once was integrated with the gas's
+/// light all the way: a Mino-time step from 23 M to the sky, -2e3 times the ray's intensity); sets the side the
+/// integration goes on from, and `kept`, the fraction of the step that stands (`stands` when it is not cut, 0 when
+/// it is taken again, else where it was cut).
+template <class System, class Integrator>
+void end_step_on_boundary(const System& system, Integrator& integ, int& side, bool& retaken, double stands,
+                          double& kept) {
+  kept = stands;
   if (!(integ.last_step() != 0.0)) return;
   const double sign = side > 0 ? 1.0 : -1.0;  // g > 0: still on the step's side
-  const auto g_state = [&](const typename System::State& z) {
-    return sign * medium.boundary(metric, Vec4(z.template head<4>()));
-  };
+  const auto g_state = [&](const typename System::State& z) { return sign * system.boundary(z); };
   const auto g_dense = [&](double t) { return g_state(integ.dense(t)); };
   // The integration goes on from z on the other side: the derivative there is that side's (the system reads
   // `side`), and the next step's first stage is that derivative.
@@ -270,12 +350,13 @@ void end_step_on_boundary(const Medium& medium, const Metric& metric, const Syst
   };
   // A step that starts on the boundary (after a cut) starts on its own side, whatever the rounding there says.
   const double g0 = std::max(g_state(integ.dense(0.0)), std::numeric_limits<double>::min());
-  const double g1 = g_state(integ.state());
-  const auto c = locate_first_entry(g_dense, g0, g1);
+  const double g1 = stands == 1.0 ? g_state(integ.state()) : g_dense(stands);
+  auto c = locate_first_entry([&](double t) { return g_dense(t * stands); }, g0, g1);
   if (!c) {
     retaken = false;
     return;
   }
+  c->theta *= stands;
   // A crossing within kOnItsStart of the step's start is the boundary it started on: after a cut, or where a ray
   // grazes the surface along its tangent (cutting there again and again would never move on). The step stays whole;
   // it goes on from the side its end is on.
@@ -293,8 +374,8 @@ void end_step_on_boundary(const Medium& medium, const Metric& metric, const Syst
     return;
   }
   retaken = false;
-  if (c->theta >= 1.0 - 1e-12) {  // the step ends on it
-    resume_across(integ.state(), integ.lambda());
+  if (c->theta >= stands - 1e-12) {  // the step ends on it: the ray's end, or where it goes on from
+    if (stands == 1.0) resume_across(integ.state(), integ.lambda());
     return;
   }
   const auto [theta, z] = refine_located(integ, system, g_dense, g_state, *c, true);
@@ -354,6 +435,20 @@ class OrderSplit {
 };
 }  // namespace detail
 
+/// Whether a tableau's embedded error estimate sees the error of an integral along the ray, y' = f(s) (see the top
+/// of this file): its weight differences b - b_hat, summed over the stages at each time c, are not all zero (they
+/// are for Fehlberg 7(8)).
+template <ExplicitTableau T>
+constexpr bool estimate_sees_integrals() {
+  for (std::size_t i = 0; i < T::stages; ++i) {
+    double at_c = 0.0;
+    for (std::size_t j = 0; j < T::stages; ++j)
+      if (T::c[j] == T::c[i]) at_c += T::b[j] - T::b_hat[j];
+    if (at_c > 1e-12 || at_c < -1e-12) return true;
+  }
+  return false;
+}
+
 /// What trace_emission returns: the ray's trace, and the light it collected (see the top of this file).
 struct EmissionResult {
   TraceResult trace;           ///< status hit where the medium became opaque; lambda is the parameter s
@@ -370,19 +465,26 @@ struct EmissionResult {
 /// file).
 inline constexpr double default_min_transmission = 1e-16;
 
-/// Integrates the ray y0 and the light of `medium` along it (see the top of this file) with the tableau and the
-/// controller given, until the horizon guard, the sky sphere or the settings end it.
-template <ExplicitTableau Tableau, StepController Controller = PIController, MetricPolicy Metric, class Medium>
-EmissionResult trace_emission(const Metric& metric, const Medium& medium, const TraceSettings& settings,
-                              const GeodesicState& y0, double camera_energy, double frequency,
-                              const Controller& controller = {},
-                              double min_transmission = default_min_transmission) {
-  EmissionSystem<Metric, Medium> system(metric, medium, y0, camera_energy, frequency);
-  using System = EmissionSystem<Metric, Medium>;
+/// Integrates the ray y0 and the light of `medium` along it (see the top of this file) on the ray's system Ray
+/// (MetricGeodesicSystem<Metric>: trace_emission below; KerrMinoSystem: trace_kerr_mino_emission) with the tableau
+/// and the controller given, until the horizon guard, the sky sphere or the settings end it. The result's lambda is
+/// the system's parameter (Mino time for KerrMinoSystem), its final state's t NaN where the system does not follow t.
+template <class Ray, ExplicitTableau Tableau, StepController Controller = PIController, class Medium>
+EmissionResult trace_emission_along(const detail::RayMetric<Ray>& metric, const Medium& medium,
+                                    const TraceSettings& settings, const GeodesicState& y0, double camera_energy,
+                                    double frequency, const Controller& controller = {},
+                                    double min_transmission = default_min_transmission) {
+  using Metric = detail::RayMetric<Ray>;
+  static_assert(std::is_same_v<Ray, MetricGeodesicSystem<Metric>> || estimate_sees_integrals<Tableau>(),
+                "in Mino time a ray is smooth enough to cross the gas in a few steps, so the light's own error must "
+                "set them: use a tableau whose error estimate sees an integral (Verner65, DormandPrince54, ...; "
+                "Fehlberg78's is zero for one: see the top of trace/emission_system.hpp)");
+  using System = RayEmissionSystem<Ray, Medium>;
+  System system(metric, medium, y0, camera_energy, frequency);
   int side = 1;  // of the medium's boundary, where it has one (end_step_on_boundary)
   bool retaken = false;
   if constexpr (detail::MediumWithBoundary<Medium, Metric>) {
-    side = medium.boundary(metric, Vec4(y0.template head<4>())) > 0.0 ? 1 : -1;
+    side = system.boundary(system.initial_state(y0)) > 0.0 ? 1 : -1;
     system.boundary_side = &side;
   }
   using Loop = TraceLoop<Tableau, Controller, System>;
@@ -407,22 +509,40 @@ EmissionResult trace_emission(const Metric& metric, const Medium& medium, const 
       break;
     }
     const typename Loop::Progress before = progress;
-    if (auto ended = loop.step(integ, progress, observer)) {
+    auto ended = loop.step(integ, progress, observer);
+    // A surface (the horizon, the sky sphere, an event) ended the ray inside this step: the part up to it stands.
+    const bool on_surface = ended && (ended->status == RayStatus::captured || ended->status == RayStatus::escaped ||
+                                      ended->status == RayStatus::hit);
+    if (ended && !on_surface) {
       out.trace = *ended;
       break;
     }
-    // The turning point that ends an order, found on the whole step, stands only where the step does.
-    const auto cut = split.find(system, integ, progress.crossings, 1.0);
-    double kept = 1.0;
+    const double stands = ended ? observer.theta_end : 1.0;
+    // The turning point that ends an order, found on the part of the step that stands, stands only where the step
+    // does.
+    const auto cut = split.find(system, integ, ended ? ended->crossings : progress.crossings, stands);
+    double kept = stands;
     if constexpr (detail::MediumWithBoundary<Medium, Metric>) {
-      detail::end_step_on_boundary(medium, metric, system, integ, side, retaken, kept);
-      if (kept < 1.0) {  // resumed inside the step: its crossings of the plane are counted from there on
-        progress.crossings = before.crossings;
-        progress.latitude_prev = before.latitude_prev;
+      detail::end_step_on_boundary(system, integ, side, retaken, stands, kept);
+      if (kept < stands) {  // resumed inside the step: its crossings of the plane are counted from there on
+        if (ended) {  // and the ray goes on: the surfaces as they were at the step's start
+          const long refinement_evals = progress.refinement_evals;
+          progress = before;
+          progress.refinement_evals = refinement_evals;
+          ended = no_value;
+          observer.theta_end = 1.0;
+        } else {
+          progress.crossings = before.crossings;
+          progress.latitude_prev = before.latitude_prev;
+        }
         loop.note_latitude(integ.state(), progress);
       }
     }
     if (cut && cut->theta <= kept) split.take(cut->intensity);
+    if (ended) {
+      out.trace = *ended;
+      break;
+    }
     if (integ.state()[System::kOpticalDepth] > tau_stop) {  // opaque: nothing behind this point can show
       // The loop's end of a ray at its last accepted point (with its constraint check), as hit: no surface of the
       // scene (hit_event -1), the medium itself.
@@ -435,15 +555,37 @@ EmissionResult trace_emission(const Metric& metric, const Medium& medium, const 
   const typename System::State end =
       observer.theta_end == 1.0 ? integ.state() : integ.step_from_previous(system, observer.theta_end);
   out.intensity = end[System::kIntensity];
-  if (observer.theta_end < 1.0)  // a surface ended the ray in its last step: a turning point before it
-    if (const auto cut = split.find(system, integ, out.trace.crossings, observer.theta_end)) split.take(cut->intensity);
   out.intensity_by_order = split.finish(out.intensity);
   out.optical_depth = end[System::kOpticalDepth];
   if (out.intensity > 0.0) out.redshift = end[System::kRedshiftWeight] / out.intensity;
   return out;
 }
 
-/// The same with the camera's 4-velocity u_cam at y0 in place of E_cam.
+/// trace_emission_along the geodesic equation of any metric policy.
+template <ExplicitTableau Tableau, StepController Controller = PIController, MetricPolicy Metric, class Medium>
+EmissionResult trace_emission(const Metric& metric, const Medium& medium, const TraceSettings& settings,
+                              const GeodesicState& y0, double camera_energy, double frequency,
+                              const Controller& controller = {},
+                              double min_transmission = default_min_transmission) {
+  return trace_emission_along<MetricGeodesicSystem<Metric>, Tableau>(metric, medium, settings, y0, camera_energy,
+                                                                     frequency, controller, min_transmission);
+}
+
+/// trace_emission_along Kerr's separated equations in Mino time (trace/kerr_mino_system.hpp: five variables, a few
+/// polynomials a stage, in place of the eight of KerrMetric's geodesic equation), for a stationary medium in
+/// Boyer-Lindquist coordinates. The light is the same integral (its derivative times d lambda / d lambda_M =
+/// Sigma); the tolerances apply to the reduced variables (u = 1/r, theta, phi and their Mino-time rates) and the
+/// light.
+template <ExplicitTableau Tableau, StepController Controller = PIController, class Medium>
+EmissionResult trace_kerr_mino_emission(const KerrMetric& metric, const Medium& medium, const TraceSettings& settings,
+                                        const GeodesicState& y0, double camera_energy, double frequency,
+                                        const Controller& controller = {},
+                                        double min_transmission = default_min_transmission) {
+  return trace_emission_along<KerrMinoSystem, Tableau>(metric, medium, settings, y0, camera_energy, frequency,
+                                                       controller, min_transmission);
+}
+
+/// The same as trace_emission with the camera's 4-velocity u_cam at y0 in place of E_cam.
 template <ExplicitTableau Tableau, StepController Controller = PIController, MetricPolicy Metric, class Medium>
 EmissionResult trace_emission_seen_by(const Metric& metric, const Medium& medium, const TraceSettings& settings,
                                       const GeodesicState& y0, const Vec4& camera_velocity, double frequency,

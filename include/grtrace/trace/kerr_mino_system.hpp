@@ -185,6 +185,18 @@ struct KerrMinoSystem {
     return s / (s + kSlowedNearAxis);
   }
 
+  /// d lambda / ds at z: the rate of the affine parameter lambda in the system's time s, Sigma = r^2 + a^2 cos^2
+  /// theta (d lambda = Sigma d lambda_M) times time_scale(z). What a quantity integrated along the ray in lambda
+  /// (a medium's light: trace/emission_system.hpp) is multiplied by to be integrated in s.
+  GRTRACE_HD double affine_rate(const State& z) const {
+    const double r = 1.0 / z[0];
+    const SinCos sc = polar_sin_cos(z[1]);
+    const double sigma = r * r + a2_ * sc.cos * sc.cos;
+    return slowed_near_axis_ ? sigma * sc.sin / (sc.sin + kSlowedNearAxis) : sigma;  // times time_scale(z)
+  }
+  /// t is not followed (geodesic_state's t is NaN): what is integrated along the ray may not depend on it.
+  static constexpr bool follows_time = false;
+
   /// The polar axis crossed: theta -> -theta (or 2 pi - theta), phi -> phi + pi, theta' -> -theta'.
   GRTRACE_HD bool wrap_chart(State& z) const { return wrap_polar_axis<1, 2, 4>(z); }
   /// pi/2 - theta: the side of the equatorial plane (trace/geodesic_system.hpp).

@@ -65,10 +65,15 @@ inline constexpr std::array<ToolMethod, 6> kToolMethods = {{
     {"rkf78", "i", "default: below 1e-6 on the main and Kerr disk frames at the least cost"},
     {"tsit5", "i", "cheapest fifth-order step: previews and flights"},
     {"dopri5", "pi", "the classic Dormand-Prince pair"},
-    {"vern6", "i", "sixth order, between the fifth- and eighth-order pairs"},
+    {"vern6", "i", "sixth order, between the fifth- and eighth-order pairs; the media's method"},
     {"rk4", "fixed", "teaching: the seed's classic RK4 with a fixed step"},
     {"rk4", "doubling", "teaching: the seed's step doubling"},
 }};
+
+/// The one method emitting media are drawn with (--scene accretion, torus, riaf): Verner 6(5), whose error estimate
+/// sees the light's integral along a ray (trace/emission_system.hpp estimate_sees_integrals; the default's,
+/// Fehlberg 7(8)'s, is zero for one).
+inline constexpr std::size_t kMediaMethod = 3;
 
 namespace detail {
 template <class... P>

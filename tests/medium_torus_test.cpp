@@ -249,7 +249,7 @@ TEST(PolishDoughnut, ItsLightInMinoTimeIsTheGeneralTracersLight) {
   for (const double kappa : {0.0, 0.3}) {
     const Torus gas(m, 6.0, 10.0, 3.0, 1.0, kappa);
     const GeneralMediumTracer<KerrMetric, Verner65, IController, Torus> general(m, gas, settings(1e-10),
-                                                                                 cam.tetrad().e[0], 1.0);
+                                                                                cam.tetrad().e[0], 1.0);
     const KerrMinoMediumTracer<Verner65, IController, Torus> mino(m, gas, settings(1e-10), cam.tetrad().e[0], 1.0);
     std::vector<MediumSample> a, b;
     double peak = 0.0;
@@ -273,7 +273,7 @@ TEST(PolishDoughnut, ItsLightInMinoTimeIsTheGeneralTracersLight) {
       ringed += a[i].intensity_by_order[1] > 1e-3 * peak;
     }
     std::printf("torus kappa %g: Mino time against the geodesic equation, worst %.2e of the peak\n", kappa, worst);
-    EXPECT_GT(lit, 100);  // the torus fills a good part of the frame
+    EXPECT_GT(lit, 100);    // the torus fills a good part of the frame
     EXPECT_GT(ringed, 10);  // and its lensed image is in it
   }
 }

@@ -35,7 +35,8 @@ namespace grtrace::app {
 
 namespace {
 
-static_assert(kToolMethods[kMediaMethod].tableau == Verner65::name && kToolMethods[kMediaMethod].control == IController::name,
+static_assert(kToolMethods[kMediaMethod].tableau == Verner65::name &&
+                  kToolMethods[kMediaMethod].control == IController::name,
               "medium_frames.cpp instantiates media with Verner65 + IController: keep kMediaMethod pointing at it");
 
 /// The renderer of one medium tracer, which it owns (built in place: the table tracer holds an atomic).

@@ -34,8 +34,8 @@ print(f"torus {SIZE}x{SIZE} in {seconds:.1f} s; flux {total:.4g}, by order "
       + ", ".join(f"{n} {flux[n]:.4g} ({flux[n] / total:.2%})" for n in orders))
 
 # The total and the three brightest orders, each on its own scale (the rings are fainter), the square root of the
-# intensity over its 99.5th percentile (a few pixels at the rings' edges are far brighter than the gas) lifting the
-# faint gas.
+# intensity over its 99.5th percentile (the thin rings' few brightest pixels would set the scale otherwise) lifting
+# the faint gas.
 panels = [("all orders", frame["intensity"]), ("n = 0: direct", frame["intensity_n0"]),
           ("n = 1: first ring", frame["intensity_n1"]),
           ("n >= 2", frame["intensity_n2"] + frame["intensity_n3_up"])]

@@ -38,8 +38,8 @@ int main(int argc, char** argv) {
     TraceSettings settings;
     settings.integrator.tolerance = {1e-8, 1e-10};
     settings.escape_radius = 1000.0;
-    const KerrMinoMediumTracer<Verner65, IController, PolishDoughnut<KerrMetric>> tracer(
-        metric, torus, settings, camera.tetrad().e[0], 1.0);
+    const KerrMinoMediumTracer<Verner65, IController, PolishDoughnut<KerrMetric>> tracer(metric, torus, settings,
+                                                                                         camera.tetrad().e[0], 1.0);
     Frame frame = render_medium_frame(camera, tracer);
     frame.image.metadata["medium"] = std::string(PolishDoughnut<KerrMetric>::kind);
     write_example_frame(args, frame);

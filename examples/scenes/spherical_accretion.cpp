@@ -3,7 +3,8 @@
 // optically thin emitter j ~ r^-2 (medium/spherical_accretion.hpp) whose light every ray collects all along its
 // path (trace/emission_system.hpp). The shadow's edge is the photon ring at b = 3 sqrt(3) M, brightest where rays
 // linger near the photon sphere; the infalling gas is redshifted, so the inside of the shadow is dim, not black.
-// The gas and the hole are spherically symmetric, so one table of rays draws the frame (trace/medium_tracers.hpp).
+// The gas and the hole are spherically symmetric, so one table of rays draws the frame (trace/medium_tracers.hpp),
+// integrated with Verner 6(5), whose error estimate sees the light (trace/emission_system.hpp).
 // A medium of one's own is one struct of the same shape (emitting_medium.hpp lists what it provides).
 //   spherical_accretion [--out accretion.exr] [--size 256] [--at-rest 0]   writes the EXR ("intensity" channel) and a PNG
 #include "example_cli.hpp"
@@ -12,7 +13,7 @@
 #include "grtrace/metric/schwarzschild.hpp"
 #include "grtrace/observer/camera_spec.hpp"
 #include "grtrace/render/medium_frame.hpp"
-#include "grtrace/tableau/fehlberg78.hpp"
+#include "grtrace/tableau/verner65.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
 int main(int argc, char** argv) {
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
     settings.escape_radius = 2000.0;
     // The gas and the hole are spherically symmetric: one table of rays (2048) serves every pixel, each a look-up
     // (trace/medium_tracers.hpp); GeneralMediumTracer would integrate every pixel's ray instead, to the same image.
-    const SphericalMediumTracer<SchwarzschildMetric, Fehlberg78, IController, SphericalAccretion> tracer(
+    const SphericalMediumTracer<SchwarzschildMetric, Verner65, IController, SphericalAccretion> tracer(
         metric, gas, settings, camera, 1.0);
     Frame frame = render_medium_frame(camera, tracer);  // channels intensity, optical_depth; the PNG's colours
     frame.image.metadata["medium"] = std::string(SphericalAccretion::kind);

@@ -152,8 +152,7 @@ class PolishDoughnut {
     double p = 1.0;
     if (whole_n_ > 0)
       for (int i = 0; i < whole_n_; ++i) p *= a;
-    else
-      p = std::pow(a, n_);
+    else p = std::pow(a, n_);
     return std::copysign(p, x);
   }
 

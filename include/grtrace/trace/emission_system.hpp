@@ -113,8 +113,12 @@ struct RayEmissionSystem {
 
   GRTRACE_HD RayEmissionSystem(const Metric& metric, const Medium& m, const GeodesicState& y0, double e_cam,
                                double nu_obs)
-      : ray(metric, y0), medium(&m), camera_energy(e_cam), frequency(nu_obs),
-        rho_outer_(Ray::radial_coordinate_at(m.outer_radius())) {
+      : ray(metric, y0),
+        medium(&m),
+        camera_energy(e_cam),
+        frequency(nu_obs),
+        rho_outer_(Ray::radial_coordinate_at(m.outer_radius())),
+        rho_far_(Ray::radial_coordinate_at(1.01 * m.outer_radius())) {
     static_assert(check_emitting_medium<Medium, Metric>());
     static_assert(detail::ray_follows_time<Ray>() || medium_is_stationary<Medium>(),
                   "this ray's system does not follow t (Kerr's separated equations in Mino time): the medium must be "
@@ -163,12 +167,13 @@ struct RayEmissionSystem {
   /// (the medium is then stationary).
   GRTRACE_HD Vec4 event(const State& z) const { return medium_event(ray.geodesic_state(ray_part(z))); }
 
-  /// The medium's boundary at z (medium/emitting_medium.hpp: positive outside the gas; for a medium that has one).
-  /// A system in u = 1/r passes beyond infinity (u < 0) within a step towards the sky: there no medium is asked
-  /// about its negative radius, and the point is outside (1).
+  /// The medium's boundary at z (medium/emitting_medium.hpp: positive outside the gas; for a medium that has one),
+  /// 1 beyond 1.01 outer_radius(), where the medium promises no gas: the ray's far steps (most of them) are not
+  /// asked about, and a system in u = 1/r, which passes beyond infinity (u < 0) within a step towards the sky, does
+  /// not ask the medium about a negative radius. (Not from outer_radius() itself: a boundary there, a cut at that
+  /// radius, would become a jump from 1 to 0, which the crossing's secant refinement does not converge on.)
   GRTRACE_HD double boundary(const State& z) const {
-    if constexpr (!std::is_same_v<Ray, MetricGeodesicSystem<Metric>>)
-      if (!(radius(z) > 0.0)) return 1.0;
+    if (!(radial_coordinate(z) <= rho_far_)) return 1.0;
     return medium->boundary(detail::ray_metric(ray), event(z));
   }
 
@@ -199,7 +204,9 @@ struct RayEmissionSystem {
     return true;
   }
   GRTRACE_HD bool align_with_axis(State& z) const {
-    if constexpr (requires(RayState zr) { { ray.align_with_axis(zr) } -> std::same_as<bool>; }) {
+    if constexpr (requires(RayState zr) {
+                    { ray.align_with_axis(zr) } -> std::same_as<bool>;
+                  }) {
       RayState zr = ray_part(z);
       if (!ray.align_with_axis(zr)) return false;
       z.template head<ray_dimension>() = zr;
@@ -218,6 +225,7 @@ struct RayEmissionSystem {
     return x;
   }
   double rho_outer_;  ///< the ray's radial coordinate at the medium's outer_radius()
+  double rho_far_;    ///< and at 1.01 outer_radius(), beyond which boundary() does not ask the medium
 };
 
 /// The light of a medium along the geodesic equation of any metric policy.
@@ -525,7 +533,7 @@ EmissionResult trace_emission_along(const detail::RayMetric<Ray>& metric, const 
     if constexpr (detail::MediumWithBoundary<Medium, Metric>) {
       detail::end_step_on_boundary(system, integ, side, retaken, stands, kept);
       if (kept < stands) {  // resumed inside the step: its crossings of the plane are counted from there on
-        if (ended) {  // and the ray goes on: the surfaces as they were at the step's start
+        if (ended) {        // and the ray goes on: the surfaces as they were at the step's start
           const long refinement_evals = progress.refinement_evals;
           progress = before;
           progress.refinement_evals = refinement_evals;
@@ -565,8 +573,7 @@ EmissionResult trace_emission_along(const detail::RayMetric<Ray>& metric, const 
 template <ExplicitTableau Tableau, StepController Controller = PIController, MetricPolicy Metric, class Medium>
 EmissionResult trace_emission(const Metric& metric, const Medium& medium, const TraceSettings& settings,
                               const GeodesicState& y0, double camera_energy, double frequency,
-                              const Controller& controller = {},
-                              double min_transmission = default_min_transmission) {
+                              const Controller& controller = {}, double min_transmission = default_min_transmission) {
   return trace_emission_along<MetricGeodesicSystem<Metric>, Tableau>(metric, medium, settings, y0, camera_energy,
                                                                      frequency, controller, min_transmission);
 }

@@ -208,30 +208,39 @@ TEST(PolishDoughnut, ARayAlongItsSurfaceGoesOn) {
   EXPECT_GT(r.optical_depth, 0.0);  // it went through the gas
 }
 
+/// The worst relative error of the thin torus's light at rtol 1e-6 and 1e-9 against `reference_rtol`, over the
+/// camera's lit pixels (every `stride`-th row and column), each ray's light from light(rtol, y0, E_cam); and how
+/// many were lit.
+struct Convergence {
+  double coarse = 0.0, fine = 0.0;
+  int lit = 0;
+};
+template <class Light>
+Convergence light_convergence(const Camera& cam, int stride, double reference_rtol, const Light& light) {
+  Convergence c;
+  for (int row = 0; row < cam.height(); row += stride)
+    for (int col = 0; col < cam.width(); col += stride) {
+      const GeodesicState y0 = cam.pixel_state(col, row);
+      const double e_cam = std::abs(inner_product(kerr(), Vec4(y0.head<4>()), Vec4(y0.tail<4>()), cam.tetrad().e[0]));
+      const double reference = light(reference_rtol, y0, e_cam);
+      if (!(reference > 0.0)) continue;
+      ++c.lit;
+      c.coarse = std::max(c.coarse, std::abs(light(1e-6, y0, e_cam) - reference) / reference);
+      c.fine = std::max(c.fine, std::abs(light(1e-9, y0, e_cam) - reference) / reference);
+    }
+  return c;
+}
+
 TEST(PolishDoughnut, ItsThinLightConvergesWithTheTolerance) {
   // Optically thin (kappa = 0, n = 3): the light of rays through the torus at rtol 1e-6 and 1e-9 against 1e-12; the
   // error falls with the tolerance (the intensity is inside the step control).
-  const KerrMetric m = kerr();
-  const Camera cam = camera();
-  const Torus gas(m, 6.0, 10.0, 3.0);
-  double coarse = 0.0, fine = 0.0;
-  int lit = 0;
-  for (int row = 0; row < cam.height(); row += 2)
-    for (int col = 0; col < cam.width(); col += 2) {
-      const GeodesicState y0 = cam.pixel_state(col, row);
-      const auto light = [&](double rtol) {
-        return trace_emission_seen_by<Fehlberg78, IController>(m, gas, settings(rtol), y0, cam.tetrad().e[0], 1.0)
-            .intensity;
-      };
-      const double reference = light(1e-12);
-      if (!(reference > 0.0)) continue;
-      ++lit;
-      coarse = std::max(coarse, std::abs(light(1e-6) - reference) / reference);
-      fine = std::max(fine, std::abs(light(1e-9) - reference) / reference);
-    }
-  EXPECT_GT(lit, 5);
-  EXPECT_LT(fine, 1e-6);
-  EXPECT_LT(fine, coarse / 30.0) << coarse << " -> " << fine;
+  const Torus gas(kerr(), 6.0, 10.0, 3.0);
+  const Convergence c = light_convergence(camera(), 2, 1e-12, [&](double rtol, const GeodesicState& y0, double e) {
+    return trace_emission<Fehlberg78, IController>(kerr(), gas, settings(rtol), y0, e, 1.0).intensity;
+  });
+  EXPECT_GT(c.lit, 5);
+  EXPECT_LT(c.fine, 1e-6);
+  EXPECT_LT(c.fine, c.coarse / 30.0) << c.coarse << " -> " << c.fine;
 }
 
 TEST(PolishDoughnut, ItsLightInMinoTimeIsTheGeneralTracersLight) {
@@ -282,28 +291,14 @@ TEST(PolishDoughnut, ItsLightInMinoTimeConvergesWithTheTolerance) {
   // As ItsThinLightConvergesWithTheTolerance, on Kerr's separated equations: the error falls with the tolerance
   // (Verner 6(5); with Fehlberg 7(8), whose error estimate is zero for the light, it stayed at 4e-4 of the peak from
   // rtol 1e-6 to 1e-10: trace/emission_system.hpp refuses it at compile time).
-  const KerrMetric m = kerr();
-  const Camera cam = camera();
-  const Torus gas(m, 6.0, 10.0, 3.0);
-  double coarse = 0.0, fine = 0.0;
-  int lit = 0;
-  for (int row = 0; row < cam.height(); ++row)
-    for (int col = 0; col < cam.width(); ++col) {
-      const GeodesicState y0 = cam.pixel_state(col, row);
-      const double e_cam = std::abs(inner_product(m, Vec4(y0.head<4>()), Vec4(y0.tail<4>()), cam.tetrad().e[0]));
-      const auto light = [&](double rtol) {
-        return trace_kerr_mino_emission<Verner65, IController>(m, gas, settings(rtol), y0, e_cam, 1.0).intensity;
-      };
-      const double reference = light(1e-13);
-      if (!(reference > 0.0)) continue;
-      ++lit;
-      coarse = std::max(coarse, std::abs(light(1e-6) - reference) / reference);
-      fine = std::max(fine, std::abs(light(1e-9) - reference) / reference);
-    }
-  std::printf("torus in Mino time: rtol 1e-6 %.2e, 1e-9 %.2e\n", coarse, fine);
-  EXPECT_GT(lit, 20);
-  EXPECT_LT(fine, 1e-6);
-  EXPECT_LT(fine, coarse / 30.0) << coarse << " -> " << fine;
+  const Torus gas(kerr(), 6.0, 10.0, 3.0);
+  const Convergence c = light_convergence(camera(), 1, 1e-13, [&](double rtol, const GeodesicState& y0, double e) {
+    return trace_kerr_mino_emission<Verner65, IController>(kerr(), gas, settings(rtol), y0, e, 1.0).intensity;
+  });
+  std::printf("torus in Mino time: rtol 1e-6 %.2e, 1e-9 %.2e\n", c.coarse, c.fine);
+  EXPECT_GT(c.lit, 20);
+  EXPECT_LT(c.fine, 1e-6);
+  EXPECT_LT(c.fine, c.coarse / 30.0) << c.coarse << " -> " << c.fine;
 }
 
 }  // namespace

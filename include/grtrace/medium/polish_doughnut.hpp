@@ -18,10 +18,11 @@
 //          Omega = -(g_tphi + l g_tt) / (g_phiphi + l g_tphi), given wherever that circle is timelike (on the
 //          surface too); where it is not, the zero angular momentum observer's (any timelike one would do: no gas).
 //          W also falls below W_in near the horizon (W -> -inf there: rho would grow without bound as g -> 0, and a
-//          ray grazing the horizon collected 8 times a torus ray's light there): that region lies inside the cusp,
-//          W's maximum on the equator between the horizon and r_in, and the gas is the part outside the cusp's
-//          radius (the torus through r_in lies within the critical equipotential's outer lobe, whose tip the cusp
-//          is).
+//          ray grazing the horizon collected 8 times a torus ray's light there). That region lies inside the radius
+//          where W is largest on the equator between the horizon and r_in: the cusp, where l is below the
+//          equatorial photon orbit's impact parameter (the torus through r_in lies within the critical
+//          equipotential's outer lobe, whose tip the cusp is); else the outer edge of a band of radii where no
+//          orbit of this l is timelike. The gas is the part outside that radius (cusp_radius_inside()).
 // Assumes: r_c beyond the marginally bound orbit, so that the torus closes (W_in < 0: a finite outer edge, found on
 //          the equator at construction; off the equator the surface lies inside that radius, as a constant-l
 //          torus's does: tests/medium_torus_test.cpp checks it on a grid).

@@ -144,15 +144,18 @@ TraceSettings settings(double rtol) {
   return s;
 }
 
-Camera camera() {
+/// A zero angular momentum observer at radius r and polar angle theta (degrees), n x n pixels, fov in degrees.
+Camera zamo_camera(double r, double theta_degrees, int n, double fov_degrees) {
   CameraSpec spec;
-  spec.position = Vec4(0.0, 60.0, 70.0 * std::numbers::pi / 180.0, 0.0);
+  spec.position = Vec4(0.0, r, theta_degrees * std::numbers::pi / 180.0, 0.0);
   spec.spherical_position = true;
   spec.observer = ObserverKind::zamo;
-  spec.width = spec.height = 9;
-  spec.fov_degrees = 40.0;
+  spec.width = spec.height = n;
+  spec.fov_degrees = fov_degrees;
   return make_camera(kerr(), spec);
 }
+
+Camera camera() { return zamo_camera(60.0, 70.0, 9, 40.0); }
 
 TEST(PolishDoughnut, OpticallyThickItShinesAsItsSurfaceShadedByGCubedTimesItsSourceFunction) {
   // j = kappa rho, alpha = kappa rho: source function 1. With kappa large the light comes from a thin layer under
@@ -192,13 +195,7 @@ TEST(PolishDoughnut, ARayAlongItsSurfaceGoesOn) {
   // steps' cuts on the boundary found it again at the start of every step and the ray stood still (max_steps).
   const KerrMetric m = kerr();
   const Torus gas(m, 6.0, 10.0, 3.0, 1.0, 0.3);
-  CameraSpec spec;
-  spec.position = Vec4(0.0, 100.0, 75.0 * std::numbers::pi / 180.0, 0.0);
-  spec.spherical_position = true;
-  spec.observer = ObserverKind::zamo;
-  spec.width = spec.height = 512;
-  spec.fov_degrees = 36.0;
-  const Camera cam = make_camera(m, spec);
+  const Camera cam = zamo_camera(100.0, 75.0, 512, 36.0);
   TraceSettings s = settings(1e-8);
   s.escape_radius = 1000.0;
   s.max_steps = 1000;
@@ -248,13 +245,7 @@ TEST(PolishDoughnut, ItsLightInMinoTimeIsTheGeneralTracersLight) {
   // and grey: the Mino-time tracer against the geodesic equation, both with Verner 6(5) at rtol 1e-10; the light by
   // order, the status and the ray's order.
   const KerrMetric m = kerr();
-  CameraSpec spec;
-  spec.position = Vec4(0.0, 50.0, 80.0 * std::numbers::pi / 180.0, 0.0);
-  spec.spherical_position = true;
-  spec.observer = ObserverKind::zamo;
-  spec.width = spec.height = 24;
-  spec.fov_degrees = 60.0;
-  const Camera cam = make_camera(m, spec);
+  const Camera cam = zamo_camera(50.0, 80.0, 24, 60.0);
   for (const double kappa : {0.0, 0.3}) {
     const Torus gas(m, 6.0, 10.0, 3.0, 1.0, kappa);
     const GeneralMediumTracer<KerrMetric, Verner65, IController, Torus> general(m, gas, settings(1e-10),

@@ -218,7 +218,7 @@ Convergence light_convergence(const Camera& cam, int stride, double reference_rt
   for (int row = 0; row < cam.height(); row += stride)
     for (int col = 0; col < cam.width(); col += stride) {
       const GeodesicState y0 = cam.pixel_state(col, row);
-      const double e_cam = std::abs(inner_product(kerr(), Vec4(y0.head<4>()), Vec4(y0.tail<4>()), cam.tetrad().e[0]));
+      const double e_cam = camera_photon_energy(kerr(), y0, cam.tetrad().e[0]);
       const double reference = light(reference_rtol, y0, e_cam);
       if (!(reference > 0.0)) continue;
       ++c.lit;

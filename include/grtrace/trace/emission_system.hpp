@@ -592,14 +592,19 @@ EmissionResult trace_kerr_mino_emission(const KerrMetric& metric, const Medium& 
                                                        controller, min_transmission);
 }
 
+/// E_cam = |g(k0, u_cam)|: the energy of the camera ray y0's photon measured by a camera moving with u_cam.
+template <MetricPolicy Metric>
+double camera_photon_energy(const Metric& metric, const GeodesicState& y0, const Vec4& camera_velocity) {
+  return std::abs(inner_product(metric, Vec4(y0.head<4>()), Vec4(y0.tail<4>()), camera_velocity));
+}
+
 /// The same as trace_emission with the camera's 4-velocity u_cam at y0 in place of E_cam.
 template <ExplicitTableau Tableau, StepController Controller = PIController, MetricPolicy Metric, class Medium>
 EmissionResult trace_emission_seen_by(const Metric& metric, const Medium& medium, const TraceSettings& settings,
                                       const GeodesicState& y0, const Vec4& camera_velocity, double frequency,
                                       const Controller& controller = {}) {
-  const Vec4 x0 = y0.head<4>(), k0 = y0.tail<4>();
-  const double e_cam = std::abs(inner_product(metric, x0, k0, camera_velocity));
-  return trace_emission<Tableau>(metric, medium, settings, y0, e_cam, frequency, controller);
+  return trace_emission<Tableau>(metric, medium, settings, y0, camera_photon_energy(metric, y0, camera_velocity),
+                                 frequency, controller);
 }
 
 }  // namespace grtrace

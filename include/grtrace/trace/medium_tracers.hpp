@@ -100,9 +100,8 @@ class RayMediumTracer {
   }
 
   MediumSample trace(const GeodesicState& y0) const {
-    const double e_cam = std::abs(inner_product(metric_, Vec4(y0.head<4>()), Vec4(y0.tail<4>()), velocity_));
-    const EmissionResult r =
-        trace_emission_along<Ray, T>(metric_, medium_, settings_, y0, e_cam, frequency_, controller_);
+    const EmissionResult r = trace_emission_along<Ray, T>(
+        metric_, medium_, settings_, y0, camera_photon_energy(metric_, y0, velocity_), frequency_, controller_);
     return {r.trace.status, r.intensity,          r.optical_depth,  r.trace.accepted,
             r.redshift,     r.intensity_by_order, r.trace.crossings};
   }

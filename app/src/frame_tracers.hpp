@@ -100,6 +100,7 @@ struct FrameFacts {
   std::optional<double> flux_jy, microarcseconds_per_pixel;  ///< the same in physical units (riaf)
   std::optional<std::array<double, 4>> flux_by_order;        ///< n = 0, 1, 2, >= 3: a disk's light, a medium's
   std::optional<long> uncovered_rays;                        ///< a disk drawn by its light: pixels not followed
+  std::vector<RenderReport::BandFlux> band_fluxes;           ///< a medium at several frequencies: each band's
 };
 
 /// The render loop's options of a request and a control (threads, mirrors, progress, cancel).

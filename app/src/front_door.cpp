@@ -70,6 +70,12 @@ PolishDoughnut<KerrMetric> polish_doughnut(const RenderRequest& q) {
                                     q.torus_opacity);
 }
 
+std::string frequency_band_name(double ghz) {
+  std::string name = shortest_number_text(ghz);
+  std::replace(name.begin(), name.end(), '.', 'p');
+  return name + "GHz";
+}
+
 bool is_medium_scene(std::string_view scene) {
   return std::find(kMediumSceneNames.begin(), kMediumSceneNames.end(), scene) != kMediumSceneNames.end();
 }
@@ -302,8 +308,17 @@ void check_medium_request(const RenderRequest& q) {
   if (q.accretion_rate && !(*q.accretion_rate > 0.0 && *q.accretion_rate <= 1e3))
     throw RequestError("--accretion-rate must lie in (0, 1e3] solar masses a year, got " +
                        shortest_number_text(*q.accretion_rate));
-  if (!(q.frequency_ghz > 0.0 && q.frequency_ghz <= 1e7))
-    throw RequestError("--frequency must lie in (0, 1e7] GHz, got " + shortest_number_text(q.frequency_ghz));
+  if (q.frequencies_ghz.empty() || q.frequencies_ghz.size() > kMaxFrequencies)
+    throw RequestError("--frequency takes 1 to " + std::to_string(kMaxFrequencies) + " frequencies, got " +
+                       std::to_string(q.frequencies_ghz.size()));
+  for (std::size_t i = 0; i < q.frequencies_ghz.size(); ++i) {
+    const double f = q.frequencies_ghz[i];
+    if (!(f > 0.0 && f <= 1e7))
+      throw RequestError("--frequency must lie in (0, 1e7] GHz, got " + shortest_number_text(f));
+    for (std::size_t j = 0; j < i; ++j)
+      if (frequency_band_name(q.frequencies_ghz[j]) == frequency_band_name(f))
+        throw RequestError("--frequency names " + shortest_number_text(f) + " GHz twice: list each band once");
+  }
   if (!(q.torus_opacity >= 0.0 && q.torus_opacity <= 1e6))
     throw RequestError("--torus-opacity must lie in [0, 1e6], got " + shortest_number_text(q.torus_opacity));
   if (q.scene == "torus") {
@@ -666,6 +681,10 @@ void record_report(Image& image, const RenderReport& r) {
       m[std::string("flux_") + kOrderNames[n]] = exact_number((*r.flux_by_order)[n]);
   }
   if (r.uncovered_rays) m["uncovered_rays"] = std::to_string(*r.uncovered_rays);
+  for (const RenderReport::BandFlux& b : r.band_fluxes) {
+    m["flux_" + b.band] = exact_number(b.flux);
+    if (b.flux_jy) m["flux_jy_" + b.band] = exact_number(*b.flux_jy);
+  }
   if (r.error) {
     m["error_max"] = exact_number(r.error->max);
     m["error_median"] = exact_number(r.error->median);
@@ -705,6 +724,7 @@ RenderResult finish_render(const CheckedRequest& checked, Frame&& frame, const F
   r.microarcseconds_per_pixel = facts.microarcseconds_per_pixel;
   r.flux_by_order = facts.flux_by_order;
   r.uncovered_rays = facts.uncovered_rays;
+  r.band_fluxes = facts.band_fluxes;
   // Judged after the clock stopped: the exact reference costs an elliptic integral per pixel.
   if (checked.request.error_map) r.error = add_error_channel(checked, result.image, directions);
   describe_request(result.image, checked);
@@ -747,7 +767,12 @@ void describe_request(Image& image, const CheckedRequest& checked) {
     m["mass_solar"] = exact_number(s.mass_solar);
     m["distance_pc"] = exact_number(s.distance_pc);
     m["accretion_rate"] = exact_number(p.accretion_rate);
-    m["frequency_ghz"] = exact_number(q.frequency_ghz);
+    m["frequency_ghz"] = exact_number(q.frequencies_ghz.front());
+    if (q.frequencies_ghz.size() > 1) {
+      std::string list;
+      for (const double f : q.frequencies_ghz) list += (list.empty() ? "" : ",") + exact_number(f);
+      m["frequencies_ghz"] = list;
+    }
     m["electron_temperature"] = exact_number(p.temperature);
     m["density_power"] = exact_number(p.density_power);
     m["temperature_power"] = exact_number(p.temperature_power);
@@ -822,6 +847,10 @@ std::vector<ReportEntry> report_entries(const RenderReport& r, const CheckedRequ
   if (r.flux_by_order) {
     for (std::size_t n = 0; n < r.flux_by_order->size(); ++n)
       add(std::string("flux_") + kOrderNames[n], (*r.flux_by_order)[n]);
+  }
+  for (const RenderReport::BandFlux& b : r.band_fluxes) {
+    add("flux_" + b.band, b.flux);
+    if (b.flux_jy) add("flux_jy_" + b.band, *b.flux_jy);
   }
   if (q.disk_light) {
     add("uncovered_rays", r.uncovered_rays.value_or(0));

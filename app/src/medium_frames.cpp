@@ -7,11 +7,14 @@
 //     pixel integrated on Kerr's separated equations in Mino time (KerrMinoMediumTracer), geometric units;
 //   --scene riaf: RiafFlow (medium/riaf.hpp) around Kerr in Boyer-Lindquist coordinates, every pixel integrated
 //     as the torus's, its intensity in cgs, its flux in janskys and its pixel in microarcseconds at the source's
-//     distance.
-// Every pixel integrated splits the intensity by image order (the table does not: trace/medium_tracers.hpp);
+//     distance; at several frequencies (up to kMaxFrequencies) in one pass, by one tracer of that many bands (a
+//     channel and a flux each; not split by order).
+// Every pixel integrated at one frequency splits the intensity by image order (the table does not:
+// trace/medium_tracers.hpp);
 // and the frames of the thin disk drawn by its light (--scene disk --disk-light: render/disk_light_frame.hpp, every
 // ray's crossings in closed form), whose intensity is split by image order.
 #include "frame_tracers.hpp"
+#include "grtrace/app/medium_view.hpp"
 #include "grtrace/core/physical_units.hpp"
 #include "grtrace/medium/polish_doughnut.hpp"
 #include "grtrace/medium/riaf.hpp"
@@ -24,12 +27,16 @@
 #include "grtrace/spectra/kerr_disk_map.hpp"
 #include "grtrace/trace/medium_tracers.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace grtrace::app {
 
@@ -53,7 +60,13 @@ class MediumFrameRenderer final : public FrameRenderer {
     long fallbacks_before = 0;  // the general tracer has none: it is the fallback
     if constexpr (requires { tracer_.fallback_rays(); }) fallbacks_before = tracer_.fallback_rays();
     const auto t0 = std::chrono::steady_clock::now();
-    Frame frame = render_medium_frame(camera(), tracer_, options);
+    std::vector<std::string> bands;  // several frequencies: their names, the tracer's first bands
+    for (const double f : checked_.request.frequencies_ghz) bands.push_back(frequency_band_name(f));
+    constexpr bool spectral = !std::is_same_v<decltype(tracer_.trace(GeodesicState{})), MediumSample>;
+    Frame frame = [&] {
+      if constexpr (spectral) return render_medium_spectrum(camera(), tracer_, bands, 0, options);
+      else return render_medium_frame(camera(), tracer_, options);
+    }();
     facts.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     facts.tracer.name = Tracer::name;
     if constexpr (requires { tracer_.table_rays(); }) {
@@ -63,10 +76,16 @@ class MediumFrameRenderer final : public FrameRenderer {
     if constexpr (requires { tracer_.fallback_rays(); })
       facts.tracer.fallback_rays = tracer_.fallback_rays() - fallbacks_before;
     facts.flux = medium_frame_flux(camera(), frame.image);
-    if constexpr (splits_by_order<Tracer>()) facts.flux_by_order = flux_by_order(camera(), frame.image);
+    if constexpr (spectral) {
+      for (const std::string& b : bands)
+        facts.band_fluxes.push_back({b, medium_frame_flux(camera(), frame.image, "intensity_" + b), {}});
+    } else if constexpr (splits_by_order<Tracer>()) {
+      facts.flux_by_order = flux_by_order(camera(), frame.image);
+    }
     if (scale_) {  // physical units: the camera far away (check_request), its angles scaled by r / D
       const double r_cam = checked_.request.camera.r;
       facts.flux_jy = scale_->janskys(*facts.flux, r_cam);
+      for (RenderReport::BandFlux& b : facts.band_fluxes) b.flux_jy = scale_->janskys(b.flux, r_cam);
       facts.microarcseconds_per_pixel = scale_->microarcseconds_at_telescope(camera_pixel_pitch(camera()), r_cam);
       draw_scale_bar(frame.image, *facts.microarcseconds_per_pixel);  // into the picture (R, G, B) only
     }
@@ -130,6 +149,115 @@ SphericalAccretion accretion_of(const CheckedRequest& checked) {
 
 }  // namespace
 
+namespace {
+
+/// Calls f(medium, metric, nu, horizon radius) with the request's medium (a medium's scene: check_request).
+template <class F>
+auto with_medium(const CheckedRequest& checked, const F& f) {
+  const RenderRequest& q = checked.request;
+  if (q.scene == "torus" || q.scene == "riaf") {
+    const KerrMetric metric{q.metric.mass, q.metric.spin};
+    if (q.scene == "torus") return f(polish_doughnut(q), metric, 1.0, metric.outer_horizon());
+    return f(RiafFlow<KerrMetric>(metric, riaf_parameters(q)), metric, q.frequencies_ghz.front() * 1e9,
+             metric.outer_horizon());
+  }
+  if (q.scene != "accretion")
+    throw RequestError("--scene " + q.scene + " has no emitting medium (accretion, riaf or torus have one)");
+  const SchwarzschildMetric metric{q.metric.mass};
+  return f(accretion_of(checked), metric, 1.0, 2.0 * q.metric.mass);
+}
+
+/// Whether x lies in the gas: inside its outer radius and, for a medium with a boundary, on its inner side (its
+/// coefficients are continued smoothly beyond it for the tracer's steps, and mean nothing there).
+template <class Medium, class Metric>
+bool in_gas(const Medium& medium, const Metric& metric, const Vec4& x, double r_h) {
+  const double r = metric.radius(x);
+  if (!(r > r_h) || !(r < medium.outer_radius())) return false;
+  if constexpr (grtrace::detail::MediumWithBoundary<Medium, Metric>) return medium.boundary(metric, x) <= 0.0;
+  return true;
+}
+
+/// j at x for light leaving radially outwards in the fluid's frame (signature + - - -: g(u, u) = 1).
+template <class Medium, class Metric>
+double radial_emission(const Medium& medium, const Metric& metric, const Vec4& x, double nu) {
+  const Vec4 u = medium.fluid_velocity(metric, x);
+  const Mat4 g = metric.metric(x);
+  const Vec4 e_r(0.0, 1.0, 0.0, 0.0);
+  const Vec4 n = e_r - u.dot(g * e_r) * u;  // orthogonal to u, spacelike
+  const double nn = -n.dot(g * n);
+  const Vec4 k = nn > 0.0 ? Vec4(u + n / std::sqrt(nn)) : u;
+  return medium_coefficients(medium, metric, x, k, u, nu).emission;
+}
+
+}  // namespace
+
+MediumVolume medium_volume(const CheckedRequest& checked, int n, double half_width) {
+  if (n < 2 || n > 256) throw RequestError("medium_volume: 2 to 256 points a side, got " + std::to_string(n));
+  return with_medium(checked, [&](const auto& medium, const auto& metric, double nu, double r_h) {
+    MediumVolume v;
+    v.n = n;
+    v.kind = std::string(std::remove_cvref_t<decltype(medium)>::kind);
+    v.half_width =
+        half_width > 0.0 ? half_width
+                         : std::max(std::min(medium.outer_radius(), 40.0 * checked.request.metric.mass), 4.0 * r_h);
+    const double h = v.spacing();
+    const auto side = static_cast<std::size_t>(n);
+    v.emission.assign(side * side * side, 0.0f);
+#ifdef _OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+    for (int k = 0; k < n; ++k) {
+      for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+          const double px = -v.half_width + i * h, py = -v.half_width + j * h, pz = -v.half_width + k * h;
+          const double r = std::sqrt(px * px + py * py + pz * pz);
+          if (!(r > r_h)) continue;  // inside the horizon
+          const Vec4 x(0.0, r, std::acos(std::clamp(pz / r, -1.0, 1.0)), std::atan2(py, px));
+          if (!in_gas(medium, metric, x, r_h)) continue;
+          const auto at =
+              static_cast<std::size_t>(i) + side * (static_cast<std::size_t>(j) + side * static_cast<std::size_t>(k));
+          v.emission[at] = static_cast<float>(radial_emission(medium, metric, x, nu));
+        }
+      }
+    }
+    for (const float e : v.emission)
+      if (std::isfinite(e)) v.peak = std::max(v.peak, static_cast<double>(e));
+    return v;
+  });
+}
+
+std::vector<double> medium_light_along(const CheckedRequest& checked, const TracedPath& path,
+                                       const Vec4& camera_velocity) {
+  return with_medium(checked, [&](const auto& medium, const auto& metric, double nu, double r_h) {
+    std::vector<double> light(path.samples.size(), 0.0);
+    if (path.samples.empty()) return light;
+    const double e_cam = camera_photon_energy(metric, path.samples.front().state, camera_velocity);
+    // At a sample: g^3 j E_fluid and alpha E_fluid, the light's and the depth's rates per unit of the affine
+    // parameter (dl = E_fluid d lambda), 0 outside the gas.
+    const auto rates = [&](const GeodesicState& y) -> std::array<double, 2> {
+      const Vec4 x = y.template head<4>(), k = y.template tail<4>();
+      if (!in_gas(medium, metric, x, r_h)) return {0.0, 0.0};
+      const Vec4 u = medium.fluid_velocity(metric, x);
+      const double e_fluid = std::abs(inner_product(metric, x, k, u));
+      const double g = e_cam / e_fluid;
+      const MediumCoefficients c = medium_coefficients(medium, metric, x, k, u, nu / g);
+      return {g * g * g * c.emission * e_fluid, c.absorption * e_fluid};
+    };
+    std::array<double, 2> before = rates(path.samples.front().state);
+    double tau = 0.0, intensity = 0.0;
+    for (std::size_t i = 1; i < path.samples.size(); ++i) {
+      const std::array<double, 2> now = rates(path.samples[i].state);
+      const double dl = std::abs(path.samples[i].lambda - path.samples[i - 1].lambda);
+      const double tau_now = tau + 0.5 * (before[1] + now[1]) * dl;
+      intensity += 0.5 * (before[0] * std::exp(-tau) + now[0] * std::exp(-tau_now)) * dl;
+      tau = tau_now;
+      before = now;
+      light[i] = intensity;
+    }
+    return light;
+  });
+}
+
 std::unique_ptr<FrameRenderer> make_disk_light_renderer(const CheckedRequest& checked) {
   return std::make_unique<DiskLightRenderer>(checked);
 }
@@ -146,12 +274,25 @@ std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checke
   if (q.scene == "riaf") {  // Kerr in Boyer-Lindquist coordinates (check_request)
     const KerrMetric metric{q.metric.mass, q.metric.spin};
     const RiafParameters p = riaf_parameters(q);
+    if (q.frequencies_ghz.size() == 1) {
+      return own_medium_tracer(
+          checked,
+          [&] {
+            return KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>>(
+                metric, RiafFlow<KerrMetric>(metric, p), checked.settings, checked.camera.tetrad().e[0],
+                q.frequencies_ghz.front() * 1e9);
+          },
+          source_scale(q));
+    }
+    // Several: one tracer of kMaxFrequencies bands (one instantiation), the last frequency repeated in the rest.
+    std::array<double, kMaxFrequencies> hz;
+    for (std::size_t b = 0; b < kMaxFrequencies; ++b)
+      hz[b] = q.frequencies_ghz[std::min(b, q.frequencies_ghz.size() - 1)] * 1e9;
     return own_medium_tracer(
         checked,
         [&] {
-          return KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>>(
-              metric, RiafFlow<KerrMetric>(metric, p), checked.settings, checked.camera.tetrad().e[0],
-              q.frequency_ghz * 1e9);
+          return KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>, kMaxFrequencies>(
+              metric, RiafFlow<KerrMetric>(metric, p), checked.settings, checked.camera.tetrad().e[0], hz);
         },
         source_scale(q));
   }

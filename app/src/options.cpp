@@ -144,7 +144,9 @@ std::vector<OptionInfo> make_render_options() {
   o.push_back({"accretion-rate", "",
                "riaf scene: solar masses a year reaching the hole, in (0, 1e3] (default: 5e-4 for m87, 1e-8 for "
                "sgr-a, near the flux the EHT measures)"});
-  o.push_back({"frequency", "230", "riaf scene: the observed frequency in GHz, in (0, 1e7]"});
+  o.push_back({"frequency", "230",
+               "riaf scene: the observed frequency in GHz, in (0, 1e7]; or up to 8, comma-separated (86,230,345), "
+               "traced in one pass: a channel intensity_<f>GHz and a flux each, the first one's the picture"});
   o.push_back({"torus-inner", "6", "torus scene: the inner edge on the equator (M)"});
   o.push_back({"torus-peak", "10",
                "torus scene: the pressure maximum on the equator (M), beyond --torus-inner: its angular momentum is "
@@ -435,7 +437,11 @@ RenderRequest read_render_request(const OptionSource& s) {
   q.accretion_power = option_number(s, "accretion-power");
   q.source = text_of(s, "source");
   if (s.given("accretion-rate")) q.accretion_rate = option_number(s, "accretion-rate");
-  q.frequency_ghz = option_number(s, "frequency");
+  {
+    const std::string text = text_of(s, "frequency");
+    q.frequencies_ghz =
+        option_numbers(s, "frequency", static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1);
+  }
   q.torus_inner = option_number(s, "torus-inner");
   q.torus_peak = option_number(s, "torus-peak");
   q.torus_opacity = option_number(s, "torus-opacity");

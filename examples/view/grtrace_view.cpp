@@ -19,6 +19,10 @@
 //   * --flight KIND (grtrace-render's camera flights, options shared through examples/common/flight_options.hpp):
 //     the whole path as a tube with its frames as beads (the orbit layer), and the camera, the frame and the
 //     bundle at frame --flight-frame, its camera make_moving_camera's; --export adds flight.vtp.
+//   * --scene accretion|riaf|torus (grtrace-render's glowing media, their options as there): the frame is the
+//     medium's light; the 3D view draws the gas as translucent iso-surfaces of its emission (30 %, 3 % and 0.3 % of
+//     its peak; key g; medium.vti in an export), and a picked ray is coloured by the light it collects from the
+//     camera outwards (app/medium_view.hpp), its total listed with its outcome.
 //   * Picks: a left click on the frame traces that pixel's ray (the general scene tracer) and draws it in the 3D
 //     view (magenta), its outcome (status, object, hit radius, redshift, steps) listed there and printed; 'x' clears
 //     the picks. --pick COL,ROW[/COL,ROW...] picks at start-up (so picked rays show in --screenshot and --export).
@@ -33,10 +37,8 @@
 #include "app_options.hpp"
 #include "command_line.hpp"
 #include "flight_options.hpp"
-#include "json_writer.hpp"
-#include "view_request.hpp"
-
 #include "grtrace/app/front_door.hpp"
+#include "grtrace/app/medium_view.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/schwarzschild.hpp"
@@ -58,6 +60,8 @@
 #include "grtrace/viz/scene_view.hpp"
 #include "grtrace/viz/viewer_window.hpp"
 #include "grtrace/viz/vtk_export.hpp"
+#include "json_writer.hpp"
+#include "view_request.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -95,32 +99,74 @@ void declare_shared_options(CommandLine& cli, const std::set<std::string>& names
 }
 
 CommandLine make_command_line() {
-  CommandLine cli("grtrace-view",
-                  "The VTK frontend: traced rays in 3D beside the frame they make, and the seed's orbit charts.\n"
-                  "Interactive when a display exists; --screenshot renders offscreen and exits.\n"
-                  "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png\n"
-                  "Window: mouse turns/pans/zooms the 3D view; a left click on the frame picks that pixel's ray; keys "
-                  "1-9, 0 layers, m markers, c ray colouring, x clear picks, r reset view, s screenshot, h help, q quit.");
+  CommandLine cli(
+      "grtrace-view",
+      "The VTK frontend: traced rays in 3D beside the frame they make, and the seed's orbit charts.\n"
+      "Interactive when a display exists; --screenshot renders offscreen and exits.\n"
+      "Headless: xvfb-run -a -s \"-screen 0 1280x1024x24\" grtrace-view --screenshot view.png\n"
+      "Window: mouse turns/pans/zooms the 3D view; a left click on the frame picks that pixel's ray; keys "
+      "1-9, 0, g layers, m markers, c ray colouring, x clear picks, r reset view, s screenshot, h help, q quit.");
   cli.option("screenshot", "", "render offscreen to this PNG and exit")
-      .option("export", "", "write the 3D scene (rays, surfaces, frame) as VTK XML files for ParaView into this "
-                            "directory (created if missing; open DIR/scene.vtm) and exit; needs no display")
+      .option("export", "",
+              "write the 3D scene (rays, surfaces, frame) as VTK XML files for ParaView into this "
+              "directory (created if missing; open DIR/scene.vtm) and exit; needs no display")
       .option("size", "", "window / screenshot size WxH (default 1600x800; charts 900x800)")
       .option("plot", "", "draw a chart of the orbit instead of the 3D view: orbit | norm | step")
-      .option("chart", "", tools::render_option_help("chart") + " (default bl; with --frame: the frame's). Also orbit | norm | "
-                           "step: the older spelling of --plot")
+      .option("chart", "",
+              tools::render_option_help("chart") +
+                  " (default bl; with --frame: the frame's). Also orbit | norm | "
+                  "step: the older spelling of --plot")
       // scene (as grtrace-render)
-      .option("scene", "disk", "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced)");
+      .option("scene", "disk",
+              "what the frame shows: checker | sky | redshift | disk (disk: a thin disk is traced) | accretion | "
+              "riaf | torus (glowing gas, grtrace-render's media: its emission drawn in 3D as translucent "
+              "iso-surfaces, key g; a picked ray coloured by the light it collects)");
   cli.option("metric", "schwarzschild",
              "schwarzschild | kerr (--chart bl or ks, --observer; draws the outer horizon, the ergosphere and the "
              "ISCO of the disk's sense)");
   // The rest of the options grtrace-render has too: the library's names and help (app::render_options), the
   // viewer's defaults; --chart is declared above with its older meaning.
   declare_shared_options(cli,
-                         {"mass", "spin", "camera-r", "camera-theta", "camera-phi", "observer", "velocity", "look",
-                          "up", "fov", "width", "height", "sky-radius", "disk-inner", "disk-outer", "disk-retrograde",
-                          "angle-correction", "tableau", "control", "step", "rtol", "atol", "max-steps", "threads"},
-                         {{"camera-r", "35"}, {"camera-theta", "84"}, {"fov", "55"}, {"width", "320"},
-                          {"height", "240"}, {"tableau", "dopri5"}, {"control", "pi"}, {"rtol", "1e-8"},
+                         {"mass",
+                          "spin",
+                          "camera-r",
+                          "camera-theta",
+                          "camera-phi",
+                          "observer",
+                          "velocity",
+                          "look",
+                          "up",
+                          "fov",
+                          "width",
+                          "height",
+                          "sky-radius",
+                          "disk-inner",
+                          "disk-outer",
+                          "disk-retrograde",
+                          "angle-correction",
+                          "tableau",
+                          "control",
+                          "step",
+                          "rtol",
+                          "atol",
+                          "max-steps",
+                          "threads",
+                          "accretion-gas",
+                          "accretion-power",
+                          "source",
+                          "accretion-rate",
+                          "frequency",
+                          "torus-inner",
+                          "torus-peak",
+                          "torus-opacity"},
+                         {{"camera-r", "35"},
+                          {"camera-theta", "84"},
+                          {"fov", "55"},
+                          {"width", "320"},
+                          {"height", "240"},
+                          {"tableau", "dopri5"},
+                          {"control", "pi"},
+                          {"rtol", "1e-8"},
                           {"atol", "1e-10"}});
   cli
       // frame / bundle
@@ -150,8 +196,9 @@ CommandLine make_command_line() {
     cli.option(std::string("orbit-") + name, defaults.at(name), "orbit: " + help);
   }
   cli  // 3D view
-      .option("hide", "", "comma-separated layers to hide: horizon,photon-sphere,isco,disk,sky,camera,rays,orbit,"
-                          "colorbar,picks")
+      .option("hide", "",
+              "comma-separated layers to hide: horizon,photon-sphere,isco,disk,sky,camera,rays,orbit,"
+              "colorbar,picks,medium")
       .flag("checkerboard", "draw the horizon with the renderer's theta-phi checkerboard")
       .option("view-from", "", "3D view: eye position x,y,z (default: framing the hole and the camera)")
       .option("view-at", "0,0,0", "3D view: focal point x,y,z")
@@ -453,8 +500,9 @@ Request read_request(const CommandLine& cli) {
         throw UsageError(std::string("--") + o + " conflicts with --frame: the bundle is traced in the frame's own "
                          "spacetime (its --metric, --mass and --spin, read from its header); leave it out");
   q.scene = p.text("scene");
-  if (!is_standard_scene(q.scene))
-    throw UsageError("--scene must be checker, sky, redshift or disk, got '" + p.text("scene") + "'");
+  if (!is_standard_scene(q.scene) && !app::is_medium_scene(q.scene))
+    throw UsageError("--scene must be checker, sky, redshift, disk, accretion, riaf or torus, got '" + p.text("scene") +
+                     "'");
   // The options shared with grtrace-render are read and checked by the application library, as there.
   const ViewOptions options(cli, p, chart);
   q.metric = tools::as_usage_error([&] { return app::read_metric(options, kViewMetrics); });
@@ -502,6 +550,27 @@ Request read_request(const CommandLine& cli) {
   r.disk_outer = p.number("disk-outer");
   r.angle_correction = p.text("angle-correction");
   r.method = tools::as_usage_error([&] { return app::read_method(options, ""); });
+  if (app::is_medium_scene(q.scene)) {
+    // A medium's gas, as grtrace-render reads it; drawn with the media's method unless one is named (then
+    // check_request says what it must be).
+    if (!cli.given("tableau") && !cli.given("control")) {
+      r.method.tableau = app::kToolMethods[app::kMediaMethod].tableau;
+      r.method.control = app::kToolMethods[app::kMediaMethod].control;
+    }
+    tools::as_usage_error([&] {
+      r.accretion_gas = p.text("accretion-gas");
+      r.accretion_power = app::option_number(options, "accretion-power");
+      r.source = p.text("source");
+      if (cli.given("accretion-rate") || p.from_frame("accretion-rate"))
+        r.accretion_rate = app::option_number(options, "accretion-rate");
+      const std::string f = p.text("frequency");
+      r.frequencies_ghz =
+          app::option_numbers(options, "frequency", static_cast<std::size_t>(std::count(f.begin(), f.end(), ',')) + 1);
+      r.torus_inner = app::option_number(options, "torus-inner");
+      r.torus_peak = app::option_number(options, "torus-peak");
+      r.torus_opacity = app::option_number(options, "torus-opacity");
+    });
+  }
   r.method.max_steps = static_cast<int>(std::clamp(p.integer("max-steps"), 0L, 1L << 30));
   r.threads = static_cast<int>(std::clamp(cli.integer("threads"), -1L, 1L << 20));
   q.checked = tools::as_usage_error([&] { return app::check_request(r); });
@@ -601,7 +670,7 @@ Request read_request(const CommandLine& cli) {
     const auto l = viz::layer_from_string(item);
     if (!l)
       throw UsageError("--hide: unknown layer '" + item +
-                       "' (horizon, photon-sphere, isco, disk, sky, camera, rays, orbit, colorbar, picks)");
+                       "' (horizon, photon-sphere, isco, disk, sky, camera, rays, orbit, colorbar, picks, medium)");
     q.hidden.push_back(*l);
   }
   q.checkerboard = cli.flag_set("checkerboard");
@@ -693,6 +762,11 @@ int run_view(const Request& q) {
   const std::vector<viz::TracedPath> rays = view::trace_bundle(q, pixels, frame_rgb);
   std::optional<viz::TracedPath> orbit;
   if (q.show_orbit) orbit = view::trace_orbit(q);
+  std::optional<viz::MediumField> medium;  // the gas the frame shows, drawn as iso-surfaces of its emission
+  if (app::is_medium_scene(q.scene)) {
+    app::MediumVolume v = app::medium_volume(*q.checked, 72);
+    medium = viz::MediumField{v.n, v.half_width, std::move(v.emission), v.peak};
+  }
   std::vector<viz::RayPick> picks;
   for (const auto& pixel : q.picks) {
     picks.push_back(view::pick_ray(q, pixel, frame_rgb));
@@ -712,6 +786,7 @@ int run_view(const Request& q) {
     if (q.bundle != "beam") ex.camera = record;  // a beam does not start at the camera
     ex.frame = &frame_rgb;
     ex.frame_channels = &frame_image;
+    if (medium) ex.medium = &*medium;
     const auto files = viz::export_scene(q.export_dir, ex);
     std::cout << "wrote " << files.back().path.string() << " (" << files.size() - 1 << " files: ";
     for (std::size_t i = 0; i + 1 < files.size(); ++i)
@@ -722,6 +797,7 @@ int run_view(const Request& q) {
   }
 
   viz::SceneView scene(layout);
+  if (medium) scene.set_medium(*medium);
   if (!rays.empty()) {
     viz::ScalarField field = q.color_by;
     if (field == viz::ScalarField::pixel_color && q.bundle == "beam") field = viz::ScalarField::status;  // no pixels

@@ -1,5 +1,6 @@
 // grtrace-view's tracing (see view_request.hpp), all through the application library: the frame
 // (app::FrameRenderer, as grtrace-render draws it), the bundle's and the picked rays (app::RayTracer), the orbit.
+#include "grtrace/app/medium_view.hpp"
 #include "grtrace/viz/bundles.hpp"
 #include "grtrace/viz/pick.hpp"
 #include "view_request.hpp"
@@ -61,6 +62,8 @@ viz::RayPick pick_ray(const Request& q, std::array<int, 2> pixel, const viz::Rgb
   viz::mark_pixel(pick.path, pixel, frame.empty() ? nullptr : &frame);
   pick.outcome = ray.outcome;
   pick.object_name = std::move(ray.object);
+  if (app::is_medium_scene(q.scene))
+    pick.light = app::medium_light_along(*q.checked, pick.path, *options.observer_velocity);
   return pick;
 }
 

@@ -132,6 +132,23 @@ def test_a_riaf_frame_is_the_tools_in_physical_units(run_tool):
     assert sum(line["flux_" + n] for n in ("n0", "n1", "n2", "n3_up")) == pytest.approx(line["flux"], rel=1e-6)
 
 
+def test_a_riaf_spectrum_in_one_pass_is_the_tools(run_tool):
+    # Several frequencies as a sequence: a channel and a flux each, as the tool's comma-separated list gives them.
+    options = dict(scene="riaf", metric="kerr", spin=0.9, source="sgr-a", camera_r=1000, camera_theta=17,
+                   fov=2.3, width=8, height=8, sky_radius=2000, rtol=1e-8)
+    frame = grtrace.render(frequency=[86, 230, 345.5], **options)
+    code, out, err, exr = run_tool(dict(options, frequency="86,230,345.5"))
+    assert code == 0, err
+    tool = grtrace.read_exr(str(exr))
+    line = json.loads(out.strip().splitlines()[-1])
+    for band in ("86GHz", "230GHz", "345p5GHz"):
+        assert np.array_equal(bits(frame["intensity_" + band]), bits(tool["intensity_" + band])), band
+        assert frame.report["flux_jy_" + band] == line["flux_jy_" + band] == float(tool.header["flux_jy_" + band])
+    assert np.array_equal(bits(frame["intensity"]), bits(frame["intensity_86GHz"]))  # the first band's picture
+    assert tool.header["frequencies_ghz"] == "86,230,345.5"
+    assert line["flux_jy_86GHz"] < line["flux_jy_230GHz"] > line["flux_jy_345p5GHz"]
+
+
 def test_channels_are_views_of_the_frames_memory():
     frame = grtrace.render(**MAIN_FRAME)
     a = frame["redshift"]
@@ -211,6 +228,7 @@ BAD = [
     dict(scene="riaf", metric="kerr", camera_r=1000, sky_radius=2000, source="m31"),
     dict(source="sgr-a"),
     dict(scene="riaf", metric="schwarzschild"),
+    dict(scene="riaf", metric="kerr", camera_r=1000, sky_radius=2000, frequency=[230, 345, 230]),
     dict(scene="torus", metric="kerr", torus_inner=12),
     dict(torus_opacity=1),
     dict(scene="disk", redshift_power=4),

@@ -7,7 +7,9 @@
 //   build/release/tests/benchmarks/medium_benchmark --benchmark_filter='/128'
 // table_ms is the table's build, pixels_ms the image loop; us_per_pixel is the whole frame over its pixels.
 // riaf/kerr-mino: Sgr A*'s hot flow (medium/riaf.hpp) at 230 GHz around Kerr a = 0.9 from 1000 M at 17 degrees, a
-// frame 40 M wide, vern6 + I at rtol 1e-8, every pixel integrated on Kerr's separated equations in Mino time.
+// frame 40 M wide, vern6 + I at rtol 1e-8, every pixel integrated on Kerr's separated equations in Mino time;
+// riaf/spectrum: the same frame at eight frequencies from 43 GHz to 1 THz, eight frames (one_pass:0) against one
+// frame of eight bands (one_pass:1, each ray traced once, the flow asked for all eight at each stage).
 #include "grtrace/medium/riaf.hpp"
 #include "grtrace/medium/spherical_accretion.hpp"
 #include "grtrace/metric/kerr.hpp"
@@ -19,9 +21,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -89,29 +94,75 @@ void general(benchmark::State& state) {
   state.counters["us_per_pixel"] = 1e6 * total_s / static_cast<double>(state.iterations()) / pixels;
 }
 
-void riaf(benchmark::State& state) {
-  const KerrMetric metric{1.0, 0.9};
-  CameraSpec spec;
-  spec.position = Vec4(0.0, 1000.0, 17.0 * std::numbers::pi / 180.0, 0.0);
-  spec.spherical_position = true;
-  spec.width = spec.height = static_cast<int>(state.range(0));
-  spec.fov_degrees = 2.0 * std::atan(20.0 / 1000.0) * 180.0 / std::numbers::pi;
-  const Camera camera = make_camera(metric, spec);
-  RiafParameters p = RiafParameters::sgr_a();
-  p.outer = 2000.0;
+/// Sgr A*'s frame of the riaf benchmarks (see the top of this file).
+struct RiafScene {
+  KerrMetric metric{1.0, 0.9};
+  Camera camera;
+  RiafFlow<KerrMetric> flow;
   TraceSettings settings;
-  settings.integrator.tolerance = {1e-8, 1e-10};
-  settings.escape_radius = 2000.0;
   RenderOptions options;
-  options.progress = ProgressMode::never;
-  const KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>> tracer(
-      metric, RiafFlow<KerrMetric>(metric, p), settings, camera.tetrad().e[0], 230e9);
+  explicit RiafScene(int n)
+      : camera([&] {
+          CameraSpec spec;
+          spec.position = Vec4(0.0, 1000.0, 17.0 * std::numbers::pi / 180.0, 0.0);
+          spec.spherical_position = true;
+          spec.width = spec.height = n;
+          spec.fov_degrees = 2.0 * std::atan(20.0 / 1000.0) * 180.0 / std::numbers::pi;
+          return make_camera(KerrMetric{1.0, 0.9}, spec);
+        }()),
+        flow(metric, [] {
+          RiafParameters p = RiafParameters::sgr_a();
+          p.outer = 2000.0;
+          return p;
+        }()) {
+    settings.integrator.tolerance = {1e-8, 1e-10};
+    settings.escape_radius = 2000.0;
+    options.progress = ProgressMode::never;
+  }
+};
+
+/// The eight frequencies of the spectrum benchmarks (examples/scenes/riaf_spectrum's), in Hz.
+constexpr std::array<double, 8> kSpectrumHz{43e9, 86e9, 140e9, 230e9, 345e9, 490e9, 690e9, 1000e9};
+
+template <class Tracer>
+double frame_seconds(const RiafScene& s, const Tracer& tracer) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Frame frame = render_medium_frame(s.camera, tracer, s.options);
+  benchmark::DoNotOptimize(frame.image.channel("intensity").data());
+  return seconds_since(t0);
+}
+
+/// One frequency: 230 GHz.
+void riaf(benchmark::State& state) {
+  const RiafScene s(static_cast<int>(state.range(0)));
+  const KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>> tracer(s.metric, s.flow, s.settings,
+                                                                                 s.camera.tetrad().e[0], 230e9);
+  double total_s = 0.0;
+  for (auto _ : state) total_s += frame_seconds(s, tracer);
+  const double pixels = static_cast<double>(state.range(0) * state.range(0));
+  state.counters["us_per_pixel"] = 1e6 * total_s / static_cast<double>(state.iterations()) / pixels;
+}
+
+/// The spectrum at eight frequencies: one frame each (eight passes) against all eight in one pass.
+void riaf_spectrum(benchmark::State& state) {
+  const RiafScene s(static_cast<int>(state.range(0)));
+  const bool one_pass = state.range(1) != 0;
   double total_s = 0.0;
   for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const Frame frame = render_medium_frame(camera, tracer, options);
-    total_s += seconds_since(t0);
-    benchmark::DoNotOptimize(frame.image.channel("intensity").data());
+    if (one_pass) {
+      const KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>, kSpectrumHz.size()> tracer(
+          s.metric, s.flow, s.settings, s.camera.tetrad().e[0], kSpectrumHz);
+      std::vector<std::string> names(kSpectrumHz.size());
+      for (std::size_t i = 0; i < names.size(); ++i) names[i] = std::to_string(i);
+      const auto t0 = std::chrono::steady_clock::now();
+      const Frame frame = render_medium_spectrum(s.camera, tracer, names, 3, s.options);
+      benchmark::DoNotOptimize(frame.image.channel("intensity").data());
+      total_s += seconds_since(t0);
+    } else {
+      for (const double nu : kSpectrumHz)
+        total_s += frame_seconds(s, KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>>(
+                                        s.metric, s.flow, s.settings, s.camera.tetrad().e[0], nu));
+    }
   }
   const double pixels = static_cast<double>(state.range(0) * state.range(0));
   state.counters["us_per_pixel"] = 1e6 * total_s / static_cast<double>(state.iterations()) / pixels;
@@ -120,6 +171,13 @@ void riaf(benchmark::State& state) {
 BENCHMARK(table)->Name("accretion/table")->Arg(128)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(general)->Name("accretion/general")->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(riaf)->Name("riaf/kerr-mino")->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(riaf_spectrum)
+    ->Name("riaf/spectrum")
+    ->ArgNames({"n", "one_pass"})
+    ->Args({64, 0})
+    ->Args({64, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

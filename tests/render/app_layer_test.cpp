@@ -5,6 +5,7 @@
 // rays end; a render can be cancelled and counts its progress; and it refuses, before any work, what its tracers
 // cannot draw, saying what to use instead.
 #include "grtrace/app/front_door.hpp"
+#include "grtrace/app/medium_view.hpp"
 #include "grtrace/app/tool_methods.hpp"
 #include "grtrace/core/physical_units.hpp"
 #include "grtrace/exact/kerr_exact.hpp"
@@ -620,6 +621,41 @@ TEST(AppLayer, ARiafFrameIsInPhysicalUnits) {
   EXPECT_GT(*app::render(more).report.flux_jy, 3.0 * *r.report.flux_jy);
 }
 
+TEST(AppLayer, ARiafFrameAtSeveralFrequenciesIsEachFrequencysFrameInOnePass) {
+  // Three frequencies in one pass: a channel and a flux each, the first one's also the picture; each band's light
+  // is the single-frequency frame's within the integration's error (both at rtol 1e-8).
+  app::RenderRequest q = riaf_request();
+  q.frequencies_ghz =
+      app::read_render_request(Texts({{"scene", "riaf"}, {"frequency", "86,230,345.5"}})).frequencies_ghz;
+  ASSERT_EQ(q.frequencies_ghz, (std::vector<double>{86.0, 230.0, 345.5}));
+  const app::RenderResult all = app::render(q);
+  EXPECT_EQ(all.report.stats.failures(), 0);
+  EXPECT_EQ(all.image.metadata.at("frequencies_ghz"), "86,230,345.5");
+  ASSERT_EQ(all.report.band_fluxes.size(), 3u);
+  EXPECT_EQ(all.image.channel("intensity"), all.image.channel("intensity_86GHz"));
+  EXPECT_EQ(*all.report.flux_jy, *all.report.band_fluxes[0].flux_jy);
+  bool reported = false;
+  for (const app::ReportEntry& e : app::report_entries(all.report, app::check_request(q)))
+    reported = reported || e.key == "flux_jy_345p5GHz";
+  EXPECT_TRUE(reported);
+  for (std::size_t b = 0; b < 3; ++b) {
+    app::RenderRequest one = riaf_request();
+    one.frequencies_ghz = {q.frequencies_ghz[b]};
+    const app::RenderResult single = app::render(one);
+    const std::string band = app::frequency_band_name(q.frequencies_ghz[b]);
+    EXPECT_EQ(all.report.band_fluxes[b].band, band);
+    const std::vector<float>& many = all.image.channel("intensity_" + band);
+    const std::vector<float>& alone = single.image.channel("intensity");
+    const float peak = *std::max_element(alone.begin(), alone.end());
+    for (std::size_t i = 0; i < alone.size(); ++i) EXPECT_NEAR(many[i], alone[i], 1e-5f * peak) << band << " " << i;
+    EXPECT_NEAR(*all.report.band_fluxes[b].flux_jy, *single.report.flux_jy, 1e-5 * *single.report.flux_jy) << band;
+    EXPECT_EQ(std::stod(all.image.metadata.at("flux_jy_" + band)), *all.report.band_fluxes[b].flux_jy);
+  }
+  // The spectrum of the thin flow rises to its peak and falls: 86 GHz below 230 (self-absorbed), 345.5 too.
+  EXPECT_LT(*all.report.band_fluxes[0].flux_jy, *all.report.band_fluxes[1].flux_jy);
+  EXPECT_LT(*all.report.band_fluxes[2].flux_jy, *all.report.band_fluxes[1].flux_jy);
+}
+
 TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
   app::RenderRequest schwarzschild = riaf_request();
   schwarzschild.metric.name = "schwarzschild";
@@ -634,7 +670,11 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
   app::RenderRequest rate = riaf_request();
   rate.accretion_rate = 0.0;
   app::RenderRequest frequency = riaf_request();
-  frequency.frequency_ghz = -230.0;
+  frequency.frequencies_ghz = {-230.0};
+  app::RenderRequest nine = riaf_request();
+  nine.frequencies_ghz = {43, 86, 140, 230, 345, 490, 690, 1000, 1500};
+  app::RenderRequest twice = riaf_request();
+  twice.frequencies_ghz = {230, 345, 230};
   app::RenderRequest general = riaf_request();
   general.tracer = "general";
   app::RenderRequest tsit5 = riaf_request();
@@ -647,6 +687,8 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
       {source, "unknown --source 'cyg-x1'; choose m87 or sgr-a"},
       {rate, "--accretion-rate must lie in (0, 1e3]"},
       {frequency, "--frequency must lie in (0, 1e7] GHz"},
+      {nine, "--frequency takes 1 to 8 frequencies, got 9"},
+      {twice, "--frequency names 230 GHz twice: list each band once"},
       {general, "--tracer general cannot draw --scene riaf; use auto or kerr-mino"},
       {tsit5, "--scene riaf is drawn with --tableau vern6 --control i"},
   };
@@ -658,8 +700,7 @@ TEST(AppLayer, ARiafRequestItCannotDrawIsRefused) {
   for (const auto& [given, says] : refused) expect_refused(says, [&] { (void)app::read_render_request(Texts(given)); });
 }
 
-TEST(AppLayer, ATorusFrameIsTheLibrarysMinoTimeTracersFrame) {
-  // The tools' torus (Kerr a = 0.9, r_in 6, peak 10, grey) against the library's tracer on the same camera.
+app::RenderRequest small_torus_request() {
   app::RenderRequest q;
   q.metric.name = "kerr";
   q.metric.spin = 0.9;
@@ -669,6 +710,85 @@ TEST(AppLayer, ATorusFrameIsTheLibrarysMinoTimeTracersFrame) {
   q.camera.theta_degrees = 70.0;
   q.camera.fov_degrees = 36.0;
   q.camera.width = q.camera.height = 12;
+  return q;
+}
+
+TEST(AppLayer, AMediumsVolumeIsItsEmissionWithItsPeakAtThePressureMaximum) {
+  // What grtrace-view draws of the torus: at every point of the cube its emission (j = rho: no direction), 0 inside
+  // the horizon; the largest on the equator within a spacing of the pressure maximum (r_c = 10).
+  const app::CheckedRequest checked = app::check_request(small_torus_request());
+  const app::MediumVolume v = app::medium_volume(checked, 41, 20.0);
+  ASSERT_EQ(v.emission.size(), 41u * 41u * 41u);
+  EXPECT_EQ(v.kind, "polish-doughnut");
+  const KerrMetric metric{1.0, 0.9};
+  const PolishDoughnut<KerrMetric> torus(metric, 6.0, 10.0, 3.0, 1.0, 0.5);
+  const double h = v.spacing();
+  EXPECT_DOUBLE_EQ(h, 1.0);
+  std::size_t best = 0, lit = 0, inside = 0;
+  for (std::size_t at = 0; at < v.emission.size(); ++at) {
+    const int i = static_cast<int>(at % 41), j = static_cast<int>(at / 41 % 41), k = static_cast<int>(at / 1681);
+    const double px = -20.0 + i * h, py = -20.0 + j * h, pz = -20.0 + k * h;
+    const double r = std::sqrt(px * px + py * py + pz * pz);
+    if (v.emission[at] > v.emission[best]) best = at;
+    lit += v.emission[at] > 0.0f;
+    if (r <= metric.outer_horizon()) {
+      EXPECT_EQ(v.emission[at], 0.0f);
+      continue;
+    }
+    if (at % 97 != 0) continue;  // a sample of the points against the torus itself: its gas inside its surface
+    const Vec4 x(0.0, r, std::acos(pz / r), std::atan2(py, px));
+    const bool gas = torus.boundary(metric, x) <= 0.0;
+    EXPECT_EQ(v.emission[at], gas ? static_cast<float>(torus.coefficients(metric, x, 1.0).emission) : 0.0f) << at;
+    inside += gas;
+  }
+  EXPECT_EQ(v.peak, static_cast<double>(v.emission[best]));
+  const double bx = -20.0 + static_cast<double>(best % 41), by = -20.0 + static_cast<double>(best / 41 % 41),
+               bz = -20.0 + static_cast<double>(best / 1681);
+  EXPECT_NEAR(std::hypot(bx, by), 10.0, h);
+  EXPECT_EQ(bz, 0.0);
+  EXPECT_GT(lit, 1000u);
+  EXPECT_GT(inside, 10u);
+  app::RenderRequest sky = small_torus_request();
+  sky.scene = "sky";
+  sky.torus_opacity = 0.0;
+  expect_refused("--scene sky has no emitting medium", [&] { (void)app::medium_volume(app::check_request(sky), 8); });
+  expect_refused("2 to 256 points a side, got 1", [&] { (void)app::medium_volume(checked, 1); });
+}
+
+TEST(AppLayer, TheLightAlongAPickedRayIsItsPixelsIntensity) {
+  // The light a picked ray collects (grtrace-view colours it by this), summed by the trapezoid rule over its
+  // path's samples, ends at its pixel's intensity in the frame to the samples' resolution; it only grows.
+  const app::RenderRequest q = small_torus_request();
+  const app::RenderResult frame = app::render(q);
+  const app::CheckedRequest checked = app::check_request(q);
+  const auto tracer = app::RayTracer::create(checked);
+  app::PathOptions options;
+  options.samples_per_step = 64;
+  options.observer_velocity = checked.camera.tetrad().e[0];
+  const std::vector<float>& intensity = frame.image.channel("intensity");
+  int compared = 0;
+  double worst = 0.0;
+  for (int y = 1; y < 12; y += 3)
+    for (int x = 1; x < 12; x += 3) {
+      const double pixel = intensity[frame.image.index(x, y)];
+      if (!(pixel > 0.0)) continue;
+      const app::TracedRay ray = tracer->trace(checked.camera.pixel_state(x, y), options);
+      const std::vector<double> light = app::medium_light_along(checked, ray.path, *options.observer_velocity);
+      ASSERT_EQ(light.size(), ray.path.samples.size());
+      EXPECT_EQ(light.front(), 0.0);
+      EXPECT_TRUE(std::is_sorted(light.begin(), light.end()));
+      EXPECT_NEAR(light.back(), pixel, 5e-4 * pixel) << x << " " << y;  // measured 4.6e-5
+      worst = std::max(worst, std::abs(light.back() / pixel - 1.0));
+      ++compared;
+    }
+  EXPECT_GT(compared, 4);
+  std::printf("light along picked rays against their pixels: worst %.2e (%d rays, 64 samples a step)\n", worst,
+              compared);
+}
+
+TEST(AppLayer, ATorusFrameIsTheLibrarysMinoTimeTracersFrame) {
+  // The tools' torus (Kerr a = 0.9, r_in 6, peak 10, grey) against the library's tracer on the same camera.
+  const app::RenderRequest q = small_torus_request();
   const app::RenderResult r = app::render(q);
   EXPECT_EQ(r.report.tracer, "kerr-mino");
   EXPECT_EQ(r.report.stats.failures(), 0);

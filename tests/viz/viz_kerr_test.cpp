@@ -1,6 +1,7 @@
 // grtrace::viz for Kerr: the ergosphere surface lies on the static limit r_E(theta) =
 // M + sqrt(M^2 - a^2 cos^2 theta) of KerrMetric (where g_tt = 0), and the scene view of a spinning hole has the
-// ergosphere layer, the horizon at r_+ and no photon sphere. Data only (no pixels): runs with or without a display.
+// ergosphere layer, the horizon at r_+ and no photon sphere; the medium layer's iso-surfaces lie where the gas
+// falls to their levels. Data only (no pixels): runs with or without a display.
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
@@ -8,14 +9,17 @@
 #include "grtrace/viz/surfaces.hpp"
 
 #include <gtest/gtest.h>
-
 #include <vtkActor.h>
 #include <vtkBoundingBox.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
@@ -106,6 +110,53 @@ TEST(VizKerr, SceneViewOfASpinningHole) {
   SceneLayout bad;
   bad.spin = 1.0;
   EXPECT_THROW(SceneView{bad}, std::invalid_argument);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(VizMedium, TheMediumsIsoSurfacesLieAtTheirLevels) {
+  // A Gaussian ball of gas, exp(-r^2 / w^2), sampled on 41^3 points: each of the medium layer's surfaces is the
+  // sphere where it falls to its level, r = w sqrt(-ln level), to the trilinear sampling's error.
+  const double w = 4.0, half = 10.0;
+  MediumField field;
+  field.n = 41;
+  field.half_width = half;
+  const double h = 2.0 * half / (field.n - 1);
+  for (int k = 0; k < field.n; ++k)
+    for (int j = 0; j < field.n; ++j)
+      for (int i = 0; i < field.n; ++i) {
+        const double x = -half + i * h, y = -half + j * h, z = -half + k * h;
+        field.values.push_back(static_cast<float>(std::exp(-(x * x + y * y + z * z) / (w * w))));
+      }
+  field.peak = 1.0;
+  SceneView view(SceneLayout{});
+  EXPECT_FALSE(view.has(Layer::medium));
+  view.set_medium(field);
+  ASSERT_TRUE(view.has(Layer::medium));
+  EXPECT_EQ(layer_from_string("medium"), Layer::medium);
+  vtkPolyData* surfaces = view.medium_surfaces();
+  ASSERT_NE(surfaces, nullptr);
+  vtkDataArray* level = surfaces->GetPointData()->GetArray("level");
+  ASSERT_NE(level, nullptr);
+  std::array<int, kMediumLevels.size()> points{};
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < surfaces->GetNumberOfPoints(); ++i) {
+    double p[3];
+    surfaces->GetPoint(i, p);
+    const double l = level->GetTuple1(i);
+    const double expected = w * std::sqrt(-std::log(l));
+    worst = std::max(worst, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - expected));
+    for (std::size_t n = 0; n < kMediumLevels.size(); ++n) points[n] += std::abs(l - kMediumLevels[n]) < 1e-6;
+  }
+  EXPECT_LT(worst, 0.1 * h);
+  for (const int n : points) EXPECT_GT(n, 100);
+  std::printf("medium iso-surfaces: worst radius error %.3g M (spacing %.3g M)\n", worst, h);
+  field.peak = 0.0;  // nothing glows: no layer
+  view.set_medium(field);
+  EXPECT_FALSE(view.has(Layer::medium));
+  EXPECT_EQ(view.medium_surfaces(), nullptr);
 }
 
 }  // namespace

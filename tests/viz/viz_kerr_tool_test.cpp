@@ -5,20 +5,21 @@
 // coordinates), --observer static refused in the ergosphere with grtrace-render's message, --disk-retrograde and
 // the ISCO bound of --disk-inner, --plot beside its older spelling --chart orbit|norm|step, and a --frame rendered
 // with --chart ks. The rendering cases skip without DISPLAY (run under xvfb-run); the export cases need none.
-#include "view_export_support.hpp"
-
 #include "grtrace/exact/kerr_exact.hpp"
 #include "grtrace/metric/kerr.hpp"
 #include "grtrace/metric/kerr_schild.hpp"
+#include "view_export_support.hpp"
 
+#include <gtest/gtest.h>
+#include <unistd.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdList.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-
-#include <gtest/gtest.h>
+#include <vtkXMLImageDataReader.h>
 
 #include <algorithm>
 #include <array>
@@ -29,7 +30,6 @@
 #include <map>
 #include <string>
 #include <vector>
-#include <unistd.h>
 
 namespace {
 
@@ -369,6 +369,45 @@ TEST(ViewKerr, ReadsAFrameRenderedInKerrSchild) {
   }
 }
 #endif
+
+// A glowing torus (grtrace-render's --scene torus and its options): the export writes its emission on the cube
+// (medium.vti, peaked on the equator near the pressure maximum at 10 M), the picked ray lists the light it
+// collected, and --hide medium leaves the gas out; a torus around a hole it cannot circle is refused as by
+// grtrace-render.
+TEST(ViewKerr, ATorusIsExportedAsItsGasAndAPickedRayListsItsLight) {
+  const std::string scene =
+      "--scene torus --metric kerr --spin 0.9 --torus-opacity 0.5 --camera-r 60 "
+      "--camera-theta 75 --fov 40 --width 16 --height 16 --bundle none --pick 8,8 ";
+  const auto dir = dir_of("torus");
+  const ToolRun r = run_headless(scene + "--export " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::size_t at = r.output.find("light collected ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_GT(std::stod(r.output.substr(at + 16)), 0.0) << r.output;
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName((dir / "medium.vti").c_str());
+  reader->Update();
+  vtkImageData* gas = reader->GetOutput();
+  int dims[3];
+  gas->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 72);
+  vtkDataArray* emission = gas->GetPointData()->GetArray("emission");
+  ASSERT_NE(emission, nullptr);
+  vtkIdType best = 0;
+  for (vtkIdType i = 0; i < emission->GetNumberOfTuples(); ++i)
+    if (emission->GetTuple1(i) > emission->GetTuple1(best)) best = i;
+  double p[3];
+  gas->GetPoint(best, p);
+  const double spacing = gas->GetSpacing()[0];
+  EXPECT_NEAR(std::hypot(p[0], p[1]), 10.0, spacing);
+  EXPECT_LT(std::abs(p[2]), spacing);
+  const auto hidden = dir_of("torus-hidden");
+  ASSERT_EQ(run_headless(scene + "--hide medium --export " + hidden.string()).status, 0);
+  EXPECT_FALSE(std::filesystem::exists(hidden / "medium.vti"));
+  const ToolRun schwarzschild = run_headless("--scene torus --metric schwarzschild --export " + dir.string());
+  EXPECT_EQ(schwarzschild.status, 2) << schwarzschild.output;
+  EXPECT_NE(schwarzschild.output.find("flows around a Kerr hole"), std::string::npos) << schwarzschild.output;
+}
 
 // ---- drawing (needs a display) ----------------------------------------------------------------------------------
 

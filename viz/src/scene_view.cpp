@@ -5,11 +5,14 @@
 #include "lookup_tables.hpp"
 
 #include <Eigen/Geometry>
-
 #include <vtkActor.h>
+#include <vtkAppendPolyData.h>
 #include <vtkCamera.h>
+#include <vtkContourFilter.h>
 #include <vtkDataArray.h>
+#include <vtkFloatArray.h>
 #include <vtkGlyph3D.h>
+#include <vtkImageData.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -47,6 +50,8 @@ std::string_view to_string(Layer layer) {
     case Layer::colorbar: return "colorbar";
     case Layer::ergosphere: return "ergosphere";
     case Layer::picks: return "picks";
+    case Layer::medium:
+      return "medium";
   }
   return "";
 }
@@ -108,6 +113,7 @@ struct SceneView::Impl {
   vtkNew<vtkTextActor> legend;  // what the visible layers are, bottom left
   vtkSmartPointer<vtkPolyData> pick_data;
   vtkNew<vtkTextActor> pick_text;  // the picks' outcomes, top left under the caption
+  vtkSmartPointer<vtkPolyData> medium_data;
 
   void update_legend() {
     std::string text;
@@ -127,7 +133,10 @@ struct SceneView::Impl {
       text += ray_field == ScalarField::pixel_color ? "rays: colour of their frame pixel\n"
                                                     : "rays: " + std::string(scalar_title(ray_field)) + "\n";
     line(Layer::orbit, orbit_marked ? "camera flight path (tube; frames: white beads)" : "timelike orbit (tube)");
-    line(Layer::picks, "picked rays (magenta; outcomes top left)");
+    const bool lit_picks = pick_data && pick_data->GetPointData()->GetArray("light");
+    line(Layer::picks, lit_picks ? "picked rays: the light they collect, from the camera (black) to all of it (white)"
+                                 : "picked rays (magenta; outcomes top left)");
+    line(Layer::medium, "medium: emission at 30 %, 3 % and 0.3 % of its peak (translucent)");
     if (!text.empty()) text.pop_back();
     legend->SetInput(text.c_str());
   }
@@ -330,6 +339,24 @@ void SceneView::set_picks(vtkPolyData* picks, const std::string& text) {
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(picks);
   mapper->ScalarVisibilityOff();
+  if (picks->GetPointData()->GetArray("light")) {  // the light collected, black through red and yellow to white
+    vtkNew<vtkLookupTable> lut;
+    lut->SetNumberOfTableValues(256);
+    lut->SetRange(0.0, 1.0);
+    for (int i = 0; i < 256; ++i) {
+      const double v = i / 255.0;
+      lut->SetTableValue(i, std::clamp(3.0 * v, 0.0, 1.0), std::clamp(3.0 * v - 1.0, 0.0, 1.0),
+                         std::clamp(3.0 * v - 2.0, 0.0, 1.0), 1.0);
+    }
+    lut->Build();
+    mapper->ScalarVisibilityOn();
+    mapper->SetScalarModeToUsePointFieldData();
+    mapper->SelectColorArray("light");
+    mapper->SetColorModeToMapScalars();
+    mapper->SetLookupTable(lut);
+    mapper->SetScalarRange(0.0, 1.0);
+    mapper->UseLookupTableScalarRangeOn();
+  }
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
   actor->GetProperty()->SetColor(1.0, 0.25, 0.85);
@@ -342,6 +369,61 @@ void SceneView::set_picks(vtkPolyData* picks, const std::string& text) {
 }
 
 vtkPolyData* SceneView::picks() const { return impl_->pick_data; }
+
+vtkSmartPointer<vtkImageData> medium_to_imagedata(const MediumField& field) {
+  const auto n = static_cast<std::size_t>(std::max(field.n, 0));
+  if (field.n < 2 || field.values.size() != n * n * n || !(field.half_width > 0.0))
+    throw std::invalid_argument("medium field: need n >= 2, n^3 values and a positive half width");
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(field.n, field.n, field.n);
+  const double h = 2.0 * field.half_width / (field.n - 1);
+  image->SetSpacing(h, h, h);
+  image->SetOrigin(-field.half_width, -field.half_width, -field.half_width);
+  vtkNew<vtkFloatArray> values;
+  values->SetName("emission");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(field.values.size()));
+  for (std::size_t i = 0; i < field.values.size(); ++i) values->SetValue(static_cast<vtkIdType>(i), field.values[i]);
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+void SceneView::set_medium(const MediumField& field) {
+  Impl& m = *impl_;
+  const vtkSmartPointer<vtkImageData> image = medium_to_imagedata(field);
+  if (!(field.peak > 0.0)) {
+    m.medium_data = nullptr;
+    m.remove(Layer::medium);
+    m.update_legend();
+    return;
+  }
+  vtkNew<vtkAppendPolyData> all;
+  vtkNew<vtkPropAssembly> surfaces;
+  for (std::size_t l = 0; l < kMediumLevels.size(); ++l) {
+    vtkNew<vtkContourFilter> contour;
+    contour->SetInputData(image);
+    contour->SetValue(0, kMediumLevels[l] * field.peak);
+    contour->ComputeNormalsOn();
+    contour->Update();
+    vtkSmartPointer<vtkPolyData> surface = contour->GetOutput();
+    vtkNew<vtkFloatArray> level;
+    level->SetName("level");
+    level->SetNumberOfTuples(surface->GetNumberOfPoints());
+    level->Fill(kMediumLevels[l]);
+    surface->GetPointData()->AddArray(level);
+    all->AddInputData(surface);
+    // The inner (brighter) surfaces hot and more opaque, the outer ones red and faint, so all three show.
+    const std::array<std::array<double, 3>, 3> colours = {{{1.0, 0.95, 0.6}, {1.0, 0.6, 0.15}, {0.8, 0.2, 0.1}}};
+    auto actor = make_actor(surface, colours[l], std::array<double, 3>{0.45, 0.25, 0.12}[l]);
+    actor->GetProperty()->SetSpecular(0.0);
+    surfaces->AddPart(actor);
+  }
+  all->Update();
+  m.medium_data = all->GetOutput();
+  m.add(Layer::medium, surfaces);
+  m.update_legend();
+}
+
+vtkPolyData* SceneView::medium_surfaces() const { return impl_->medium_data; }
 
 void SceneView::set_orbit(vtkPolyData* orbit, ScalarField color_by, double tube_radius, std::span<const Vec3> marks) {
   Impl& m = *impl_;

@@ -1,18 +1,23 @@
 // The two-viewport window (see grtrace/viz/viewer_window.hpp).
 #include "grtrace/viz/viewer_window.hpp"
 
+#include "grtrace/render/output_file.hpp"
 #include "grtrace/viz/frame_view.hpp"
 #include "grtrace/viz/geodesic_data.hpp"
 #include "grtrace/viz/scene_view.hpp"
-#include "grtrace/render/output_file.hpp"
 
+#include <X11/Xlib.h>
+#include <unistd.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
 #include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
@@ -21,6 +26,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -31,10 +37,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
-#include <unistd.h>
 #include <vector>
-
-#include <X11/Xlib.h>
 
 namespace grtrace::viz {
 
@@ -182,7 +185,19 @@ struct ViewerWindow::Impl {
       if (i + kShownPicks >= picks.size()) text += describe(picks[i]) + "\n";
     }
     if (!text.empty()) text.pop_back();
-    scene->set_picks(paths.empty() ? nullptr : paths_to_polydata(paths).Get(), text);
+    vtkSmartPointer<vtkPolyData> data = paths.empty() ? nullptr : paths_to_polydata(paths);
+    // A medium's picks: each point's light collected from the camera over the ray's whole (its points in order).
+    if (data && std::any_of(picks.begin(), picks.end(), [](const RayPick& p) { return !p.light.empty(); })) {
+      vtkNew<vtkFloatArray> light;
+      light->SetName("light");
+      for (const RayPick& p : picks) {
+        const double whole = p.light.empty() ? 0.0 : p.light.back();
+        for (std::size_t i = 0; i < p.path.samples.size(); ++i)
+          light->InsertNextValue(i < p.light.size() && whole > 0.0 ? static_cast<float>(p.light[i] / whole) : 0.0f);
+      }
+      data->GetPointData()->AddArray(light);
+    }
+    scene->set_picks(data.Get(), text);
     if (frame) frame->set_pick_markers(pixels);
   }
 
@@ -315,7 +330,8 @@ std::array<int, 4> ViewerWindow::scene_viewport_pixels() const {
 
 std::string ViewerWindow::key_help() {
   return "keys: 1 horizon, 2 photon sphere, 3 ISCO, 4 disk, 5 sky, 6 camera, 7 rays, 8 orbit, 9 colour bar, "
-         "0 ergosphere, m frame markers, c ray colouring, x clear picks, r reset view, s screenshot, h help, q quit; "
+         "0 ergosphere, g glowing medium, m frame markers, c ray colouring, x clear picks, r reset view, s screenshot, "
+         "h help, q quit; "
          "left click on the frame: pick that pixel's ray";
 }
 
@@ -339,6 +355,8 @@ std::string ViewerWindow::handle_key(const std::string& key) {
     case '8': return toggle(Layer::orbit);
     case '9': return toggle(Layer::colorbar);
     case '0': return toggle(Layer::ergosphere);
+    case 'g':
+      return toggle(Layer::medium);
     case 'm':
       if (!m.frame) return "no frame";
       m.frame->set_markers_visible(!m.frame->markers_visible());

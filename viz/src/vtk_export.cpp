@@ -361,6 +361,7 @@ std::vector<ExportedFile> export_scene(const std::filesystem::path& dir, const S
   for (SceneSurface& s : scene_surfaces(scene.layout))
     if (shown(s.layer)) pieces.push_back({s.name, s.data, ".vtp"});
   if (scene.frame) pieces.push_back({"frame", frame_to_imagedata(*scene.frame, scene.frame_channels), ".vti"});
+  if (scene.medium && shown(Layer::medium)) pieces.push_back({"medium", medium_to_imagedata(*scene.medium), ".vti"});
 
   std::vector<ExportedFile> files;
   OutputSet set;

@@ -32,6 +32,11 @@
 //       positive outside the gas, <= 0 inside, where j and alpha jump or kink (a hard edge, a torus's surface): the
 //       tracer ends a step where a ray crosses it, so that no step is integrated across it
 //       (trace/emission_system.hpp); without it, a medium should be smooth
+//   template <std::size_t N> std::array<MediumCoefficients, N> coefficients(const Metric& metric, const Vec4& x,
+//       const Vec4& k, const Vec4& u, const std::array<double, N>& nu) const
+//       the directed form for several frequencies at once (a ray traced at several observing frequencies asks for
+//       them together at every stage): for a medium whose work is mostly what does not depend on nu (the RIAF's
+//       density, temperature, field and angle); without it the tracer asks once per frequency
 //   static constexpr bool frequency_independent = true;      j_nu and alpha_nu do not depend on nu (a flat
 //       spectrum): a frame's pixels then differ only by their redshift, which lets a table of rays serve a moving
 //       camera (trace/medium_tracers.hpp)
@@ -44,7 +49,9 @@
 #include "grtrace/core/types.hpp"
 #include "grtrace/metric/metric_concept.hpp"
 
+#include <array>
 #include <concepts>
+#include <cstddef>
 #include <string_view>
 
 namespace grtrace {
@@ -78,6 +85,25 @@ GRTRACE_HD MediumCoefficients medium_coefficients(const D& d, const M& m, const 
                                                   double nu) {
   if constexpr (MediumWithDirectedLight<D, M>) return d.coefficients(m, x, k, u, nu);
   else return d.coefficients(m, x, nu);
+}
+
+/// Whether D gives the directed coefficients of N frequencies in one call (the form at the top of this file).
+template <class D, class M, std::size_t N>
+concept MediumWithSpectrum = requires(const D d, const M m, const Vec4 x, const std::array<double, N> nu) {
+  { d.coefficients(m, x, x, x, nu) } -> std::convertible_to<std::array<MediumCoefficients, N>>;
+};
+
+/// The coefficients at N frequencies: the medium's form for several where it has one, else one call each.
+template <class D, class M, std::size_t N>
+GRTRACE_HD std::array<MediumCoefficients, N> medium_coefficients(const D& d, const M& m, const Vec4& x, const Vec4& k,
+                                                                 const Vec4& u, const std::array<double, N>& nu) {
+  if constexpr (N > 1 && MediumWithSpectrum<D, M, N>) {
+    return d.coefficients(m, x, k, u, nu);
+  } else {
+    std::array<MediumCoefficients, N> c;
+    for (std::size_t i = 0; i < N; ++i) c[i] = medium_coefficients(d, m, x, k, u, nu[i]);
+    return c;
+  }
 }
 
 /// Compile-time check with messages that name what is missing; used by the tracers that take a medium.

@@ -45,7 +45,9 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -144,11 +146,19 @@ class RiafFlow {
 
   /// j_nu and alpha_nu per M (cgs per cm times r_g) for the ray k leaving the gas u at x, nu in Hz in its frame.
   template <MetricPolicy M>
-  MediumCoefficients coefficients(const M&, const Vec4& x, const Vec4& k, const Vec4& u, double nu) const {
+  MediumCoefficients coefficients(const M& metric, const Vec4& x, const Vec4& k, const Vec4& u, double nu) const {
+    return coefficients(metric, x, k, u, std::array<double, 1>{nu})[0];
+  }
+
+  /// The same at several frequencies: the gas's density, temperature, field and angle to the ray computed once.
+  template <MetricPolicy M, std::size_t N>
+  std::array<MediumCoefficients, N> coefficients(const M&, const Vec4& x, const Vec4& k, const Vec4& u,
+                                                 const std::array<double, N>& nu) const {
+    std::array<MediumCoefficients, N> out{};
     const double n_e = density(x);
-    if (!(n_e > 0.0)) return {};
+    if (!(n_e > 0.0)) return out;
     const double theta_e = electron_theta(x);
-    if (!(theta_e >= min_synchrotron_temperature)) return {};
+    if (!(theta_e >= min_synchrotron_temperature)) return out;
     const Mat4 g = metric_.metric(x);
     // The field along d/dphi, made orthogonal to u; the ray's direction n in the gas's frame: k = E (u + n).
     Vec4 b = Vec4::Zero();
@@ -161,8 +171,12 @@ class RiafFlow {
       const double cos_theta = -(k.dot(g * b)) / (e * std::sqrt(b2));
       sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
     }
-    const MediumCoefficients c = thermal_synchrotron(nu, n_e, theta_e, field_gauss(n_e, x[1]), sin_theta);
-    return {c.emission * r_g_, c.absorption * r_g_};
+    const ThermalSynchrotronPlasma plasma(n_e, theta_e, field_gauss(n_e, x[1]), sin_theta);
+    for (std::size_t i = 0; i < N; ++i) {
+      const MediumCoefficients c = plasma.at(nu[i]);
+      out[i] = {c.emission * r_g_, c.absorption * r_g_};
+    }
+    return out;
   }
 
   /// The gas's 4-velocity at x (see the top of this file).

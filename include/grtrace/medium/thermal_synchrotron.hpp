@@ -71,21 +71,38 @@ inline double planck_intensity(double nu, double theta_e) {
 /// The minimum dimensionless temperature that emits (see the top of this file).
 inline constexpr double min_synchrotron_temperature = 0.01;
 
+/// The thermal synchrotron light of one plasma (n_e, Theta_e, B, sin theta) at any frequency (see the top of this
+/// file), what does not depend on nu computed once: for a ray traced at several frequencies.
+class ThermalSynchrotronPlasma {
+ public:
+  ThermalSynchrotronPlasma(double n_e, double theta_e, double b_gauss, double sin_theta) : theta_e_(theta_e) {
+    if (!(theta_e >= min_synchrotron_temperature) || !(n_e > 0.0) || !(b_gauss > 0.0) || !(sin_theta > 0.0)) return;
+    const double e = cgs::electron_charge, c = cgs::speed_of_light;
+    const double nu_c = e * b_gauss / (2.0 * std::numbers::pi * cgs::electron_mass * c);
+    nu_s_ = (2.0 / 9.0) * nu_c * theta_e * theta_e * sin_theta;
+    scale_ = n_e * std::numbers::sqrt2 * std::numbers::pi * e * e * nu_s_ / (3.0 * maxwell_juttner_k2(theta_e) * c);
+  }
+
+  /// j_nu and alpha_nu at nu (Hz), cgs.
+  MediumCoefficients at(double nu) const {
+    if (!(scale_ > 0.0) || !(nu > 0.0)) return {};
+    const double x = nu / nu_s_;
+    const double cbrt_x = std::cbrt(x), sixth_x = std::sqrt(cbrt_x);           // X^(1/3), X^(1/6)
+    const double shape = cbrt_x * sixth_x + std::exp2(11.0 / 12.0) * sixth_x;  // X^(1/2) + 2^(11/12) X^(1/6)
+    const double j = scale_ * shape * shape * std::exp(-cbrt_x);
+    if (!(j > 0.0)) return {};
+    return {j, j / planck_intensity(nu, theta_e_)};
+  }
+
+ private:
+  double theta_e_;
+  double nu_s_ = 0.0;
+  double scale_ = 0.0;  ///< j_nu's factor before the shape in X (0: the plasma does not emit)
+};
+
 /// j_nu and alpha_nu of thermal synchrotron light, cgs (see the top of this file).
 inline MediumCoefficients thermal_synchrotron(double nu, double n_e, double theta_e, double b_gauss, double sin_theta) {
-  if (!(theta_e >= min_synchrotron_temperature) || !(n_e > 0.0) || !(b_gauss > 0.0) || !(sin_theta > 0.0) ||
-      !(nu > 0.0))
-    return {};
-  const double e = cgs::electron_charge, c = cgs::speed_of_light;
-  const double nu_c = e * b_gauss / (2.0 * std::numbers::pi * cgs::electron_mass * c);
-  const double nu_s = (2.0 / 9.0) * nu_c * theta_e * theta_e * sin_theta;
-  const double x = nu / nu_s;
-  const double cbrt_x = std::cbrt(x), sixth_x = std::sqrt(cbrt_x);           // X^(1/3), X^(1/6)
-  const double shape = cbrt_x * sixth_x + std::exp2(11.0 / 12.0) * sixth_x;  // X^(1/2) + 2^(11/12) X^(1/6)
-  const double j = n_e * std::numbers::sqrt2 * std::numbers::pi * e * e * nu_s /
-                   (3.0 * maxwell_juttner_k2(theta_e) * c) * shape * shape * std::exp(-cbrt_x);
-  if (!(j > 0.0)) return {};
-  return {j, j / planck_intensity(nu, theta_e)};
+  return ThermalSynchrotronPlasma(n_e, theta_e, b_gauss, sin_theta).at(nu);
 }
 
 }  // namespace grtrace

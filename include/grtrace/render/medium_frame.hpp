@@ -16,6 +16,7 @@
 //            R, G, B         the intensity over the frame's brightest pixel, raised to `exponent` (1: linear, as
 //                            the EHT shows images; 1/2 lifts the faint gas), in a black-red-yellow-white map
 //          and in its metadata the peak intensity the picture is scaled to ("intensity_peak").
+// render_medium_spectrum: the same for a tracer at several observing frequencies in one pass, a channel of each.
 // A failed ray keeps the light it had collected where it failed (finite), its status says so, render_image counts
 // it and its pixel keeps the loop's error colour (RenderOptions::error_rgb).
 #pragma once
@@ -28,7 +29,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <stdexcept>
 #include <string>
+#include <tuple>
+#include <vector>
 
 namespace grtrace {
 
@@ -134,6 +139,49 @@ Frame render_medium_frame(const Camera& camera, const Tracer& tracer, const Rend
         s.steps = m.steps;
         s.order = m.order;
         s.redshift = static_cast<float>(m.redshift);
+        return s;
+      },
+      options);
+  shade_intensity(frame.image, exponent);
+  return frame;
+}
+
+/// A frame of a tracer at several observing frequencies (RayMediumTracer with Bands > 1, SpectralMediumSample),
+/// each pixel's ray traced once: for the first names.size() bands b the channels intensity_<names[b]> and
+/// optical_depth_<names[b]> (names such as "230GHz"; a tracer may carry more bands than are kept); "intensity",
+/// "redshift" and R, G, B (as render_medium_frame's) of band `shown`.
+template <class Tracer>
+Frame render_medium_spectrum(const Camera& camera, const Tracer& tracer, const std::vector<std::string>& names,
+                             std::size_t shown, const RenderOptions& options = {}, double exponent = 1.0) {
+  constexpr std::size_t Bands = std::tuple_size_v<typename Tracer::Frequencies>;
+  if (names.empty() || names.size() > Bands || shown >= names.size())
+    throw std::invalid_argument("render_medium_spectrum: name 1 to " + std::to_string(Bands) +
+                                " bands, the band shown one of them");
+  Frame frame{Image(camera.width(), camera.height()), {}};
+  const std::size_t kept = names.size();
+  std::array<float*, Bands> intensity{}, depth{};
+  for (std::size_t b = 0; b < kept; ++b) {
+    intensity[b] = frame.image.add_channel("intensity_" + names[b]).data();
+    depth[b] = frame.image.add_channel("optical_depth_" + names[b]).data();
+  }
+  float* const picture = frame.image.add_channel("intensity").data();
+  const Image& image = frame.image;
+  frame.stats = render_image(
+      frame.image,
+      [&](int x, int y) {
+        const SpectralMediumSample<Bands> m = tracer.trace(camera.pixel_state(x, y));
+        const std::size_t i = image.index(x, y);
+        for (std::size_t b = 0; b < kept; ++b) {
+          intensity[b][i] = static_cast<float>(m.intensity[b]);
+          depth[b][i] = static_cast<float>(m.optical_depth[b]);
+        }
+        picture[i] = intensity[shown][i];
+        PixelSample s;
+        s.status = m.status;
+        s.object = m.status == RayStatus::captured ? 1 : 0;
+        s.steps = m.steps;
+        s.order = m.order;
+        s.redshift = static_cast<float>(m.redshift[shown]);
         return s;
       },
       options);

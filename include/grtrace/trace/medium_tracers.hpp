@@ -8,10 +8,11 @@
 //          4-velocity: the photon's energy E_cam it measures) and the observed frequency nu_obs.
 // Returns: per pixel a MediumSample: the ray's status, the intensity I_nu(nu_obs) at the camera, the optical depth
 //          along the ray, the accepted steps; from the general tracer also the intensity by image order and the
-//          ray's order (trace/emission_system.hpp). The table's rays lie in the equatorial plane, so they cannot
-//          say where a pixel's ray, in a plane of its own, crosses it or turns: the table tracer does not split by
-//          order (a spherically symmetric scene has no plane of its own either; the general tracer splits it by
-//          the chart's).
+//          ray's order (trace/emission_system.hpp); the general and Mino-time tracers at several frequencies in one
+//          pass, a SpectralMediumSample (the same, one value a band). The table's rays lie in the equatorial plane, so
+//          they cannot say where a pixel's ray, in a plane of its own, crosses it or turns: the table tracer does not
+//          split by order (a spherically symmetric scene has no plane of its own either; the general tracer splits it
+//          by the chart's).
 //
 // Why one table serves a spherical medium (SphericalMediumTracer): the ray, the fluid along it and so the light it
 // collects depend only on the ray's angle delta to the outward radial in the static frame at the camera
@@ -44,6 +45,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -79,17 +81,33 @@ constexpr bool splits_by_order() {
   else return false;
 }
 
+/// What a tracer at several observing frequencies gives a pixel: MediumSample's light in each band, from one ray.
+template <std::size_t Bands>
+struct SpectralMediumSample {
+  RayStatus status = RayStatus::max_steps;
+  std::array<double, Bands> intensity{};                          ///< I_nu at the camera, at each nu_obs
+  std::array<double, Bands> optical_depth{};                      ///< tau along the ray in each band
+  std::array<double, Bands> redshift{};                           ///< emission-weighted g in each band (NaN: no light)
+  std::array<std::array<double, 4>, Bands> intensity_by_order{};  ///< each band's by image order
+  int steps = 0;                                                  ///< accepted steps
+  int order = -1;                                                 ///< the ray's crossings of the equatorial plane
+};
+
 /// Every pixel's ray integrated with its light on the ray's system Ray (trace_emission_along), seen by the camera's
-/// 4-velocity: GeneralMediumTracer (the geodesic equation of any metric) and KerrMinoMediumTracer (below).
-template <class Ray, ExplicitTableau T, StepController C, class Medium>
+/// 4-velocity: GeneralMediumTracer (the geodesic equation of any metric) and KerrMinoMediumTracer (below), at one
+/// observing frequency (Bands = 1: MediumSample) or at Bands of them in one pass (SpectralMediumSample<Bands>: each
+/// pixel's ray traced once, the medium asked for every band at each stage, the steps set by every band's error).
+template <class Ray, ExplicitTableau T, StepController C, class Medium, std::size_t Bands = 1>
 class RayMediumTracer {
  public:
   using Metric = detail::RayMetric<Ray>;
+  using Frequencies = std::conditional_t<Bands == 1, double, std::array<double, Bands>>;
+  using Sample = std::conditional_t<Bands == 1, MediumSample, SpectralMediumSample<Bands>>;
   static constexpr const char* name = std::is_same_v<Ray, KerrMinoSystem> ? "kerr-mino" : "general";
   static constexpr bool splits_by_order = true;
 
   RayMediumTracer(Metric metric, Medium medium, const TraceSettings& settings, const Vec4& camera_velocity,
-                  double frequency, C controller = {})
+                  const Frequencies& frequency, C controller = {})
       : metric_(metric),
         medium_(medium),
         settings_(settings),
@@ -99,15 +117,21 @@ class RayMediumTracer {
     static_assert(check_emitting_medium<Medium, Metric>());
   }
 
-  MediumSample trace(const GeodesicState& y0) const {
-    const EmissionResult r = trace_emission_along<Ray, T>(
-        metric_, medium_, settings_, y0, camera_photon_energy(metric_, y0, velocity_), frequency_, controller_);
-    return {r.trace.status, r.intensity,          r.optical_depth,  r.trace.accepted,
-            r.redshift,     r.intensity_by_order, r.trace.crossings};
+  Sample trace(const GeodesicState& y0) const {
+    const auto r = trace_emission_along<Ray, T>(metric_, medium_, settings_, y0,
+                                                camera_photon_energy(metric_, y0, velocity_), frequency_, controller_);
+    if constexpr (Bands == 1) {
+      return {r.trace.status, r.intensity,          r.optical_depth,  r.trace.accepted,
+              r.redshift,     r.intensity_by_order, r.trace.crossings};
+    } else {
+      return {r.trace.status,       r.intensity,      r.optical_depth,  r.redshift,
+              r.intensity_by_order, r.trace.accepted, r.trace.crossings};
+    }
   }
 
   const Metric& metric() const { return metric_; }
   const Medium& medium() const { return medium_; }
+  const Frequencies& frequencies() const { return frequency_; }
 
  private:
   Metric metric_;
@@ -115,19 +139,19 @@ class RayMediumTracer {
   TraceSettings settings_;
   C controller_;
   Vec4 velocity_;
-  double frequency_;
+  Frequencies frequency_;
 };
 
 /// Every pixel's ray integrated with its light (trace_emission) through the geodesic equation of any metric.
-template <MetricPolicy Metric, ExplicitTableau T, StepController C, class Medium>
-using GeneralMediumTracer = RayMediumTracer<MetricGeodesicSystem<Metric>, T, C, Medium>;
+template <MetricPolicy Metric, ExplicitTableau T, StepController C, class Medium, std::size_t Bands = 1>
+using GeneralMediumTracer = RayMediumTracer<MetricGeodesicSystem<Metric>, T, C, Medium, Bands>;
 
 /// Every pixel's ray integrated with its light on Kerr's separated equations in Mino time (trace_kerr_mino_emission):
 /// a stationary medium around a Kerr hole in Boyer-Lindquist coordinates, the same light as GeneralMediumTracer's
 /// within the tolerance (tests/medium_torus_test.cpp), each stage's ray a few polynomials in place of the metric's
 /// Christoffel symbols.
-template <ExplicitTableau T, StepController C, class Medium>
-using KerrMinoMediumTracer = RayMediumTracer<KerrMinoSystem, T, C, Medium>;
+template <ExplicitTableau T, StepController C, class Medium, std::size_t Bands = 1>
+using KerrMinoMediumTracer = RayMediumTracer<KerrMinoSystem, T, C, Medium, Bands>;
 
 /// The light a static observer at the camera's radius sees along the ray at angle delta (see the top of this file),
 /// interpolated from table rays on each side of the critical angle.

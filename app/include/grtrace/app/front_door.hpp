@@ -46,6 +46,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -115,13 +116,15 @@ struct RenderRequest {
   std::string accretion_gas = "free-fall";
   double accretion_power = 2.0;
   /// riaf: the hot accretion flow of M87* or Sgr A* (medium/riaf.hpp) around a Kerr hole (Boyer-Lindquist chart),
-  /// thermal synchrotron light observed at `frequency_ghz`, in physical units: the
+  /// thermal synchrotron light observed at `frequencies_ghz` (up to kMaxFrequencies, every pixel's ray traced once
+  /// for all of them: a channel intensity_<f>GHz and a flux each; the first one's is also the picture, `intensity`
+  /// and `flux`; one frequency alone is split by image order), in physical units: the
   /// source's mass and distance (core/physical_units.hpp) give the intensity in cgs, the flux in janskys and the
   /// pixel in microarcseconds; drawn with the default method, every pixel integrated, on the CPU, from a camera
   /// at least 100 M away (angles scale as seen from afar).
   std::string source = "m87";            ///< m87 | sgr-a (SourceScale and RiafParameters presets)
   std::optional<double> accretion_rate;  ///< solar masses a year; nothing: the source's (RiafParameters)
-  double frequency_ghz = 230.0;          ///< the observed frequency
+  std::vector<double> frequencies_ghz{230.0};  ///< the observed frequencies, distinct
   /// torus: a Polish doughnut of constant angular momentum around a Kerr hole (medium/polish_doughnut.hpp), its
   /// inner edge and pressure maximum on the equator, n = 3, j = rho, alpha = opacity rho (0: optically thin);
   /// geometric units, the default method, every pixel integrated, on the CPU.
@@ -218,6 +221,13 @@ struct RenderReport {
   /// does not follow (dark: render/disk_light_frame.hpp).
   std::optional<std::array<double, 4>> flux_by_order;
   std::optional<long> uncovered_rays;
+  /// A medium's frame at several frequencies (riaf): each band's name (frequency_band_name), flux and flux in janskys.
+  struct BandFlux {
+    std::string band;
+    double flux = 0.0;
+    std::optional<double> flux_jy;
+  };
+  std::vector<BandFlux> band_fluxes;
 };
 
 /// One entry of a report as the JSON line and the Python dict give it.
@@ -414,6 +424,12 @@ inline constexpr std::array<std::string_view, 3> kDeviceNames = {"auto", "cpu", 
 
 /// The scenes of emitting media (RenderRequest::accretion_gas), beside the surfaces' (kStandardSceneNames).
 inline constexpr std::array<std::string_view, 3> kMediumSceneNames = {"accretion", "riaf", "torus"};
+/// The most observing frequencies a riaf frame takes in one pass (its tracer of several bands is compiled for this
+/// many; fewer are traced with the last one repeated).
+inline constexpr std::size_t kMaxFrequencies = 8;
+/// A band's name in channels and reports: the frequency in GHz, '.' as 'p' (an EXR channel name's '.' would make
+/// it a layer): "230GHz", "345p5GHz".
+std::string frequency_band_name(double ghz);
 /// The sources --scene riaf offers (RenderRequest::source).
 inline constexpr std::array<std::string_view, 2> kRiafSourceNames = {"m87", "sgr-a"};
 /// The least camera radius of a medium in physical units: its angles are those seen from afar (to O(size / r)).

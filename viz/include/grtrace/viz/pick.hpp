@@ -74,6 +74,9 @@ struct RayPick {
   TracedPath path;             ///< the drawn path (pixel and colour set as for bundle rays)
   RayOutcome outcome;          ///< the scene tracer's outcome for the pixel
   std::string object_name;     ///< the scene's name of outcome.object ("sky", "horizon", "disk", ...); "" if failed
+  /// A medium's scene: the intensity the ray collects from the camera to each sample of its path
+  /// (app::medium_light_along), which colours it in the 3D view; empty otherwise.
+  std::vector<double> light;
 };
 
 /// Takes a scene tracer with tracer() (its GeodesicTracer), scene() (objects tuple, object_names()) and trace(y0)
@@ -101,7 +104,8 @@ RayPick pick_ray(const SceneTracer& scene_tracer, const PixelState& pixel_state,
 }
 
 /// Takes a pick; returns one line: "pixel (COL, ROW): STATUS, OBJECT at r = R M, redshift Z, N steps" (failed
-/// rays: no object, radius or redshift; a NaN redshift, where no emitter can be, is written "n/a").
+/// rays: no object, radius or redshift; a NaN redshift, where no emitter can be, is written "n/a"), and for a
+/// medium's scene ", light collected I" (the intensity the path collected).
 inline std::string describe(const RayPick& pick) {
   char buf[256];
   const RayOutcome& o = pick.outcome;
@@ -115,7 +119,10 @@ inline std::string describe(const RayPick& pick) {
   std::snprintf(buf, sizeof buf, "pixel (%d, %d): %s, %s at r = %.6g M, redshift %s, %d steps", pick.pixel[0],
                 pick.pixel[1], std::string(to_string(o.status)).c_str(), pick.object_name.c_str(), o.radius, redshift,
                 o.steps);
-  return buf;
+  if (pick.light.empty()) return buf;
+  char light[64];
+  std::snprintf(light, sizeof light, ", light collected %.6g", pick.light.back());
+  return buf + std::string(light);
 }
 
 }  // namespace grtrace::viz

@@ -31,18 +31,20 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 class vtkRenderer;
 class vtkPolyData;
+class vtkImageData;
 
 namespace grtrace::viz {
 
-enum class Layer { horizon, photon_sphere, isco, disk, sky, camera, rays, orbit, colorbar, ergosphere, picks };
-inline constexpr std::array<Layer, 11> kAllLayers = {Layer::horizon, Layer::photon_sphere, Layer::isco,
-                                                     Layer::disk,    Layer::sky,           Layer::camera,
-                                                     Layer::rays,    Layer::orbit,         Layer::colorbar,
-                                                     Layer::ergosphere, Layer::picks};
-/// "horizon", "photon-sphere", "isco", "disk", "sky", "camera", "rays", "orbit", "colorbar", "ergosphere", "picks".
+enum class Layer { horizon, photon_sphere, isco, disk, sky, camera, rays, orbit, colorbar, ergosphere, picks, medium };
+inline constexpr std::array<Layer, 12> kAllLayers = {
+    Layer::horizon, Layer::photon_sphere, Layer::isco,     Layer::disk,       Layer::sky,   Layer::camera,
+    Layer::rays,    Layer::orbit,         Layer::colorbar, Layer::ergosphere, Layer::picks, Layer::medium};
+/// "horizon", "photon-sphere", "isco", "disk", "sky", "camera", "rays", "orbit", "colorbar", "ergosphere", "picks",
+/// "medium".
 std::string_view to_string(Layer layer);
 std::optional<Layer> layer_from_string(std::string_view name);
 
@@ -60,6 +62,23 @@ struct SceneLayout {
   std::optional<CameraGlyph> camera;
   double camera_glyph_length = 0.0;           ///< <= 0: a quarter of the camera's distance from the centre
 };
+
+/// An emitting medium's emission on a cube of points (app::MediumVolume's: x fastest), drawn as iso-surfaces.
+struct MediumField {
+  int n = 0;                  ///< points a side (>= 2)
+  double half_width = 0.0;    ///< the cube is [-half_width, half_width]^3 in the embedding's coordinates
+  std::vector<float> values;  ///< n^3 values, x fastest, z slowest
+  double peak = 0.0;          ///< the largest value (the levels are fractions of it)
+};
+
+/// The field as VTK image data (the point array "emission"; spacing and origin in the embedding's coordinates): what
+/// the medium layer draws and what an export writes as medium.vti. Throws std::invalid_argument unless n >= 2, n^3
+/// values and a positive half width.
+vtkSmartPointer<vtkImageData> medium_to_imagedata(const MediumField& field);
+
+/// The medium layer's iso-surfaces: these fractions of the peak, drawn translucent, brighter and more opaque
+/// inwards (a medium's emission falls over decades: one surface a decade).
+inline constexpr std::array<double, 3> kMediumLevels = {0.3, 0.03, 0.003};
 
 /// Where the 3D view looks from (embedding coordinates, units of M).
 struct ViewPose {
@@ -89,8 +108,16 @@ class SceneView {
   /// Replaces the picked rays (pick.hpp; polylines from paths_to_polydata, drawn thick in magenta) and the text
   /// that lists their outcomes (top left, under the caption). Null or no points: no picks layer and no text.
   void set_picks(vtkPolyData* picks, const std::string& text);
-  /// The picked rays as drawn (null when there are none).
+  /// The picked rays as drawn (null when there are none). Picks whose polydata carry a point array "light" (the
+  /// intensity a ray collected from a medium between the camera and each point, over the ray's whole: 0 to 1) are
+  /// coloured by it, black through red and yellow to white, instead of magenta.
   vtkPolyData* picks() const;
+  /// Replaces the medium layer: the iso-surfaces of `field` at kMediumLevels (translucent, nested). A field without
+  /// a positive peak removes the layer.
+  void set_medium(const MediumField& field);
+  /// The medium layer's surfaces as drawn, all levels in one polydata with a point array "level" (its fraction of
+  /// the peak); null without a medium.
+  vtkPolyData* medium_surfaces() const;
   /// Recolours the rays or the orbit (layer must be Layer::rays or Layer::orbit). Throws if the data lacks the array.
   void set_color_by(Layer layer, ScalarField field);
   ScalarField color_by(Layer layer) const;

@@ -28,8 +28,8 @@
 // same name (R, G, B linear radiance, object, status, redshift, sky_theta, sky_phi, steps, order). The image lives in
 // pixel units: show it in its own (2D) render view in ParaView.
 //
-// Flight (flight_to_export_polydata): a camera flight's path (observer/worldline.hpp worldline_path: one sample per frame) as
-// the rays are written (coordinates = x, momentum = the 4-velocity u, affine_parameter = tau) plus
+// Flight (flight_to_export_polydata): a camera flight's path (observer/worldline.hpp worldline_path: one sample per
+// frame) as the rays are written (coordinates = x, momentum = the 4-velocity u, affine_parameter = tau) plus
 //   point data  "tau" (the frame's proper time, double), "frame" (the frame's index, int)
 //   field data  "flight" (the kind, string), "flight_frame" (the frame whose camera the viewer used, int),
 //               "flight_frame_tau" (its proper time) and that camera (add_camera_record), when given
@@ -38,7 +38,8 @@
 // block names):
 //   rays.vtp, orbit.vtp, flight.vtp, horizon.vtp (r_+; 2M without spin), photon_sphere.vtp (3M, Schwarzschild),
 //   ergosphere.vtp (Kerr), isco.vtp (the ring, a closed polyline), disk.vtp, sky.vtp (wireframe),
-//   camera_frustum.vtp, camera_axes.vtp, frame.vti, and scene.vtm (written last, refers to the others by
+//   camera_frustum.vtp, camera_axes.vtp, frame.vti, medium.vti (an emitting medium's emission on its cube of
+//   points: point array "emission"; contour it in ParaView), and scene.vtm (written last, refers to the others by
 //   relative name). Open scene.vtm in ParaView.
 #pragma once
 
@@ -134,6 +135,7 @@ struct SceneExport {
   std::optional<FlightExport> flight;      ///< flight.vtp (in the orbit layer); nothing: no flight
   const Rgb8Image* frame = nullptr;        ///< null: no frame.vti
   const Image* frame_channels = nullptr;   ///< the rendered image's float channels (optional)
+  const MediumField* medium = nullptr;     ///< an emitting medium's emission: medium.vti (null: none)
 };
 
 struct ExportedFile {

@@ -3,7 +3,8 @@
 // round (core/rounding.hpp) exactly; azimuth_in_range (core/sky_direction.hpp); mul_add (core/mul_add.hpp), which
 // must round once exactly when the build says it has the fused instruction, and exactly as a * b + c otherwise; and
 // the step controllers' inverse_root (core/inverse_root.hpp) within 4 ulp of long double, std::pow's answer off its
-// domain.
+// domain; and the one golden-section search (core/golden_section.hpp).
+#include "grtrace/core/golden_section.hpp"
 #include "grtrace/core/inverse_root.hpp"
 #include "grtrace/core/mul_add.hpp"
 #include "grtrace/core/rounding.hpp"
@@ -126,6 +127,37 @@ TEST(InverseRoot, OffItsDomainItIsStdPow) {
   // The run-time form: the compile-time root for k = 2..16, std::pow beyond.
   EXPECT_EQ(inverse_root(0.3, 8), inverse_root<8>(0.3));
   EXPECT_EQ(inverse_root(0.3, 17), std::pow(0.3, -1.0 / 17));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(GoldenSection, FindsTheExtremumWithOneEvaluationAStepAndAvoidsWhereFIsNaN) {
+  // (x - 0.3)^2 + 1 on [0, 2]: the minimum to the square root of the rounding (the function is flat there), the
+  // bracket 0.618 times narrower for each evaluation.
+  int evaluations = 0;
+  const GoldenSection m = golden_section_minimum(
+      [&](double x) {
+        ++evaluations;
+        return (x - 0.3) * (x - 0.3) + 1.0;
+      },
+      0.0, 2.0, {0.0, 1e-6});
+  EXPECT_FALSE(m.stopped);
+  EXPECT_NEAR(m.x, 0.3, 1e-6);
+  EXPECT_LE(evaluations,
+            2 + static_cast<int>(std::ceil(std::log(1e-6 / 2.0) / std::log(0.5 * (std::sqrt(5.0) - 1.0)))));
+  // No value below 0.5 (a horizon, say): the search moves away from there and finds the minimum at 1.
+  const GoldenSection away = golden_section_minimum(
+      [](double x) { return x < 0.5 ? std::numeric_limits<double>::quiet_NaN() : (x - 1.0) * (x - 1.0); }, 0.0, 3.0,
+      {1e-12, 0.0});
+  EXPECT_NEAR(away.x, 1.0, 1e-7);
+  // Towards a maximum, stopping at the first probe above 0.99: that probe, and f there.
+  const GoldenSection found = golden_section_maximum([](double x) { return 1.0 - (x - 0.7) * (x - 0.7); }, 0.0, 1.0,
+                                                     {0.0, 1e-12}, 60, [](double, double v) { return v > 0.99; });
+  ASSERT_TRUE(found.stopped);
+  EXPECT_GT(found.value, 0.99);
+  EXPECT_EQ(found.value, 1.0 - (found.x - 0.7) * (found.x - 0.7));
 }
 
 }  // namespace

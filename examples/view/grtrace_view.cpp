@@ -778,8 +778,13 @@ int run_view(const Request& q) {
     ex.layout = layout;
     ex.hidden = q.hidden;
     std::vector<viz::TracedPath> exported = rays;  // the bundle, then the picked rays
-    for (const auto& pick : picks) exported.push_back(pick.path);
+    std::vector<std::vector<double>> light(rays.size());  // a medium's picks: the light they collect
+    for (const auto& pick : picks) {
+      exported.push_back(pick.path);
+      light.push_back(pick.light);
+    }
     ex.rays = exported;
+    if (medium) ex.light = light;
     ex.orbit = orbit ? &*orbit : nullptr;
     const viz::CameraRecord record{camera.position(), camera.tetrad().e, q.fov, q.width, q.height};
     if (q.flight) ex.flight = viz::FlightExport{&q.flight->path, q.flight->kind, q.flight->frame, record};

@@ -372,8 +372,8 @@ TEST(ViewKerr, ReadsAFrameRenderedInKerrSchild) {
 
 // A glowing torus (grtrace-render's --scene torus and its options): the export writes its emission on the cube
 // (medium.vti, peaked on the equator near the pressure maximum at 10 M), the picked ray lists the light it
-// collected, and --hide medium leaves the gas out; a torus around a hole it cannot circle is refused as by
-// grtrace-render.
+// collected and carries it in rays.vtp, and --hide medium leaves the gas out; a torus around a hole it cannot circle is
+// refused as by grtrace-render.
 TEST(ViewKerr, ATorusIsExportedAsItsGasAndAPickedRayListsItsLight) {
   const std::string scene =
       "--scene torus --metric kerr --spin 0.9 --torus-opacity 0.5 --camera-r 60 "
@@ -384,6 +384,13 @@ TEST(ViewKerr, ATorusIsExportedAsItsGasAndAPickedRayListsItsLight) {
   const std::size_t at = r.output.find("light collected ");
   ASSERT_NE(at, std::string::npos) << r.output;
   EXPECT_GT(std::stod(r.output.substr(at + 16)), 0.0) << r.output;
+  // The picked ray in rays.vtp carries the light it collects, from none at the camera to all of it at its end.
+  const auto rays = read_vtp(dir / "rays.vtp");
+  vtkDataArray* light = rays->GetPointData()->GetArray("light");
+  ASSERT_NE(light, nullptr);
+  EXPECT_EQ(light->GetTuple1(0), 0.0);
+  EXPECT_EQ(light->GetTuple1(light->GetNumberOfTuples() - 1), 1.0);
+  for (vtkIdType i = 1; i < light->GetNumberOfTuples(); ++i) EXPECT_GE(light->GetTuple1(i), light->GetTuple1(i - 1));
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName((dir / "medium.vti").c_str());
   reader->Update();

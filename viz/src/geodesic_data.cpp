@@ -4,6 +4,7 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -12,6 +13,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace grtrace::viz {
 
@@ -151,6 +153,24 @@ vtkSmartPointer<vtkPolyData> paths_to_polydata(std::span<const TracedPath> paths
   poly->GetCellData()->AddArray(cell_ray);
   poly->GetCellData()->AddArray(cell_status);
   return poly;
+}
+
+void add_light_array(vtkPolyData* data, std::span<const TracedPath> paths, std::span<const std::vector<double>> light) {
+  std::size_t samples = 0;
+  for (const TracedPath& p : paths) samples += p.samples.size();
+  if (data == nullptr || static_cast<std::size_t>(data->GetNumberOfPoints()) != samples)
+    throw std::invalid_argument("add_light_array: the polydata's points must be the paths' samples");
+  vtkNew<vtkFloatArray> out;
+  out->SetName("light");
+  out->SetNumberOfTuples(static_cast<vtkIdType>(samples));
+  vtkIdType at = 0;
+  for (std::size_t r = 0; r < paths.size(); ++r) {
+    const std::vector<double>* l = r < light.size() ? &light[r] : nullptr;
+    const double whole = l && !l->empty() ? l->back() : 0.0;
+    for (std::size_t i = 0; i < paths[r].samples.size(); ++i)
+      out->SetValue(at++, l && i < l->size() && whole > 0.0 ? static_cast<float>((*l)[i] / whole) : 0.0f);
+  }
+  data->GetPointData()->AddArray(out);
 }
 
 }  // namespace grtrace::viz

@@ -10,13 +10,11 @@
 #include <unistd.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
-#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
 #include <vtkPNGWriter.h>
-#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
@@ -186,16 +184,11 @@ struct ViewerWindow::Impl {
     }
     if (!text.empty()) text.pop_back();
     vtkSmartPointer<vtkPolyData> data = paths.empty() ? nullptr : paths_to_polydata(paths);
-    // A medium's picks: each point's light collected from the camera over the ray's whole (its points in order).
+    // A medium's picks: coloured by the light each collects.
     if (data && std::any_of(picks.begin(), picks.end(), [](const RayPick& p) { return !p.light.empty(); })) {
-      vtkNew<vtkFloatArray> light;
-      light->SetName("light");
-      for (const RayPick& p : picks) {
-        const double whole = p.light.empty() ? 0.0 : p.light.back();
-        for (std::size_t i = 0; i < p.path.samples.size(); ++i)
-          light->InsertNextValue(i < p.light.size() && whole > 0.0 ? static_cast<float>(p.light[i] / whole) : 0.0f);
-      }
-      data->GetPointData()->AddArray(light);
+      std::vector<std::vector<double>> light;
+      for (const RayPick& p : picks) light.push_back(p.light);
+      add_light_array(data, paths, light);
     }
     scene->set_picks(data.Get(), text);
     if (frame) frame->set_pick_markers(pixels);

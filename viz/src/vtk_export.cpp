@@ -350,6 +350,7 @@ std::vector<ExportedFile> export_scene(const std::filesystem::path& dir, const S
   if (!scene.rays.empty() && shown(Layer::rays)) {
     auto rays = paths_to_export_polydata(scene.rays);
     if (scene.camera) add_camera_record(rays, *scene.camera);
+    if (!scene.light.empty()) add_light_array(rays, scene.rays, scene.light);
     pieces.push_back({"rays", rays, ".vtp"});
   }
   if (scene.orbit && shown(Layer::orbit))

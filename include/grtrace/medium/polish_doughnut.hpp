@@ -28,6 +28,7 @@
 //          torus's does: tests/medium_torus_test.cpp checks it on a grid).
 #pragma once
 
+#include "grtrace/core/golden_section.hpp"
 #include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/medium/emitting_medium.hpp"
@@ -185,14 +186,9 @@ class PolishDoughnut {
       }
       return out;
     }
-    double lo = at / ratio, hi = std::min(at * ratio, r_in_);
-    const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
-    for (int i = 0; i < 100 && hi - lo > 1e-12 * hi; ++i) {
-      const double a = hi - golden * (hi - lo), b = lo + golden * (hi - lo);
-      if (potential(equator(a)) > potential(equator(b))) hi = b;
-      else lo = a;
-    }
-    return 0.5 * (lo + hi);
+    return golden_section_maximum([&](double x) { return potential(equator(x)); }, at / ratio,
+                                  std::min(at * ratio, r_in_), {1e-12, 0.0}, 100)
+        .x;
   }
 
   Metric metric_;

@@ -33,6 +33,7 @@
 //          about the equator. The emission ends at outer (a boundary the tracer stops its steps on).
 #pragma once
 
+#include "grtrace/core/golden_section.hpp"
 #include "grtrace/core/host_device.hpp"
 #include "grtrace/core/physical_units.hpp"
 #include "grtrace/core/types.hpp"
@@ -242,15 +243,7 @@ class RiafFlow {
     }
     if (!(e_lo >= e_mid) && !std::isnan(e_lo))
       throw std::invalid_argument("RiafFlow: the metric has no innermost stable circular orbit");
-    const double phi = (std::sqrt(5.0) - 1.0) / 2.0;
-    double a = lo, b = hi;
-    for (int i = 0; i < 200 && b - a > 1e-12 * b; ++i) {
-      const double c = b - phi * (b - a), d = a + phi * (b - a);
-      const double ec = orbit_energy(c), ed = orbit_energy(d);
-      if (std::isnan(ec) || ec > ed) a = c;
-      else b = d;
-    }
-    r_isco_ = 0.5 * (a + b);
+    r_isco_ = golden_section_minimum([&](double r) { return orbit_energy(r); }, lo, hi, {1e-12, 0.0}).x;
     const auto u = circular_orbit_velocity(metric_, r_isco_, +1);
     if (!u) throw std::invalid_argument("RiafFlow: no circular orbit at the ISCO found");
     const Vec4 lowered = metric_.metric(Vec4(0.0, r_isco_, std::numbers::pi / 2.0, 0.0)) * *u;

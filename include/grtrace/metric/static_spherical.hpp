@@ -24,6 +24,7 @@
 // ch. 3, eq. 16 and 85).
 #pragma once
 
+#include "grtrace/core/golden_section.hpp"
 #include "grtrace/core/host_device.hpp"
 #include "grtrace/metric/dual.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -108,19 +109,7 @@ double photon_sphere_radius(const M& metric) {
     const double rh = metric.horizon_radius();
     if (!(rh > 0.0)) throw std::invalid_argument("photon_sphere_radius: the metric has no horizon");
     auto h = [&](double r) { return r * r / metric.lapse_squared(r); };
-    double lo = rh * (1.0 + 1e-9), hi = 1e4 * rh;
-    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-    double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo), h1 = h(x1), h2 = h(x2);
-    for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
-      if (h1 < h2) {
-        hi = x2, x2 = x1, h2 = h1;
-        x1 = hi - phi * (hi - lo), h1 = h(x1);
-      } else {
-        lo = x1, x1 = x2, h1 = h2;
-        x2 = lo + phi * (hi - lo), h2 = h(x2);
-      }
-    }
-    return 0.5 * (lo + hi);
+    return golden_section_minimum(h, rh * (1.0 + 1e-9), 1e4 * rh, {1e-13, 0.0}).x;
   }
 }
 

@@ -55,6 +55,7 @@
 //          it as they end any ray (trace/geodesic_tracer.hpp).
 #pragma once
 
+#include "grtrace/core/golden_section.hpp"
 #include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
 #include "grtrace/integrate/step_controller.hpp"
@@ -276,30 +277,15 @@ concept MediumWithBoundary = requires(const Medium m, const Metric g, const Vec4
   { m.boundary(g, x) } -> std::convertible_to<double>;
 };
 
-/// Golden section on [a, b] towards the largest value of a unimodal f, stopping at the first probe that `found`
-/// accepts: returns its step fraction and f there, or nothing once the bracket is 1e-12 wide.
+/// Golden section on [a, b] towards the largest value of a unimodal f (core/golden_section.hpp), stopping at the
+/// first probe that `found` accepts: returns its step fraction and f there, or nothing once the bracket is 1e-12
+/// wide.
 template <class F, class Found>
 Optional<EventCrossing> golden_search(const F& f, double a, double b, const Found& found) {
-  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
-  double lo = a, hi = b, t1 = hi - golden * (hi - lo), t2 = lo + golden * (hi - lo), f1 = f(t1), f2 = f(t2);
-  for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
-    if (found(f1)) return EventCrossing{t1, f1};
-    if (found(f2)) return EventCrossing{t2, f2};
-    if (f1 > f2) {
-      hi = t2;
-      t2 = t1;
-      f2 = f1;
-      t1 = hi - golden * (hi - lo);
-      f1 = f(t1);
-    } else {
-      lo = t1;
-      t1 = t2;
-      f1 = f2;
-      t2 = lo + golden * (hi - lo);
-      f2 = f(t2);
-    }
-  }
-  return no_value;
+  const GoldenSection s =
+      golden_section_maximum(f, a, b, {0.0, 1e-12}, 60, [&](double, double value) { return found(value); });
+  if (!s.stopped) return no_value;
+  return EventCrossing{s.x, s.value};
 }
 
 /// Where a step first crosses a boundary g (> 0 on the side it starts on; its step fraction t -> g): bracketed by

@@ -13,7 +13,8 @@
 //                                       (paths without a colour get mid grey)
 //            cell data   "ray"          index of the path in the input (int)
 //                        "status"       RayStatus as a number (int)
-//          Empty paths are skipped (no cell), so "ray" maps cells back to inputs.
+//          Empty paths are skipped (no cell), so "ray" maps cells back to inputs. add_light_array adds a medium's
+//          light collected along each path ("light", float).
 #pragma once
 
 #include "grtrace/viz/traced_path.hpp"
@@ -24,6 +25,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace grtrace::viz {
 
@@ -39,5 +41,12 @@ std::string_view array_name(ScalarField f);
 std::string_view scalar_title(ScalarField f);
 
 vtkSmartPointer<vtkPolyData> paths_to_polydata(std::span<const TracedPath> paths);
+
+/// Adds the point array "light" (float) to polydata made from `paths` (paths_to_polydata's or an export's: every
+/// path's samples as points, in order): at each point the light the path collected from a medium between the camera
+/// and it over the path's whole, 0 to 1, from light[i] (app::medium_light_along's, one value per sample of paths[i]);
+/// 0 along a path without an entry or without light. Throws std::invalid_argument when the points are not the
+/// paths' samples.
+void add_light_array(vtkPolyData* data, std::span<const TracedPath> paths, std::span<const std::vector<double>> light);
 
 }  // namespace grtrace::viz

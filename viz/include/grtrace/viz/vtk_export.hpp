@@ -130,6 +130,9 @@ struct SceneExport {
   SceneLayout layout;
   std::vector<Layer> hidden;               ///< layers not to write (the viewer's --hide)
   std::span<const TracedPath> rays;        ///< empty: no rays.vtp
+  /// Per ray of `rays` (may be shorter): a medium's light collected to each sample (RayPick::light), written as the
+  /// point array "light" (add_light_array); empty: no such array.
+  std::span<const std::vector<double>> light;
   const TracedPath* orbit = nullptr;       ///< null: no orbit.vtp
   std::optional<CameraRecord> camera;      ///< recorded in rays.vtp's field data
   std::optional<FlightExport> flight;      ///< flight.vtp (in the orbit layer); nothing: no flight

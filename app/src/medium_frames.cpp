@@ -151,7 +151,9 @@ SphericalAccretion accretion_of(const CheckedRequest& checked) {
 
 namespace {
 
-/// Calls f(medium, metric, nu, horizon radius) with the request's medium (a medium's scene: check_request).
+/// Calls f(medium, metric, nu, horizon radius) with the request's medium (a medium's scene: check_request): the one
+/// place the media are built from a request, for their frames, volumes and light along a path. nu: the first
+/// observing frequency in Hz (1 for a medium without units).
 template <class F>
 auto with_medium(const CheckedRequest& checked, const F& f) {
   const RenderRequest& q = checked.request;
@@ -167,14 +169,10 @@ auto with_medium(const CheckedRequest& checked, const F& f) {
   return f(accretion_of(checked), metric, 1.0, 2.0 * q.metric.mass);
 }
 
-/// Whether x lies in the gas: inside its outer radius and, for a medium with a boundary, on its inner side (its
-/// coefficients are continued smoothly beyond it for the tracer's steps, and mean nothing there).
+/// Whether x lies in the gas, outside the horizon.
 template <class Medium, class Metric>
 bool in_gas(const Medium& medium, const Metric& metric, const Vec4& x, double r_h) {
-  const double r = metric.radius(x);
-  if (!(r > r_h) || !(r < medium.outer_radius())) return false;
-  if constexpr (grtrace::detail::MediumWithBoundary<Medium, Metric>) return medium.boundary(metric, x) <= 0.0;
-  return true;
+  return metric.radius(x) > r_h && medium_contains(medium, metric, x);
 }
 
 /// j at x for light leaving radially outwards in the fluid's frame (signature + - - -: g(u, u) = 1).
@@ -232,16 +230,12 @@ std::vector<double> medium_light_along(const CheckedRequest& checked, const Trac
     std::vector<double> light(path.samples.size(), 0.0);
     if (path.samples.empty()) return light;
     const double e_cam = camera_photon_energy(metric, path.samples.front().state, camera_velocity);
-    // At a sample: g^3 j E_fluid and alpha E_fluid, the light's and the depth's rates per unit of the affine
-    // parameter (dl = E_fluid d lambda), 0 outside the gas.
+    // At a sample: the light's and the depth's rates per unit of the affine parameter, 0 outside the gas.
     const auto rates = [&](const GeodesicState& y) -> std::array<double, 2> {
       const Vec4 x = y.template head<4>(), k = y.template tail<4>();
       if (!in_gas(medium, metric, x, r_h)) return {0.0, 0.0};
-      const Vec4 u = medium.fluid_velocity(metric, x);
-      const double e_fluid = std::abs(inner_product(metric, x, k, u));
-      const double g = e_cam / e_fluid;
-      const MediumCoefficients c = medium_coefficients(medium, metric, x, k, u, nu / g);
-      return {g * g * g * c.emission * e_fluid, c.absorption * e_fluid};
+      const LocalLight<1> l = local_light(metric, medium, x, k, e_cam, std::array<double, 1>{nu});
+      return {l.emission_rate(0), l.depth_rate(0)};
     };
     std::array<double, 2> before = rates(path.samples.front().state);
     double tau = 0.0, intensity = 0.0;
@@ -264,51 +258,49 @@ std::unique_ptr<FrameRenderer> make_disk_light_renderer(const CheckedRequest& ch
 
 std::unique_ptr<FrameRenderer> make_medium_renderer(const CheckedRequest& checked) {
   const RenderRequest& q = checked.request;
-  if (q.scene == "torus") {  // Kerr in Boyer-Lindquist coordinates (check_request)
-    const KerrMetric metric{q.metric.mass, q.metric.spin};
-    return own_medium_tracer(checked, [&] {
-      return KerrMinoMediumTracer<Verner65, IController, PolishDoughnut<KerrMetric>>(
-          metric, polish_doughnut(q), checked.settings, checked.camera.tetrad().e[0], 1.0);
-    });
-  }
-  if (q.scene == "riaf") {  // Kerr in Boyer-Lindquist coordinates (check_request)
-    const KerrMetric metric{q.metric.mass, q.metric.spin};
-    const RiafParameters p = riaf_parameters(q);
-    if (q.frequencies_ghz.size() == 1) {
-      return own_medium_tracer(
-          checked,
-          [&] {
-            return KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>>(
-                metric, RiafFlow<KerrMetric>(metric, p), checked.settings, checked.camera.tetrad().e[0],
-                q.frequencies_ghz.front() * 1e9);
-          },
-          source_scale(q));
-    }
-    // Several: one tracer of kMaxFrequencies bands (one instantiation), the last frequency repeated in the rest.
-    std::array<double, kMaxFrequencies> hz;
-    for (std::size_t b = 0; b < kMaxFrequencies; ++b)
-      hz[b] = q.frequencies_ghz[std::min(b, q.frequencies_ghz.size() - 1)] * 1e9;
-    return own_medium_tracer(
-        checked,
-        [&] {
-          return KerrMinoMediumTracer<Verner65, IController, RiafFlow<KerrMetric>, kMaxFrequencies>(
-              metric, RiafFlow<KerrMetric>(metric, p), checked.settings, checked.camera.tetrad().e[0], hz);
-        },
-        source_scale(q));
-  }
-  // accretion: Schwarzschild (check_request).
-  const SphericalAccretion gas = accretion_of(checked);
-  const SchwarzschildMetric metric{q.metric.mass};
-  if (q.tracer == "general") {
-    return own_medium_tracer(checked, [&] {
-      return GeneralMediumTracer<SchwarzschildMetric, Verner65, IController, SphericalAccretion>(
-          metric, gas, checked.settings, checked.camera.tetrad().e[0], 1.0);
-    });
-  }
-  return own_medium_tracer(checked, [&] {
-    return SphericalMediumTracer<SchwarzschildMetric, Verner65, IController, SphericalAccretion>(
-        metric, gas, checked.settings, checked.camera, 1.0, q.table_rays);
-  });
+  const Vec4 u_cam = checked.camera.tetrad().e[0];
+  return with_medium(
+      checked, [&](const auto& medium, const auto& metric, double nu, double) -> std::unique_ptr<FrameRenderer> {
+        using Medium = std::remove_cvref_t<decltype(medium)>;
+        using Metric = std::remove_cvref_t<decltype(metric)>;
+        if constexpr (std::is_same_v<Medium, SphericalAccretion>) {  // Schwarzschild (check_request)
+          if (q.tracer == "general") {
+            return own_medium_tracer(checked, [&] {
+              return GeneralMediumTracer<Metric, Verner65, IController, Medium>(metric, medium, checked.settings, u_cam,
+                                                                                nu);
+            });
+          }
+          return own_medium_tracer(checked, [&] {
+            return SphericalMediumTracer<Metric, Verner65, IController, Medium>(metric, medium, checked.settings,
+                                                                                checked.camera, nu, q.table_rays);
+          });
+        } else if constexpr (std::is_same_v<Medium, RiafFlow<KerrMetric>>) {  // Kerr, Boyer-Lindquist (check_request)
+          if (q.frequencies_ghz.size() == 1) {
+            return own_medium_tracer(
+                checked,
+                [&] {
+                  return KerrMinoMediumTracer<Verner65, IController, Medium>(metric, medium, checked.settings, u_cam,
+                                                                             nu);
+                },
+                source_scale(q));
+          }
+          // Several: one tracer of kMaxFrequencies bands (one instantiation), the last frequency repeated in the rest.
+          std::array<double, kMaxFrequencies> hz;
+          for (std::size_t b = 0; b < kMaxFrequencies; ++b)
+            hz[b] = q.frequencies_ghz[std::min(b, q.frequencies_ghz.size() - 1)] * 1e9;
+          return own_medium_tracer(
+              checked,
+              [&] {
+                return KerrMinoMediumTracer<Verner65, IController, Medium, kMaxFrequencies>(
+                    metric, medium, checked.settings, u_cam, hz);
+              },
+              source_scale(q));
+        } else {  // the torus: Kerr, Boyer-Lindquist (check_request)
+          return own_medium_tracer(checked, [&] {
+            return KerrMinoMediumTracer<Verner65, IController, Medium>(metric, medium, checked.settings, u_cam, nu);
+          });
+        }
+      });
 }
 
 }  // namespace grtrace::app

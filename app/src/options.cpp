@@ -317,6 +317,11 @@ std::vector<double> option_numbers(const OptionSource& s, const std::string& nam
   return as_request_error([&] { return grtrace::option_numbers(name, text_of(s, name), count); });
 }
 
+std::vector<double> read_frequencies(const OptionSource& s) {
+  const std::string text = text_of(s, "frequency");
+  return option_numbers(s, "frequency", static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1);
+}
+
 MetricSpec read_metric(const OptionSource& s, const std::vector<std::string>& offered) {
   MetricSpec ms;
   ms.name = text_of(s, "metric");
@@ -437,11 +442,7 @@ RenderRequest read_render_request(const OptionSource& s) {
   q.accretion_power = option_number(s, "accretion-power");
   q.source = text_of(s, "source");
   if (s.given("accretion-rate")) q.accretion_rate = option_number(s, "accretion-rate");
-  {
-    const std::string text = text_of(s, "frequency");
-    q.frequencies_ghz =
-        option_numbers(s, "frequency", static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1);
-  }
+  q.frequencies_ghz = read_frequencies(s);
   q.torus_inner = option_number(s, "torus-inner");
   q.torus_peak = option_number(s, "torus-peak");
   q.torus_opacity = option_number(s, "torus-opacity");

@@ -563,9 +563,7 @@ Request read_request(const CommandLine& cli) {
       r.source = p.text("source");
       if (cli.given("accretion-rate") || p.from_frame("accretion-rate"))
         r.accretion_rate = app::option_number(options, "accretion-rate");
-      const std::string f = p.text("frequency");
-      r.frequencies_ghz =
-          app::option_numbers(options, "frequency", static_cast<std::size_t>(std::count(f.begin(), f.end(), ',')) + 1);
+      r.frequencies_ghz = app::read_frequencies(options);
       r.torus_inner = app::option_number(options, "torus-inner");
       r.torus_peak = app::option_number(options, "torus-peak");
       r.torus_opacity = app::option_number(options, "torus-opacity");

@@ -89,10 +89,28 @@ class KerrNullGeodesic {
   GRTRACE_HD double end_mino_time() const { return tau_end_; }
   /// The Mino time to infinity of an escaping ray (past the sky sphere).
   GRTRACE_HD double infinity_mino_time() const { return tau_infinity_; }
+  /// The least radius the ray reaches before its end: the camera's for a ray that starts outwards, the turning
+  /// point r4 for an inward ray that turns, the horizon guard's for one that falls in.
+  GRTRACE_HD double least_radius() const {
+    if (s_r_ > 0.0) return r_o_;
+    return case_ == KerrRadialCase::turning ? r4_ : r_guard_;
+  }
+  /// The Mino time at which a ray that starts inwards first reaches the radius r (its least radius < r <= the
+  /// camera's); NaN for a ray that starts outwards.
+  GRTRACE_HD double ingoing_mino_time_to(double r) const { return s_r_ < 0.0 ? t_of_radius(r) - t_o_ : nan; }
 
   /// The Mino time of the n-th equatorial crossing (n = 0 the first after the start); it lies before the end
   /// when crossing_mino_time(n) < end_mino_time().
   GRTRACE_HD double crossing_mino_time(int n) const { return (2.0 * k_theta_ * (n + j0_) - y_sign_) / sqrt_a_; }
+  /// The Mino time of the polar turning point after the n-th equatorial crossing (|cos theta| largest: half way to
+  /// the next crossing).
+  GRTRACE_HD double turning_mino_time_after(int n) const { return crossing_mino_time(n) + k_theta_ / sqrt_a_; }
+  /// The equatorial crossings before Mino time tau.
+  GRTRACE_HD int crossings_before(double tau) const {
+    int n = 0;
+    while (crossing_mino_time(n) < tau) ++n;
+    return n;
+  }
 
   /// The radius at Mino time tau (0 <= tau, up to the end; beyond the turning point as well).
   GRTRACE_HD double radius_at(double tau) const { return radius_at_t(t_o_ - s_r_ * tau); }

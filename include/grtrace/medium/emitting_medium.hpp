@@ -32,6 +32,9 @@
 //       positive outside the gas, <= 0 inside, where j and alpha jump or kink (a hard edge, a torus's surface): the
 //       tracer ends a step where a ray crosses it, so that no step is integrated across it
 //       (trace/emission_system.hpp); without it, a medium should be smooth
+//   double inner_radius() const
+//       the metric's radius below which j = alpha = 0 too (a torus's cusp, a ball's near side): a ray that falls
+//       into the hole ends there, where the tracer knows it falls in (Kerr's closed form: trace_kerr_medium_ray)
 //   template <std::size_t N> std::array<MediumCoefficients, N> coefficients(const Metric& metric, const Vec4& x,
 //       const Vec4& k, const Vec4& u, const std::array<double, N>& nu) const
 //       the directed form for several frequencies at once (a ray traced at several observing frequencies asks for
@@ -104,6 +107,34 @@ GRTRACE_HD std::array<MediumCoefficients, N> medium_coefficients(const D& d, con
     for (std::size_t i = 0; i < N; ++i) c[i] = medium_coefficients(d, m, x, k, u, nu[i]);
     return c;
   }
+}
+
+namespace detail {
+/// A medium that says where its edge is (boundary, at the top of this file).
+template <class D, class M>
+concept MediumWithBoundary = requires(const D d, const M m, const Vec4 x) {
+  { d.boundary(m, x) } -> std::convertible_to<double>;
+};
+}  // namespace detail
+
+/// The radius below which D has no gas (its optional inner_radius(), at the top of this file), 0 without one.
+template <class D>
+GRTRACE_HD double medium_inner_radius(const D& d) {
+  if constexpr (requires {
+                  { d.inner_radius() } -> std::convertible_to<double>;
+                })
+    return d.inner_radius();
+  else return 0.0;
+}
+
+/// Whether the event x lies in the gas: within the medium's outer radius and, for a medium with a boundary, on its
+/// inner side. Ask it before the coefficients at a lone point: beyond its boundary a medium's coefficients are a
+/// smooth continuation for the tracer's steps (a torus's are negative there) and mean nothing.
+template <class D, class M>
+GRTRACE_HD bool medium_contains(const D& d, const M& m, const Vec4& x) {
+  if (!(m.radius(x) < d.outer_radius())) return false;
+  if constexpr (detail::MediumWithBoundary<D, M>) return d.boundary(m, x) <= 0.0;
+  return true;
 }
 
 /// Compile-time check with messages that name what is missing; used by the tracers that take a medium.

@@ -95,6 +95,8 @@ class PolishDoughnut {
   /// The equator's radius inside r_in where W is largest (the cusp of the critical equipotential, or the outer edge
   /// of a band where no orbit of this l is timelike): the gas is outside it (see the top of this file).
   double cusp_radius_inside() const { return r_cusp_; }
+  /// No gas inside the cusp's radius (boundary()): a ray that falls in ends there.
+  double inner_radius() const { return r_cusp_; }
   double inner_edge() const { return r_in_; }
   double pressure_maximum() const { return r_c_; }
   double angular_momentum() const { return l_; }  ///< l = -u_phi / u_t

@@ -58,6 +58,7 @@
 #include "grtrace/core/golden_section.hpp"
 #include "grtrace/core/host_device.hpp"
 #include "grtrace/core/types.hpp"
+#include "grtrace/exact/kerr_null_geodesic.hpp"
 #include "grtrace/integrate/step_controller.hpp"
 #include "grtrace/medium/emitting_medium.hpp"
 #include "grtrace/metric/metric_concept.hpp"
@@ -96,6 +97,35 @@ constexpr bool ray_follows_time() {
   else return true;
 }
 }  // namespace detail
+
+/// The light a medium sends along a ray at one event, as the camera sees it: g = nu_obs / nu_fluid = E_cam / E_fluid
+/// and each band's coefficients at its frequency in the fluid's frame (see the top of this file).
+template <std::size_t Bands>
+struct LocalLight {
+  double g = 0.0;                                    ///< nu_obs / nu_fluid
+  double fluid_energy = 0.0;                         ///< E_fluid = |g(k, u)|: dl = E_fluid d lambda
+  std::array<MediumCoefficients, Bands> at_fluid{};  ///< j_nu, alpha_nu of band b at nu_obs[b] / g
+  /// Band b's rates per unit of the affine parameter: the camera's intensity before the absorption in front of
+  /// it, g^3 j E_fluid, and the optical depth, alpha E_fluid.
+  GRTRACE_HD double emission_rate(std::size_t b) const { return g * g * g * at_fluid[b].emission * fluid_energy; }
+  GRTRACE_HD double depth_rate(std::size_t b) const { return at_fluid[b].absorption * fluid_energy; }
+};
+
+/// Takes the medium, the event x and the ray's wave vector k there (the affine parameter's), the camera's photon
+/// energy E_cam = |g(k0, u_cam)| and the observed frequencies; returns the light there (LocalLight). Assumes x in the
+/// gas (medium_contains): the tracer's systems and every sampler of a ray's light (app/medium_view.hpp) share it.
+template <class Metric, class Medium, std::size_t Bands>
+GRTRACE_HD LocalLight<Bands> local_light(const Metric& metric, const Medium& medium, const Vec4& x, const Vec4& k,
+                                         double camera_energy, const std::array<double, Bands>& nu_obs) {
+  LocalLight<Bands> l;
+  const Vec4 u = medium.fluid_velocity(metric, x);
+  l.fluid_energy = std::abs(inner_product(metric, x, k, u));
+  l.g = camera_energy / l.fluid_energy;
+  std::array<double, Bands> nu_fluid;
+  for (std::size_t b = 0; b < Bands; ++b) nu_fluid[b] = nu_obs[b] / l.g;
+  l.at_fluid = medium_coefficients(medium, metric, x, k, u, nu_fluid);
+  return l;
+}
 
 /// A geodesic system (trace/geodesic_system.hpp) of the ray's own variables (Ray: MetricGeodesicSystem<Metric>, the
 /// geodesic equation of any metric, or KerrMinoSystem, Kerr's separated equations in Mino time) and three more for
@@ -167,21 +197,16 @@ struct RayEmissionSystem {
       if (!std::isfinite(dz[0])) return dz;
     const GeodesicState y = ray.geodesic_state(zr);
     const Vec4 x = medium_event(y), k = y.template tail<4>();
-    const Metric& metric = detail::ray_metric(ray);
-    const Vec4 u = medium->fluid_velocity(metric, x);
-    double e_fluid = std::abs(inner_product(metric, x, k, u));
-    const double g = camera_energy / e_fluid;
-    std::array<double, Bands> nu_fluid;
-    for (std::size_t b = 0; b < Bands; ++b) nu_fluid[b] = frequency[b] / g;
-    const std::array<MediumCoefficients, Bands> c = medium_coefficients(*medium, metric, x, k, u, nu_fluid);
-    if constexpr (requires { ray.affine_rate(zr); }) e_fluid *= ray.affine_rate(zr);  // dl per unit of s
+    const LocalLight<Bands> l = local_light(detail::ray_metric(ray), *medium, x, k, camera_energy, frequency);
+    double rate = 1.0;  // of the affine parameter per unit of the system's s
+    if constexpr (requires { ray.affine_rate(zr); }) rate = ray.affine_rate(zr);
     double absorption = 0.0;  // the largest band's sets the slowing down (sigma)
     for (int b = 0; b < bands; ++b) {
-      const MediumCoefficients& cb = c[static_cast<std::size_t>(b)];
-      dz[kIntensity + b] = g * g * g * cb.emission * std::exp(-z[kOpticalDepth + b]) * e_fluid;
-      dz[kOpticalDepth + b] = cb.absorption * e_fluid;
-      dz[kRedshiftWeight + b] = g * dz[kIntensity + b];
-      absorption = std::max(absorption, cb.absorption);
+      const auto ub = static_cast<std::size_t>(b);
+      dz[kIntensity + b] = l.emission_rate(ub) * std::exp(-z[kOpticalDepth + b]) * rate;
+      dz[kOpticalDepth + b] = l.depth_rate(ub) * rate;
+      dz[kRedshiftWeight + b] = l.g * dz[kIntensity + b];
+      absorption = std::max(absorption, l.at_fluid[ub].absorption);
     }
     if (absorption > 0.0) dz *= 1.0 / (1.0 + absorption * ray.radius(zr));  // sigma (top of this file)
     return dz;
@@ -269,12 +294,6 @@ struct StepFraction {
   void operator()(const Integrator&, double theta) {
     theta_end = theta;
   }
-};
-
-/// A medium that says where its edge is (medium/emitting_medium.hpp: boundary).
-template <class Medium, class Metric>
-concept MediumWithBoundary = requires(const Medium m, const Metric g, const Vec4 x) {
-  { m.boundary(g, x) } -> std::convertible_to<double>;
 };
 
 /// Golden section on [a, b] towards the largest value of a unimodal f (core/golden_section.hpp), stopping at the
@@ -411,6 +430,10 @@ class OrderSplit {
     Light intensity;  ///< the intensity there
   };
 
+  /// A split whose light so far (none) began at order `order` (a ray that starts part way, its earlier orders
+  /// empty: trace_kerr_medium_ray).
+  GRTRACE_HD explicit OrderSplit(int order = 0) : order_(order) {}
+
   /// Where the light of the current order ends in the last accepted step of integ, of which the part [0, theta_hi]
   /// stands (1: all of it; less: a surface ended the ray there), given the crossings of the plane counted up to
   /// theta_hi: nothing while the ray has not crossed the plane once more or still moves away from it.
@@ -518,12 +541,27 @@ concept ObservingFrequencies = std::convertible_to<F, double> || requires {
 inline constexpr double default_min_transmission = 1e-16;
 
 namespace detail {
+/// How many observed frequencies F names (ObservingFrequencies).
+template <class F>
+constexpr std::size_t band_count() {
+  if constexpr (std::is_convertible_v<F, double>) return 1;
+  else return std::tuple_size_v<F>;
+}
+
+/// Where a ray traced from part way along starts its counts (trace_kerr_medium_ray): its crossings of the equatorial
+/// plane so far, and the order of the light it collects first.
+struct RayPartWay {
+  int crossings = 0;
+  int order = 0;
+  double capture_radius = 0.0;  ///< where the ray counts as captured, if above the metric's own (0: the metric's)
+};
+
 /// The loop of trace_emission_along for Bands frequencies at once.
 template <class Ray, ExplicitTableau Tableau, StepController Controller, class Medium, std::size_t Bands>
 SpectralEmissionResult<Bands> trace_light(const RayMetric<Ray>& metric, const Medium& medium,
                                           const TraceSettings& settings, const GeodesicState& y0, double camera_energy,
                                           const std::array<double, Bands>& frequencies, const Controller& controller,
-                                          double min_transmission) {
+                                          double min_transmission, RayPartWay part_way = {}) {
   using Metric = RayMetric<Ray>;
   static_assert(std::is_same_v<Ray, MetricGeodesicSystem<Metric>> || estimate_sees_integrals<Tableau>(),
                 "in Mino time a ray is smooth enough to cross the gas in a few steps, so the light's own error must "
@@ -539,7 +577,7 @@ SpectralEmissionResult<Bands> trace_light(const RayMetric<Ray>& metric, const Me
     system.boundary_side = &side;
   }
   using Loop = TraceLoop<Tableau, Controller, System>;
-  const Loop loop(system, settings, capture_radius_of(metric, y0));
+  const Loop loop(system, settings, std::max(capture_radius_of(metric, y0), part_way.capture_radius));
   typename Loop::Integrator integ(settings.integrator, controller);
   typename Loop::Progress progress;
   SpectralEmissionResult<Bands> out;
@@ -549,11 +587,12 @@ SpectralEmissionResult<Bands> trace_light(const RayMetric<Ray>& metric, const Me
     out.trace = *ended;
     return out;
   }
+  progress.crossings += part_way.crossings;
   // The light's slots at the end (the loop reports only (x, k)): the integrator's last accepted state, or, where a
   // surface cut the last step, that step taken again to the cut (the step map, as accurate as the integration; the
   // interpolant of a long last step towards the sky sphere was 5e-7 off at rtol 1e-10).
   StepFraction observer;
-  OrderSplit<Bands> split;
+  OrderSplit<Bands> split(part_way.order);
   const double tau_stop = -std::log(min_transmission);
   for (;;) {
     if (integ.accepted() >= settings.max_steps) {
@@ -666,6 +705,74 @@ auto trace_kerr_mino_emission(const KerrMetric& metric, const Medium& medium, co
                               const Controller& controller = {}, double min_transmission = default_min_transmission) {
   return trace_emission_along<KerrMinoSystem, Tableau>(metric, medium, settings, y0, camera_energy, frequency,
                                                        controller, min_transmission);
+}
+
+/// trace_kerr_mino_emission for a camera ray from outside the medium's outer radius, the empty space crossed in
+/// closed form (exact/kerr_null_geodesic.hpp, Gralla & Lupsasca 2020): a ray that never comes within the outer
+/// radius (its least radius beyond it) takes no step; one that does is carried to the outer radius on its ingoing
+/// leg and integrated from there until it leaves it outwards (it cannot come back: an outward ray outside the
+/// potential's barrier escapes), or falls in (below the medium's inner_radius where it has one: a ray without a
+/// radial turning point falls into the hole), or the gas turns opaque. The light, optical depth, redshift and
+/// light by order are the whole ray's within the integration's tolerance, and so are the status and
+/// trace.crossings (the equatorial crossings outside, counted in closed form, included: the order split starts at
+/// the right order); the trace's other fields are the integrated part's (final_state where it ended: on the outer
+/// sphere for a ray that left the medium, y0 for one that never reached it; lambda and the steps from the entry).
+/// Rays the closed form does not cover (vortical, eta <= 0; a camera on the axis or inside the outer radius) are
+/// integrated from y0, as trace_kerr_mino_emission does.
+template <ExplicitTableau Tableau, StepController Controller = PIController, class Medium,
+          ObservingFrequencies Frequencies>
+auto trace_kerr_medium_ray(const KerrMetric& metric, const Medium& medium, const TraceSettings& settings,
+                           const GeodesicState& y0, double camera_energy, const Frequencies& frequency,
+                           const Controller& controller = {}, double min_transmission = default_min_transmission) {
+  constexpr bool one = std::is_convertible_v<Frequencies, double>;
+  constexpr std::size_t kBands = detail::band_count<Frequencies>();
+  std::array<double, kBands> nu;
+  if constexpr (one) nu[0] = static_cast<double>(frequency);
+  else nu = frequency;
+  const auto result = [](const SpectralEmissionResult<kBands>& r) {
+    if constexpr (one) return r.band(0);
+    else return r;
+  };
+  const auto whole_ray = [&] {
+    return result(detail::trace_light<KerrMinoSystem, Tableau>(metric, medium, settings, y0, camera_energy, nu,
+                                                               controller, min_transmission));
+  };
+  const double r_outer = medium.outer_radius(), guard = (1.0 + settings.horizon_epsilon) * metric.horizon_radius();
+  if (!(y0[1] > r_outer) || !(r_outer > guard)) return whole_ray();
+  const KerrNullGeodesic ray(metric, y0, settings.escape_radius, guard);
+  if (!ray.supported()) return whole_ray();
+  if (ray.escapes() && ray.least_radius() > r_outer) {  // never reaches the gas
+    SpectralEmissionResult<kBands> out;
+    out.redshift.fill(std::numeric_limits<double>::quiet_NaN());
+    out.trace.status = RayStatus::escaped;
+    out.trace.final_state = out.trace.step_end_state = y0;
+    out.trace.accepted = 0;
+    out.trace.crossings = ray.crossings_before(ray.end_mino_time());
+    return result(out);
+  }
+  // Carried to the outer radius (an outward ray from beyond it never reaches it: above).
+  const double tau = ray.ingoing_mino_time_to(r_outer);
+  GeodesicState entry = ray.state_at(tau);
+  entry[0] = 0.0;  // t is not followed (the medium is stationary)
+  detail::RayPartWay part_way;
+  part_way.crossings = ray.crossings_before(tau);
+  part_way.order = part_way.crossings > 0 && !(ray.turning_mino_time_after(part_way.crossings - 1) < tau)
+                       ? part_way.crossings - 1  // the turning point after the last crossing is still ahead
+                       : part_way.crossings;
+  TraceSettings inside = settings;
+  inside.escape_radius = r_outer * (1.0 + 1e-9);  // leaving the gas outwards ends the integration
+  const double r_inner = medium_inner_radius(medium);
+  if (!ray.escapes() && r_inner > guard) part_way.capture_radius = r_inner / (1.0 + settings.horizon_epsilon);
+  SpectralEmissionResult<kBands> r = detail::trace_light<KerrMinoSystem, Tableau>(
+      metric, medium, inside, entry, camera_energy, nu, controller, min_transmission, part_way);
+  const bool left = r.trace.status == RayStatus::escaped;
+  if (left || (r.trace.status == RayStatus::captured && part_way.capture_radius > 0.0)) {
+    // The crossings on the rest of its way (out to the sky sphere, or in to the horizon guard), in closed form.
+    const KerrNullGeodesic rest(metric, r.trace.final_state, settings.escape_radius, guard);
+    if (!rest.supported() || rest.escapes() != left) return whole_ray();
+    r.trace.crossings += rest.crossings_before(rest.end_mino_time());
+  }
+  return result(r);
 }
 
 /// E_cam = |g(k0, u_cam)|: the energy of the camera ray y0's photon measured by a camera moving with u_cam.

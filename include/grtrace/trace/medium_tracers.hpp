@@ -1,7 +1,8 @@
 // grtrace/trace/medium_tracers.hpp
 // A frame's light from an emitting medium (medium/emitting_medium.hpp), pixel by pixel: the general tracer, which
 // integrates every pixel's ray with its light (trace/emission_system.hpp); the same on Kerr's separated equations in
-// Mino time for a stationary medium around a Kerr hole (KerrMinoMediumTracer); and, for a spherically symmetric
+// Mino time for a stationary medium around a Kerr hole, the empty space around it crossed in closed form
+// (KerrMinoMediumTracer); and, for a spherically symmetric
 // medium around a static spherically symmetric hole, one table of rays for the whole frame.
 //
 // Takes:   the metric, the medium, trace settings (tolerances, sky radius, horizon guard), the camera (its
@@ -118,8 +119,14 @@ class RayMediumTracer {
   }
 
   Sample trace(const GeodesicState& y0) const {
-    const auto r = trace_emission_along<Ray, T>(metric_, medium_, settings_, y0,
-                                                camera_photon_energy(metric_, y0, velocity_), frequency_, controller_);
+    const double e_cam = camera_photon_energy(metric_, y0, velocity_);
+    const auto r = [&] {
+      // Kerr: the empty space outside the medium's outer radius crossed in closed form (trace_kerr_medium_ray).
+      if constexpr (std::is_same_v<Ray, KerrMinoSystem>)
+        return trace_kerr_medium_ray<T>(metric_, medium_, settings_, y0, e_cam, frequency_, controller_);
+      else return trace_emission_along<Ray, T>(metric_, medium_, settings_, y0, e_cam, frequency_, controller_);
+    }();
+    if (r.trace.accepted == 0 && r.trace.status == RayStatus::escaped) missed_.fetch_add(1, std::memory_order_relaxed);
     if constexpr (Bands == 1) {
       return {r.trace.status, r.intensity,          r.optical_depth,  r.trace.accepted,
               r.redshift,     r.intensity_by_order, r.trace.crossings};
@@ -132,6 +139,9 @@ class RayMediumTracer {
   const Metric& metric() const { return metric_; }
   const Medium& medium() const { return medium_; }
   const Frequencies& frequencies() const { return frequency_; }
+  /// Pixels without a step since construction: rays that never came within the medium's outer radius (Kerr, in
+  /// closed form: trace_kerr_medium_ray).
+  long missed_rays() const { return missed_.load(std::memory_order_relaxed); }
 
  private:
   Metric metric_;
@@ -140,16 +150,18 @@ class RayMediumTracer {
   C controller_;
   Vec4 velocity_;
   Frequencies frequency_;
+  mutable std::atomic<long> missed_{0};
 };
 
 /// Every pixel's ray integrated with its light (trace_emission) through the geodesic equation of any metric.
 template <MetricPolicy Metric, ExplicitTableau T, StepController C, class Medium, std::size_t Bands = 1>
 using GeneralMediumTracer = RayMediumTracer<MetricGeodesicSystem<Metric>, T, C, Medium, Bands>;
 
-/// Every pixel's ray integrated with its light on Kerr's separated equations in Mino time (trace_kerr_mino_emission):
+/// Every pixel's ray integrated with its light on Kerr's separated equations in Mino time (trace_kerr_medium_ray):
 /// a stationary medium around a Kerr hole in Boyer-Lindquist coordinates, the same light as GeneralMediumTracer's
 /// within the tolerance (tests/medium_torus_test.cpp), each stage's ray a few polynomials in place of the metric's
-/// Christoffel symbols.
+/// Christoffel symbols; the empty space outside the medium's outer radius (and inside its inner radius, for a ray
+/// that falls in) crossed in closed form, a ray that never reaches the medium answered without a step.
 template <ExplicitTableau T, StepController C, class Medium, std::size_t Bands = 1>
 using KerrMinoMediumTracer = RayMediumTracer<KerrMinoSystem, T, C, Medium, Bands>;
 

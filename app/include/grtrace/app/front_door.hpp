@@ -413,6 +413,9 @@ void check_scene_options(const OptionSource& options, const std::string& scene);
 double option_number(const OptionSource& options, const std::string& name);
 long option_integer(const OptionSource& options, const std::string& name);
 std::vector<double> option_numbers(const OptionSource& options, const std::string& name, std::size_t count);
+/// --frequency as every tool reads it: one number or a comma-separated list, each in GHz (check_request checks
+/// their count and range).
+std::vector<double> read_frequencies(const OptionSource& options);
 
 // ---- what there is ----------------------------------------------------------------------------------------------
 

@@ -242,11 +242,10 @@ TEST(PolishDoughnut, ItsThinLightConvergesWithTheTolerance) {
 }
 
 /// Every pixel of an n x n frame of the torus by the general tracer and the Mino-time one (Verner 6(5) at rtol
-/// 1e-10), the general frame's peak, and the pixels the Mino-time tracer answered without a step.
+/// 1e-10), and the general frame's peak.
 struct TwoFrames {
   std::vector<MediumSample> general, mino;
   double peak = 0.0;
-  long mino_missed = 0;
 };
 TwoFrames general_and_mino_frames(const KerrMetric& m, const Torus& gas, const Camera& cam, int n) {
   const GeneralMediumTracer<KerrMetric, Verner65, IController, Torus> general(m, gas, settings(1e-10),
@@ -258,7 +257,6 @@ TwoFrames general_and_mino_frames(const KerrMetric& m, const Torus& gas, const C
     f.mino.push_back(mino.trace(cam.pixel_state(i % n, i / n)));
     f.peak = std::max(f.peak, f.general.back().intensity);
   }
-  f.mino_missed = mino.missed_rays();
   return f;
 }
 
@@ -274,13 +272,12 @@ TEST(PolishDoughnut, ItsLightInMinoTimeIsTheGeneralTracersLight) {
     const std::vector<MediumSample>&a = f.general, &b = f.mino;
     const double peak = f.peak;
     double worst = 0.0;
-    int lit = 0, ringed = 0, missed = 0;
+    int lit = 0, ringed = 0;
     for (std::size_t i = 0; i < a.size(); ++i) {
       SCOPED_TRACE(::testing::Message() << "kappa " << kappa << " pixel " << i);
       EXPECT_EQ(a[i].status, b[i].status);
       EXPECT_EQ(a[i].order, b[i].order);
       if (b[i].steps == 0) {  // answered in closed form: the ray never came within the torus's outer radius
-        ++missed;
         EXPECT_EQ(a[i].intensity, 0.0);
         EXPECT_EQ(a[i].optical_depth, 0.0);
         EXPECT_TRUE(std::isnan(b[i].redshift));
@@ -296,7 +293,6 @@ TEST(PolishDoughnut, ItsLightInMinoTimeIsTheGeneralTracersLight) {
     std::printf("torus kappa %g: Mino time against the geodesic equation, worst %.2e of the peak\n", kappa, worst);
     EXPECT_GT(lit, 100);    // the torus fills a good part of the frame
     EXPECT_GT(ringed, 10);  // and its lensed image is in it
-    EXPECT_EQ(missed, f.mino_missed);
   }
 }
 
@@ -341,7 +337,6 @@ TEST(PolishDoughnut, TheEmptySpaceAroundItIsCrossedInClosedForm) {
   }
   std::printf("torus from 150 M: %d of 400 pixels without a step, %d lit, %d with a ring; worst %.2e of the peak\n",
               missed, lit, ringed, worst);
-  EXPECT_EQ(missed, f.mino_missed);
   EXPECT_GT(missed, 100);  // most of the frame's edge
   EXPECT_GT(lit, 40);
   EXPECT_GT(ringed, 3);

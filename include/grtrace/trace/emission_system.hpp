@@ -548,6 +548,21 @@ constexpr std::size_t band_count() {
   else return std::tuple_size_v<F>;
 }
 
+/// The observed frequencies as the loop takes them: an array of band_count<F>() bands.
+template <class F>
+std::array<double, band_count<F>()> frequency_array(const F& frequency) {
+  if constexpr (std::is_convertible_v<F, double>) return {static_cast<double>(frequency)};
+  else return frequency;
+}
+
+/// The loop's result as the caller asked for it: EmissionResult for one frequency given as a number, else the
+/// SpectralEmissionResult.
+template <class F, std::size_t Bands>
+auto as_requested(const SpectralEmissionResult<Bands>& r) {
+  if constexpr (std::is_convertible_v<F, double>) return r.band(0);
+  else return r;
+}
+
 /// Where a ray traced from part way along starts its counts (trace_kerr_medium_ray): its crossings of the equatorial
 /// plane so far, and the order of the light it collects first.
 struct RayPartWay {
@@ -672,15 +687,8 @@ template <class Ray, ExplicitTableau Tableau, StepController Controller = PICont
 auto trace_emission_along(const detail::RayMetric<Ray>& metric, const Medium& medium, const TraceSettings& settings,
                           const GeodesicState& y0, double camera_energy, const Frequencies& frequency,
                           const Controller& controller = {}, double min_transmission = default_min_transmission) {
-  if constexpr (std::is_convertible_v<Frequencies, double>) {
-    return detail::trace_light<Ray, Tableau>(metric, medium, settings, y0, camera_energy,
-                                             std::array<double, 1>{static_cast<double>(frequency)}, controller,
-                                             min_transmission)
-        .band(0);
-  } else {
-    return detail::trace_light<Ray, Tableau>(metric, medium, settings, y0, camera_energy, frequency, controller,
-                                             min_transmission);
-  }
+  return detail::as_requested<Frequencies>(detail::trace_light<Ray, Tableau>(
+      metric, medium, settings, y0, camera_energy, detail::frequency_array(frequency), controller, min_transmission));
 }
 
 /// trace_emission_along the geodesic equation of any metric policy.
@@ -724,15 +732,9 @@ template <ExplicitTableau Tableau, StepController Controller = PIController, cla
 auto trace_kerr_medium_ray(const KerrMetric& metric, const Medium& medium, const TraceSettings& settings,
                            const GeodesicState& y0, double camera_energy, const Frequencies& frequency,
                            const Controller& controller = {}, double min_transmission = default_min_transmission) {
-  constexpr bool one = std::is_convertible_v<Frequencies, double>;
   constexpr std::size_t kBands = detail::band_count<Frequencies>();
-  std::array<double, kBands> nu;
-  if constexpr (one) nu[0] = static_cast<double>(frequency);
-  else nu = frequency;
-  const auto result = [](const SpectralEmissionResult<kBands>& r) {
-    if constexpr (one) return r.band(0);
-    else return r;
-  };
+  const std::array<double, kBands> nu = detail::frequency_array(frequency);
+  const auto result = [](const SpectralEmissionResult<kBands>& r) { return detail::as_requested<Frequencies>(r); };
   const auto whole_ray = [&] {
     return result(detail::trace_light<KerrMinoSystem, Tableau>(metric, medium, settings, y0, camera_energy, nu,
                                                                controller, min_transmission));
@@ -745,8 +747,7 @@ auto trace_kerr_medium_ray(const KerrMetric& metric, const Medium& medium, const
     SpectralEmissionResult<kBands> out;
     out.redshift.fill(std::numeric_limits<double>::quiet_NaN());
     out.trace.status = RayStatus::escaped;
-    out.trace.final_state = out.trace.step_end_state = y0;
-    out.trace.accepted = 0;
+    out.trace.final_state = out.trace.step_end_state = y0;  // no step taken (TraceResult's accepted 0)
     out.trace.crossings = ray.crossings_before(ray.end_mino_time());
     return result(out);
   }

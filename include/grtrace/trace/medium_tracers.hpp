@@ -126,7 +126,6 @@ class RayMediumTracer {
         return trace_kerr_medium_ray<T>(metric_, medium_, settings_, y0, e_cam, frequency_, controller_);
       else return trace_emission_along<Ray, T>(metric_, medium_, settings_, y0, e_cam, frequency_, controller_);
     }();
-    if (r.trace.accepted == 0 && r.trace.status == RayStatus::escaped) missed_.fetch_add(1, std::memory_order_relaxed);
     if constexpr (Bands == 1) {
       return {r.trace.status, r.intensity,          r.optical_depth,  r.trace.accepted,
               r.redshift,     r.intensity_by_order, r.trace.crossings};
@@ -139,9 +138,6 @@ class RayMediumTracer {
   const Metric& metric() const { return metric_; }
   const Medium& medium() const { return medium_; }
   const Frequencies& frequencies() const { return frequency_; }
-  /// Pixels without a step since construction: rays that never came within the medium's outer radius (Kerr, in
-  /// closed form: trace_kerr_medium_ray).
-  long missed_rays() const { return missed_.load(std::memory_order_relaxed); }
 
  private:
   Metric metric_;
@@ -150,7 +146,6 @@ class RayMediumTracer {
   C controller_;
   Vec4 velocity_;
   Frequencies frequency_;
-  mutable std::atomic<long> missed_{0};
 };
 
 /// Every pixel's ray integrated with its light (trace_emission) through the geodesic equation of any metric.
@@ -161,7 +156,8 @@ using GeneralMediumTracer = RayMediumTracer<MetricGeodesicSystem<Metric>, T, C, 
 /// a stationary medium around a Kerr hole in Boyer-Lindquist coordinates, the same light as GeneralMediumTracer's
 /// within the tolerance (tests/medium_torus_test.cpp), each stage's ray a few polynomials in place of the metric's
 /// Christoffel symbols; the empty space outside the medium's outer radius (and inside its inner radius, for a ray
-/// that falls in) crossed in closed form, a ray that never reaches the medium answered without a step.
+/// that falls in) crossed in closed form, a ray that never reaches the medium answered without a step (its sample's
+/// steps 0).
 template <ExplicitTableau T, StepController C, class Medium, std::size_t Bands = 1>
 using KerrMinoMediumTracer = RayMediumTracer<KerrMinoSystem, T, C, Medium, Bands>;
 

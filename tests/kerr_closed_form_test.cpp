@@ -3,7 +3,7 @@
 //  (a) the special functions (core/jacobi_elliptic.hpp) against their defining integrals by Gauss-Legendre
 //      quadrature (F, Pi with n < 1 and the principal value beyond the pole, R1 across the spurious pole) and
 //      against their definitions (F(am(u)) = u; sn^2 + cn^2 = 1; dn^2 + m sn^2 = 1; R_C and R_J by their
-//      integrals), for negative parameters too;
+//      integrals), for negative parameters too; R_C and R_J against 40-digit values to 1e-15;
 //  (b) the n = 0, 1, 2 equatorial crossings against the reduced Kerr tracer (trace/kerr_mino_tracer.hpp, rkf78 at
 //      rtol 1e-12), which is made to accept exactly that crossing (a disk a hair wide around the closed form's
 //      radius, counting the crossings it is offered): the same order n, radius and redshift within 1e-9, for
@@ -77,6 +77,29 @@ TEST(JacobiElliptic, CarlsonIntegralsEqualTheirDefinitions) {
   for (const auto& v : {std::array{1.0, 2.0, 3.0, 4.0}, std::array{0.3, 0.7, 5.0, 0.01}, std::array{2.0, 3.0, 4.0, 9.0},
                         std::array{0.5, 1.0, 1.5, 1.0}})
     EXPECT_NEAR(carlson_rj(v[0], v[1], v[2], v[3]) / rj(v[0], v[1], v[2], v[3]), 1.0, 1e-13);
+}
+
+TEST(JacobiElliptic, CarlsonIntegralsKeepFullPrecisionWhereTheirArgumentsNearlyAgree) {
+  // References: mpmath's elliprc and elliprj at 40 digits (Carlson's algorithms in arbitrary precision), rounded to
+  // 20. Where x and y of R_C agree to a few parts in 1e3, arccos(sqrt(x / y)) magnifies the rounding of its
+  // argument (4e-14 here); R_J's first duplication level meets such an R_C wherever p is near x, y and z, so Legendre's
+  // Pi of moderate amplitude lost 8e-14 that way (the three R_J below). The arctangent forms keep a few ulps.
+  struct Rc {
+    double x, y, value;
+  };
+  for (const Rc& c :
+       {Rc{1.0, 1.002, 0.99933413219225106349}, Rc{1.0015, 1.0, 0.99975016859948398658},
+        Rc{0.3, 0.3004, 1.8249310660596807}, Rc{1.0, 1.5, 0.87041975136710319747}, Rc{1.9, 1.0, 0.8903053070774893731},
+        Rc{0.0, 2.0, 1.1107207345395915618}, Rc{4e5, 1.0, 0.011293703723483946471}})
+    EXPECT_NEAR(carlson_rc(c.x, c.y) / c.value, 1.0, 1e-15) << c.x << " " << c.y;
+  struct Rj {
+    double x, y, z, p, value;
+  };
+  for (const Rj& c : {Rj{0.70582542536609894, 13.302414872878604, 1.0, 1.0813093270311016, 0.39381330730912165837},
+                      Rj{0.43962992569147941, 1.7130774499297454, 1.0, 1.402799591959643, 0.84529702068699406126},
+                      Rj{0.40878287384627487, 0.40882572220268759, 1.0, 0.86676787318478932, 1.8023760377388242367},
+                      Rj{0.0, 0.19, 1.0, 0.7, 5.4510155846308086525}, Rj{0.0, 31.0, 1.0, 2.5, 0.27511988684165520798}})
+    EXPECT_NEAR(carlson_rj(c.x, c.y, c.z, c.p) / c.value, 1.0, 1e-15) << c.x << " " << c.y << " " << c.p;
 }
 
 TEST(JacobiElliptic, LegendreIntegralsEqualTheirDefinitionsForAnyAmplitude) {

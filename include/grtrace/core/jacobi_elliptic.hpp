@@ -7,11 +7,11 @@
 // Returns: values to a few units in the last place (Carlson's series cut below 1e-17; the Jacobi functions by the
 //          arithmetic-geometric mean to convergence), except near the singular points named at each function.
 // Method:  R_C in closed form (arctan / artanh); R_J by Carlson's duplication with the R_C sum (B. C. Carlson,
-//          "Numerical computation of real or complex elliptic integrals", Numer. Algorithms 10 (1995) 13-26, §2;
-//          DLMF 19.36.2). F(phi|m) = s R_F(c^2, 1 - m s^2, 1) and Pi(n; phi|m) = F + (n/3) s^3 R_J(c^2, 1 - m s^2, 1,
-//          1 - n s^2) (DLMF 19.25.5 and 19.25.14, s = sin phi, c = cos phi) on [-pi/2, pi/2], extended by
-//          F(phi + j pi) = F(phi) + 2 j K. Pi with n > 1 is the Cauchy principal value (DLMF 19.7.9 with R_C's
-//          value for a negative second argument, DLMF 19.2.20). sn, cn, dn by Gauss's transformation (the
+//          "Numerical computation of real or complex elliptic integrals", Numer. Algorithms 10 (1995) 13-26, §2)
+//          and the series to seventh order (DLMF 19.36.2). F(phi|m) = s R_F(c^2, 1 - m s^2, 1) and Pi(n; phi|m) = F +
+//          (n/3) s^3 R_J(c^2, 1 - m s^2, 1, 1 - n s^2) (DLMF 19.25.5 and 19.25.14, s = sin phi, c = cos phi) on [-pi/2,
+//          pi/2], extended by F(phi + j pi) = F(phi) + 2 j K. Pi with n > 1 is the Cauchy principal value (DLMF 19.7.9
+//          with R_C's value for a negative second argument, DLMF 19.2.20). sn, cn, dn by Gauss's transformation (the
 //          arithmetic-geometric mean, DLMF 22.7 and 22.20(ii), in Bulirsch's recursion), one sin and cos for all three.
 // One source for the CPU and the GPU (no recursion, no library special functions).
 #pragma once
@@ -28,7 +28,11 @@
 namespace grtrace {
 
 /// Carlson's R_C(x, y) = (1/2) int_0^inf dt / ((t + y) sqrt(t + x)), x >= 0, y != 0; for y < 0 the Cauchy
-/// principal value (DLMF 19.2.20). Elementary: arccos / arccosh forms (DLMF 19.2.18-19.2.19), a series near x = y.
+/// principal value (DLMF 19.2.20). Elementary (DLMF 19.2.18-19.2.19), in the arctangent forms: arctan(sqrt((y - x) /
+/// x)) / sqrt(y - x) for x < y, artanh(sqrt((x - y) / x)) / sqrt(x - y) for y < x < 2y (arccosh beyond). The
+/// arccos(sqrt(x / y)) and arccosh forms are the same numbers, but near x = y their argument's rounding is
+/// magnified by 1 / sqrt(|1 - x / y|): 1e-13 relative at |1 - x / y| = 1e-3, which R_J's sum of R_C passed on.
+/// A series where x and y agree to 1e-3.
 inline GRTRACE_HD double carlson_rc(double x, double y) {
   if (y < 0.0) return std::sqrt(x / (x - y)) * carlson_rc(x - y, -y);  // one level: x - y > 0, -y > 0 below
   const double d = (x - y) / y;
@@ -38,8 +42,12 @@ inline GRTRACE_HD double carlson_rc(double x, double y) {
     return (1.0 + d * (-1.0 / 6.0 + d * (3.0 / 40.0 + d * (-5.0 / 112.0 + d * (35.0 / 1152.0 - d * 63.0 / 2816.0))))) /
            std::sqrt(y);
   }
-  if (x < y) return std::acos(std::sqrt(x / y)) / std::sqrt(y - x);
-  return std::acosh(std::sqrt(x / y)) / std::sqrt(x - y);
+  if (x < y) {
+    const double w = std::sqrt(y - x);
+    return std::atan(w / std::sqrt(x)) / w;  // x = 0: atan(inf) = pi / 2
+  }
+  const double w = std::sqrt(x - y);
+  return (x < 2.0 * y ? std::atanh(w / std::sqrt(x)) : std::acosh(std::sqrt(x / y))) / w;
 }
 
 /// Carlson's R_J(x, y, z, p) = (3/2) int_0^inf dt / ((t + p) sqrt((t + x)(t + y)(t + z))), x, y, z >= 0 (at most one
@@ -62,9 +70,12 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
     a[i] = a0[i] = (x + y + z + 2.0 * p[i]) / 5.0;
     delta[i] = (p[i] - x) * (p[i] - y) * (p[i] - z);
     sum[i] = 0.0;
-    // Carlson's stopping rule: 4^-j Q < |A_j| with Q = (4 / eps)^(1/6) max |A0 - v|; eps = 1e-17 gives
-    // (4e17)^(1/6). One Q for all (the largest): each R_J is duplicated at least as far as its own rule asks.
-    q = std::max(q, 860.0 * std::max(std::max(std::abs(a0[i] - x), std::abs(a0[i] - y)),
+    // Carlson's stopping rule: 4^-j Q < |A_j| with Q = c max |A0 - v|, i.e. every argument within A_j / c of the
+    // mean. For the fifth-order series Carlson takes c = (4 / eps)^(1/6) = 860 (eps = 1e-17); the seventh-order
+    // series below would allow (4 / eps)^(1/8) = 159, but c = 200 is taken so that x, y, z also meet R_F's own rule
+    // (within 1e-2 of their mean: within 2 / c of each other): the same loop serves both. One Q for all (the
+    // largest): each R_J is duplicated at least as far as its own rule asks.
+    q = std::max(q, 200.0 * std::max(std::max(std::abs(a0[i] - x), std::abs(a0[i] - y)),
                                      std::max(std::abs(a0[i] - z), std::abs(a0[i] - p[i]))));
   }
   double scale = 1.0, cube = 1.0;  // scale = 4^-j, cube = 4^-3j
@@ -78,8 +89,16 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
     const double lambda = sx * (sy + sz) + sy * sz;
     for (std::size_t i = 0; i < N; ++i) {
       const double sp = std::sqrt(p[i]);
-      const double d = (sp + sx) * (sp + sy) * (sp + sz);
-      sum[i] += scale * carlson_rc(1.0, 1.0 + cube * delta[i] / (d * d)) / d;
+      const double inv_d = 1.0 / ((sp + sx) * (sp + sy) * (sp + sz));
+      // R_C(1, 1 + e) = arctan(sqrt(e)) / sqrt(e): e falls by 64 a level, so after the first one or two it is small
+      // and its own series (1 - e/3 + e^2/5 - ..., six terms to 1e-19 at |e| = 1e-3) spares R_C's root and division.
+      const double e = cube * delta[i] * inv_d * inv_d;
+      const double rc =
+          std::abs(e) < 1e-3
+              ? 1.0 + e * (-1.0 / 3.0 +
+                           e * (1.0 / 5.0 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 + e * (-1.0 / 11.0 + e / 13.0)))))
+              : carlson_rc(1.0, 1.0 + e);
+      sum[i] += scale * rc * inv_d;
       p[i] = 0.25 * (p[i] + lambda);
       a[i] = 0.25 * (a[i] + lambda);
     }
@@ -90,7 +109,8 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
     cube *= 1.0 / 64.0;
   }
   for (std::size_t i = 0; i < N; ++i) {
-    // The original arguments' deviations from A0 scaled by 4^-j / A_j, and the series (Carlson 1995 eq. 2.17-2.18).
+    // The original arguments' deviations from A0 scaled by 4^-j / A_j (Carlson 1995 eq. 2.17-2.18), and the series
+    // to seventh order (DLMF 19.36.2; E_k the elementary symmetric functions of X, Y, Z, P, P).
     const double f = scale / a[i];
     const double X = (a0[i] - x0) * f, Y = (a0[i] - y0) * f, Z = (a0[i] - z0) * f, P = -0.5 * (X + Y + Z);
     const double e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
@@ -98,7 +118,8 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
     const double e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
     const double e5 = X * Y * Z * P * P;
     const double series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 -
-                          9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0;
+                          9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0 - e2 * e2 * e2 / 16.0 + 3.0 * e2 * e4 / 20.0 +
+                          3.0 * e3 * e3 / 40.0 + 45.0 * e2 * e2 * e3 / 272.0 - 9.0 * (e2 * e5 + e3 * e4) / 68.0;
     rj[i] = scale * series / (a[i] * std::sqrt(a[i])) + 6.0 * sum[i];
   }
   // R_F from the same duplicated x, y, z: its own series about their mean; the loop above ran at least until R_F's

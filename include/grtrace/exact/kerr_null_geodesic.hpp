@@ -25,9 +25,10 @@
 //           T - J). The radial part of phi, int a (2 M r - a lambda) / Delta dtau, splits in 1 / (r - r_+-), which
 //           are Pi(n; am | k) (four real roots: a Moebius function of sn^2) and R1 (complex roots: of cn;
 //           core/jacobi_elliptic.hpp).
-// Cost:    the constructor's five Legendre F and the potential's roots; phi's terms at the camera (three Pi) are
-//          computed the first time the ray's phi is asked for and kept, so an object is one ray's, read by one
-//          thread at a time (its const functions fill that cache).
+// Cost:    the constructor's polar K (by the arithmetic-geometric mean), four R_F (the start's polar phase, the radial
+//          half-period, the Mino times from infinity to the camera and to the sky sphere) and the potential's
+//          roots; phi's terms at the camera (three Pi) are computed the first time the ray's phi is asked for and
+//          kept, so an object is one ray's, read by one thread at a time (its const functions fill that cache).
 // Not covered (supported() false: a tracer integrates these): eta <= 0 (vortical rays, which never cross the
 //          equator, and the rays along it), all four roots complex (only for eta < 0), a camera inside the
 //          potential's barrier (four real roots, r_o < r4) or on the axis, a radial or polar speed of exactly zero at
@@ -308,14 +309,19 @@ class KerrNullGeodesic {
   GRTRACE_HD double radial_potential(double r) const { return (((r * r + ca_) * r) + cb_) * r - a_ * a_ * eta_; }
 
   // The Mino time from infinity to r on the ingoing leg (r >= r4 with four real roots, r > r2 otherwise).
+  // Four real roots: int_r^inf dr' / sqrt(R) in Carlson's symmetric form, 2 R_F(U12^2, U13^2, U14^2) with U_ij =
+  // Y_i Y_j + Y_k Y_l, Y_i = sqrt(r - r_i) (DLMF 19.29.4 with its upper limit at infinity). Its three arguments
+  // differ by O(r_i / r), so far from the hole R_F needs one or two duplications where g (F_inf - F(am(r))) needed
+  // four and then lost digits in the difference (two at the camera of 50 M, three at a sky sphere of 1000 M).
   GRTRACE_HD double t_of_radius(double r) const {
     if (case_ == KerrRadialCase::complex_pair) {
       const double u = ca3_ * (r - r1_), v = cb3_ * (r - r2_);
       return g_r_ * (f_inf_ - legendre_f_sc(2.0 * std::sqrt(u * v) / (u + v), (u - v) / (u + v), k_r_, k_complete_r_));
     }
-    const double r31 = r3_ - r1_, r41 = r4_ - r1_;
-    const double s = std::clamp(r31 * (r - r4_) / (r41 * (r - r3_)), 0.0, 1.0);
-    return g_r_ * (f_inf_ - legendre_f_sc(std::sqrt(s), std::sqrt(1.0 - s), k_r_, 0.0));
+    const double y1 = std::sqrt(r - r1_), y2 = std::sqrt(r - r2_), y3 = std::sqrt(r - r3_);
+    const double y4 = std::sqrt(std::max(0.0, r - r4_));
+    const double u12 = y1 * y2 + y3 * y4, u13 = y1 * y3 + y2 * y4, u14 = y1 * y4 + y2 * y3;
+    return 2.0 * carlson_rf(u12 * u12, u13 * u13, u14 * u14);
   }
 
   GRTRACE_HD double x_of_t(double t) const { return t / g_r_ - f_inf_; }

@@ -79,7 +79,7 @@ TEST(JacobiElliptic, CarlsonIntegralsEqualTheirDefinitions) {
     EXPECT_NEAR(carlson_rj(v[0], v[1], v[2], v[3]) / rj(v[0], v[1], v[2], v[3]), 1.0, 1e-13);
 }
 
-TEST(JacobiElliptic, CarlsonIntegralsKeepFullPrecisionWhereTheirArgumentsNearlyAgree) {
+TEST(JacobiElliptic, CarlsonAndCompleteIntegralsEqualFortyDigitValues) {
   // References: mpmath's elliprc and elliprj at 40 digits (Carlson's algorithms in arbitrary precision), rounded to
   // 20. Where x and y of R_C agree to a few parts in 1e3, arccos(sqrt(x / y)) magnifies the rounding of its
   // argument (4e-14 here); R_J's first duplication level meets such an R_C wherever p is near x, y and z, so Legendre's
@@ -100,6 +100,21 @@ TEST(JacobiElliptic, CarlsonIntegralsKeepFullPrecisionWhereTheirArgumentsNearlyA
                       Rj{0.40878287384627487, 0.40882572220268759, 1.0, 0.86676787318478932, 1.8023760377388242367},
                       Rj{0.0, 0.19, 1.0, 0.7, 5.4510155846308086525}, Rj{0.0, 31.0, 1.0, 2.5, 0.27511988684165520798}})
     EXPECT_NEAR(carlson_rj(c.x, c.y, c.z, c.p) / c.value, 1.0, 1e-15) << c.x << " " << c.y << " " << c.p;
+  // The complete integrals by the arithmetic-geometric mean (K always; Pi for -1 <= n <= 0.9, the edges included)
+  // and by Carlson's forms beyond (n = -3, 0.99), against mpmath's ellipk and ellippi at 40 digits.
+  struct Complete {
+    double n, m, value;
+  };
+  for (const Complete& c :
+       {Complete{0.5, -20.0, 0.806791719001363747187}, Complete{0.85, -300.0, 0.405230271544664288156},
+        Complete{-0.9, 0.999999, 4.74429844038114542612}, Complete{0.2, 0.5, 2.09295658273187553864},
+        Complete{0.9, -1e4, 0.0973806138347798137456}, Complete{-1.0, -3.0, 0.80869336781236621329},
+        Complete{-3.0, 0.3, 0.832067842419923944795}, Complete{0.99, -2.0, 9.48401068373450817606}})
+    EXPECT_NEAR(complete_pi(c.n, c.m) / c.value, 1.0, 2e-15) << "n " << c.n << " m " << c.m;
+  for (const auto& [m, value] :
+       {std::pair{-1e4, 0.0599133976727871168075}, std::pair{-2.5, 1.12088100360300672423},
+        std::pair{0.5, 1.85407467730137191843}, std::pair{0.999999999999, 15.20181598007012028}})
+    EXPECT_NEAR(complete_f(m) / value, 1.0, 2e-15) << "m " << m;
 }
 
 TEST(JacobiElliptic, LegendreIntegralsEqualTheirDefinitionsForAnyAmplitude) {

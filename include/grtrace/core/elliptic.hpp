@@ -6,7 +6,8 @@
 //
 // Takes:   the modulus k (not the parameter m = k^2), 0 <= k < 1, and the amplitude phi in [0, pi].
 // Returns: F and K to a few units in the last place (the series after the duplications, to seventh order, is cut
-//          where its next term is below 1e-17 relative: DLMF 19.36.1, once max |1 - x/A| <= 1e-2).
+//          where its next term is below 1e-17 relative: DLMF 19.36.1, once max |1 - x/A| <= 1e-2; K by the
+//          arithmetic-geometric mean, complete_f, which also takes the parameter m = k^2 < 1, negative included).
 // Assumes: finite arguments; k = 1 gives +inf at phi = pi/2 (as std::ellint_1 does).
 #pragma once
 
@@ -50,8 +51,22 @@ inline GRTRACE_HD double carlson_rf(double x, double y, double z) {
   return detail::carlson_rf_series(x, y, z);
 }
 
-/// K(k) = F(pi/2, k).
-inline GRTRACE_HD double complete_elliptic_f(double k) { return carlson_rf(0.0, 1.0 - k * k, 1.0); }
+/// K(m) = F(pi/2 | m) for m < 1, by the arithmetic-geometric mean: K = pi / (2 M(1, sqrt(1 - m))) (DLMF 19.8.5).
+/// The means converge quadratically, one square root a level (5-8 levels from m = -1e6 to 1 - 1e-16), where R_F's
+/// duplication needs 4-5 levels of three: about a third of the time, to the same few ulps.
+inline GRTRACE_HD double complete_f(double m) {
+  double a = 1.0, g = std::sqrt(1.0 - m);
+  // Once the two agree to 1e-8, their mean is M to 1e-17 (the gap squares each level).
+  for (int i = 0; i < 24 && std::abs(a - g) > 1e-8 * a; ++i) {
+    const double mean = 0.5 * (a + g);
+    g = std::sqrt(a * g);
+    a = mean;
+  }
+  return std::numbers::pi / (a + g);
+}
+
+/// K(k) = F(pi/2, k), the modulus k = sqrt(m).
+inline GRTRACE_HD double complete_elliptic_f(double k) { return complete_f(k * k); }
 
 /// F(phi, k) = int_0^phi dt / sqrt(1 - k^2 sin^2 t) for phi in [0, pi] (beyond pi/2 by F(phi) = 2K - F(pi - phi)).
 inline GRTRACE_HD double elliptic_f(double phi, double k) {

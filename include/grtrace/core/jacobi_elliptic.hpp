@@ -137,20 +137,6 @@ inline GRTRACE_HD CarlsonPair carlson_rf_rj(double x, double y, double z, double
 
 inline GRTRACE_HD double carlson_rj(double x, double y, double z, double p) { return carlson_rf_rj(x, y, z, p).rj; }
 
-/// K(m) = F(pi/2 | m) for m < 1, by the arithmetic-geometric mean: K = pi / (2 M(1, sqrt(1 - m))) (DLMF 19.8.5).
-/// The means converge quadratically, one square root a level (5-8 levels from m = -1e6 to 1 - 1e-16), where R_F's
-/// duplication needs 4-5 levels of three: about a third of the time, to the same few ulps.
-inline GRTRACE_HD double complete_f(double m) {
-  double a = 1.0, g = std::sqrt(1.0 - m);
-  // Once the two agree to 1e-8, their mean is M to 1e-17 (the gap squares each level).
-  for (int i = 0; i < 24 && std::abs(a - g) > 1e-8 * a; ++i) {
-    const double mean = 0.5 * (a + g);
-    g = std::sqrt(a * g);
-    a = mean;
-  }
-  return std::numbers::pi / (a + g);
-}
-
 /// Pi(n | m) = Pi(n; pi/2 | m) for m < 1; for n > 1 the Cauchy principal value K(m) - Pi(m / n | m) (DLMF 19.6.5).
 /// For -1 <= n <= 0.9 (Kerr's polar motion: n = u+ in (0, 1)) by the arithmetic-geometric mean (DLMF 19.8.6): with
 /// a_0 = 1, g_0 = sqrt(1 - m), p_0 = sqrt(1 - n), Q_0 = 1, Pi = pi / (4 M) (2 + n / (1 - n) sum Q_j), where

@@ -76,6 +76,7 @@ class PolishDoughnut {
           "move r_in out or r_c in");
     if (!(w_c_ < w_in_)) throw std::invalid_argument("PolishDoughnut: no gas between r_in and r_c");
     h_c_minus_1_ = std::expm1(w_in_ - w_c_);
+    exp_w_in_ = std::exp(w_in_);
     // The outer edge on the equator: W rises from W_c at r_c back to W_in (bracketed by doubling, then bisected).
     double lo = r_c, hi = 2.0 * r_c;
     while (potential(equator(hi)) < w_in_) {
@@ -103,33 +104,40 @@ class PolishDoughnut {
 
   /// W = ln u_t at x (+infinity where no orbit of this l is timelike).
   double potential(const Vec4& x) const {
-    const Mat4 g = metric_.metric(x);
-    const double d = g(0, 0) * g(3, 3) - g(0, 3) * g(0, 3);
-    const double a = (g(3, 3) + 2.0 * l_ * g(0, 3) + l_ * l_ * g(0, 0)) / d;
+    const double a = orbit_norm(x);
     return a > 0.0 ? -0.5 * std::log(a) : std::numeric_limits<double>::infinity();
+  }
+
+  /// The specific enthalpy h = exp(W_in - W) = exp(W_in) sqrt(A) at x (> 1 inside the torus, 1 on its surface;
+  /// 0 where no orbit of this l is timelike). With sqrt(A) = 1 / u_t it needs neither the log of W nor an exp: at
+  /// every stage of a step through the gas those two were a tenth of a torus frame's time.
+  double enthalpy(const Vec4& x) const {
+    const double a = orbit_norm(x);
+    return a > 0.0 ? exp_w_in_ * std::sqrt(a) : 0.0;  // also 0 for a NaN A (on the axis), as W = +infinity there
   }
 
   /// rho at x: 1 at the pressure maximum, 0 outside the torus.
   double density(const Vec4& x) const {
     if (!(x[1] > r_cusp_)) return 0.0;
-    const double w = potential(x);
-    if (!(w < w_in_)) return 0.0;
-    return signed_power(std::expm1(w_in_ - w) / h_c_minus_1_);
+    const double h = enthalpy(x);
+    if (!(h > 1.0)) return 0.0;
+    return signed_power((h - 1.0) / h_c_minus_1_);
   }
 
-  /// Positive outside the torus, <= 0 inside (W - W_in, capped at 1 where no orbit of this l is timelike, and the
-  /// distance inside the cusp's radius, where W < W_in again near the horizon): the tracer ends its steps on the
-  /// surface, where rho ~ depth^n is not smooth.
+  /// Positive outside the torus, <= 0 inside (1 - h, which is W - W_in to first order at the surface and rises to 1
+  /// where no orbit of this l is timelike; and the distance inside the cusp's radius, where W < W_in again near the
+  /// horizon, capped at 1): the tracer ends its steps on the surface, where rho ~ depth^n is not smooth.
   template <MetricPolicy M>
   double boundary(const M&, const Vec4& x) const {
-    return std::min(std::max(potential(x) - w_in_, r_cusp_ - x[1]), 1.0);
+    return std::min(std::max(1.0 - enthalpy(x), r_cusp_ - x[1]), 1.0);
   }
 
   /// j and alpha from rho continued smoothly across the surface (odd in h - 1: negative outside), as the tracer
   /// needs them within a step that ends on the surface (boundary()); it takes none outside.
   template <MetricPolicy M>
   MediumCoefficients coefficients(const M&, const Vec4& x, double /*nu*/) const {
-    const double h1 = std::expm1(w_in_ - std::min(potential(x), w_in_ + 1.0));  // W = +inf (no orbit): h - 1 ~ -0.6
+    // h - 1 with W capped at W_in + 1 (h >= 1 / e: where no orbit of this l is timelike, h - 1 ~ -0.6).
+    const double h1 = std::max(enthalpy(x), 1.0 / std::numbers::e) - 1.0;
     const double rho = signed_power(h1 / h_c_minus_1_);
     return {j0_ * rho, kappa_ * rho};
   }
@@ -161,6 +169,13 @@ class PolishDoughnut {
   }
 
   static Vec4 equator(double r) { return Vec4(0.0, r, std::numbers::pi / 2.0, 0.0); }
+
+  /// A = g^tt - 2 l g^tphi + l^2 g^phiphi = 1 / u_t^2 at x (<= 0 where no orbit of this l is timelike).
+  double orbit_norm(const Vec4& x) const {
+    const Mat4 g = metric_.metric(x);
+    const double d = g(0, 0) * g(3, 3) - g(0, 3) * g(0, 3);
+    return (g(3, 3) + 2.0 * l_ * g(0, 3) + l_ * l_ * g(0, 0)) / d;
+  }
 
   /// Where W is largest on the equator between the horizon and r_in: on a geometric grid of 256 radii, then by
   /// golden section between the neighbours of the largest sample (W rises from -inf at the horizon to the cusp and
@@ -196,7 +211,7 @@ class PolishDoughnut {
   Metric metric_;
   double r_in_, r_c_, n_, j0_, kappa_;
   int whole_n_ = 0;  ///< n where it is a whole number up to 8 (signed_power), else 0
-  double l_ = 0.0, w_in_ = 0.0, w_c_ = 0.0, h_c_minus_1_ = 1.0, r_out_ = 0.0, r_cusp_ = 0.0;
+  double l_ = 0.0, w_in_ = 0.0, w_c_ = 0.0, h_c_minus_1_ = 1.0, exp_w_in_ = 1.0, r_out_ = 0.0, r_cusp_ = 0.0;
 };
 
 }  // namespace grtrace

@@ -43,17 +43,16 @@
 
 namespace grtrace {
 
-/// The repeated subexpressions of the Kerr metric at (r, theta) in Boyer-Lindquist form, and the first
-/// derivatives of the five distinct metric components (d/dr and d/dtheta; nothing depends on t or phi).
-struct KerrBLTerms {
+/// The repeated subexpressions of the Kerr metric at (r, theta) in Boyer-Lindquist form and its five distinct
+/// components: what metric(), inverse_metric() and the constants of motion need (a medium asks for them at every
+/// stage of every step: without the derivatives below, about half of KerrBLTerms' work).
+struct KerrBLComponents {
   double r, sin_theta, cos_theta;
   double sigma, delta, big_a;                 ///< Sigma, Delta, A
   double inv_sigma, inv_delta, inv_tphi_det;  ///< 1/Sigma, 1/Delta, 1/(g_tt g_phph - g_tph^2) = -1/(Delta sin^2)
   double g_tt, g_tph, g_phph, g_rr, g_thth;
-  double dr_tt, dr_tph, dr_phph, dr_rr, dr_thth;       ///< d/dr
-  double dth_tt, dth_tph, dth_phph, dth_rr, dth_thth;  ///< d/dtheta
 
-  GRTRACE_HD KerrBLTerms(double mass, double a, double r_in, double theta) : r(r_in) {
+  GRTRACE_HD KerrBLComponents(double mass, double a, double r_in, double theta) : r(r_in) {
     // The inline sincos (core/sin_cos.hpp), not libm's: the same bits on a GPU as on the CPU (the device's sin and
     // cos differ from glibc's in the last bit), so a ray's constants of motion, and the reduced Kerr tracer's path
     // that they steer, are the CPU's.
@@ -70,13 +69,30 @@ struct KerrBLTerms {
     inv_sigma = 1.0 / sigma;
     inv_delta = 1.0 / delta;
     inv_tphi_det = -inv_delta / s2;
-    const double inv_sigma2 = inv_sigma * inv_sigma;
     const double two_mr = 2.0 * m * r;
     g_tt = 1.0 - two_mr * inv_sigma;
     g_tph = two_mr * a * s2 * inv_sigma;
     g_phph = -(ra2 + two_mr * a2 * s2 * inv_sigma) * s2;
     g_rr = -sigma * inv_delta;
     g_thth = -sigma;
+  }
+
+  /// g_tt g_phph - g_tph^2 = -Delta sin^2 theta (exact, no cancellation).
+  GRTRACE_HD double tphi_determinant() const { return -delta * sin_theta * sin_theta; }
+};
+
+/// The components and the first derivatives of the five distinct metric components (d/dr and d/dtheta; nothing
+/// depends on t or phi): what the Christoffel symbols need.
+struct KerrBLTerms : KerrBLComponents {
+  double dr_tt, dr_tph, dr_phph, dr_rr, dr_thth;       ///< d/dr
+  double dth_tt, dth_tph, dth_phph, dth_rr, dth_thth;  ///< d/dtheta
+
+  GRTRACE_HD KerrBLTerms(double mass, double a, double r_in, double theta)
+      : KerrBLComponents(mass, a, r_in, theta) {
+    const double m = mass, s = sin_theta, c = cos_theta;
+    const double r2 = r * r, a2 = a * a, s2 = s * s, c2 = c * c, ra2 = r2 + a2;
+    const double inv_sigma2 = inv_sigma * inv_sigma;
+    const double two_mr = 2.0 * m * r;
     // d Sigma/dr = 2r, d Sigma/dth = -2 a^2 s c; (Sigma - 2 r^2) = -(r^2 - a^2 c^2) appears in every d/dr.
     const double w = (r2 - a2 * c2) * inv_sigma2;  // -(d/dr)(r / Sigma)
     const double sc = s * c;
@@ -91,9 +107,6 @@ struct KerrBLTerms {
     dth_rr = 2.0 * a2 * sc * inv_delta;
     dth_thth = 2.0 * a2 * sc;
   }
-
-  /// g_tt g_phph - g_tph^2 = -Delta sin^2 theta (exact, no cancellation).
-  GRTRACE_HD double tphi_determinant() const { return -delta * sin_theta * sin_theta; }
 };
 
 /// Gamma^mu_ab = 1/2 g^{mu nu} (d_a g_{nu b} + d_b g_{nu a} - d_nu g_ab) from the inverse metric and the four
@@ -134,10 +147,12 @@ struct KerrMetric {
     return KerrMetric{mass, spin};
   }
 
+  /// The metric's terms at x with their derivatives (christoffel(), metric_derivatives()) or without (the rest).
   GRTRACE_HD KerrBLTerms terms(const Vec4& x) const { return KerrBLTerms(mass, spin, x[1], x[2]); }
+  GRTRACE_HD KerrBLComponents components(const Vec4& x) const { return KerrBLComponents(mass, spin, x[1], x[2]); }
 
   GRTRACE_HD Mat4 metric(const Vec4& x) const {
-    const KerrBLTerms q = terms(x);
+    const KerrBLComponents q = components(x);
     Mat4 g = Mat4::Zero();
     g(0, 0) = q.g_tt;
     g(0, 3) = g(3, 0) = q.g_tph;
@@ -149,7 +164,7 @@ struct KerrMetric {
 
   /// g^{mu nu}, exact: (t, phi) block over its determinant -Delta sin^2 theta, 1/g_rr, 1/g_thth.
   GRTRACE_HD Mat4 inverse_metric(const Vec4& x) const {
-    const KerrBLTerms q = terms(x);
+    const KerrBLComponents q = components(x);
     const double inv_det = q.inv_tphi_det;
     Mat4 gi = Mat4::Zero();
     gi(0, 0) = q.g_phph * inv_det;
@@ -279,12 +294,12 @@ struct KerrMetric {
   }
   /// Angular velocity of the zero-angular-momentum observers, omega = -g_tph / g_phph = 2 M a r / A.
   GRTRACE_HD double frame_dragging(double r, double theta) const {
-    const KerrBLTerms q(mass, spin, r, theta);
+    const KerrBLComponents q(mass, spin, r, theta);
     return 2.0 * mass * spin * r / q.big_a;
   }
   /// Lapse of the ZAMO frame, alpha = sqrt(Sigma Delta / A) (0 on the horizon, 1 at infinity).
   GRTRACE_HD double lapse(double r, double theta) const {
-    const KerrBLTerms q(mass, spin, r, theta);
+    const KerrBLComponents q(mass, spin, r, theta);
     return std::sqrt(q.sigma * q.delta / q.big_a);
   }
   /// ZAMO 4-velocity (1/alpha)(d_t + omega d_phi) at x.
@@ -296,7 +311,7 @@ struct KerrMetric {
   /// Orthonormal frame of the ZAMO at x: e_0 = its 4-velocity, e_1 along +r, e_2 along +theta, e_3 along +phi
   /// (g(e_a, e_b) = diag(1, -1, -1, -1)). Off the axis and outside r_+.
   GRTRACE_HD std::array<Vec4, 4> zamo_tetrad(const Vec4& x) const {
-    const KerrBLTerms q = terms(x);
+    const KerrBLComponents q = components(x);
     const double alpha = std::sqrt(q.sigma * q.delta / q.big_a), omega = 2.0 * mass * spin * q.r / q.big_a;
     return {Vec4(1.0 / alpha, 0.0, 0.0, omega / alpha), Vec4(0.0, std::sqrt(q.delta / q.sigma), 0.0, 0.0),
             Vec4(0.0, 0.0, 1.0 / std::sqrt(q.sigma), 0.0), Vec4(0.0, 0.0, 0.0, 1.0 / std::sqrt(-q.g_phph))};
@@ -305,12 +320,12 @@ struct KerrMetric {
   // ---- constants of geodesic motion (kerr.md sign conventions for +,-,-,-) -------------------------------------
   /// Killing energy E = p_t = g_tt k^t + g_tph k^phi.
   GRTRACE_HD double energy(const GeodesicState& y) const {
-    const KerrBLTerms q = terms(y.head<4>());
+    const KerrBLComponents q = components(y.head<4>());
     return q.g_tt * y[4] + q.g_tph * y[7];
   }
   /// Axial angular momentum L_z = -p_phi = -(g_tph k^t + g_phph k^phi).
   GRTRACE_HD double angular_momentum(const GeodesicState& y) const {
-    const KerrBLTerms q = terms(y.head<4>());
+    const KerrBLComponents q = components(y.head<4>());
     return -(q.g_tph * y[4] + q.g_phph * y[7]);
   }
   /// Carter's constant Q = p_th^2 - cos^2 th (a^2 (E^2 - mu^2) - L_z^2 / sin^2 th), p_th = -Sigma k^th,
@@ -322,7 +337,7 @@ struct KerrMetric {
     double energy, angular_momentum, carter;
   };
   GRTRACE_HD ConstantsOfMotion constants_of_motion(const GeodesicState& y) const {
-    const KerrBLTerms q = terms(y.head<4>());
+    const KerrBLComponents q = components(y.head<4>());
     const double e = q.g_tt * y[4] + q.g_tph * y[7];
     const double lz = -(q.g_tph * y[4] + q.g_phph * y[7]);
     const double mu2 = q.g_tt * y[4] * y[4] + 2.0 * q.g_tph * y[4] * y[7] + q.g_rr * y[5] * y[5] +

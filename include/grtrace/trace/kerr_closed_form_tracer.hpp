@@ -128,7 +128,7 @@ class KerrClosedFormTracer {
     out.radius = escape_radius_;
     const double theta_end = ray.theta_at(end);
     out.order += crossed_beyond_sphere(0.5 * std::numbers::pi - theta_end, out.where);  // up to where it is seen
-    const double g_tt = metric_.terms(Vec4(0.0, escape_radius_, theta_end, 0.0)).g_tt;
+    const double g_tt = metric_.components(Vec4(0.0, escape_radius_, theta_end, 0.0)).g_tt;
     out.redshift = -std::sqrt(g_tt) / ray.energy();
     return out;
   }

@@ -43,6 +43,11 @@
 //   static constexpr bool frequency_independent = true;      j_nu and alpha_nu do not depend on nu (a flat
 //       spectrum): a frame's pixels then differ only by their redshift, which lets a table of rays serve a moving
 //       camera (trace/medium_tracers.hpp)
+//   Vec4 fluid_velocity(const Metric& metric, const Vec4& x, const Mat4& g) const
+//   MediumCoefficients coefficients(const Metric& metric, const Vec4& x, const Mat4& g, double nu) const
+//       the same given g_{mu nu} at x, which the tracer computes once a stage for the redshift: for a medium whose
+//       own work is mostly the metric (a torus in hydrostatic equilibrium: its velocity and its enthalpy are both
+//       functions of g); each is used where the medium has it, the forms above otherwise
 //
 // Units: geometric (G = c = 1, lengths in the metric's); j and alpha in any units whose product with a length is
 // an intensity and an optical depth.
@@ -90,21 +95,39 @@ GRTRACE_HD MediumCoefficients medium_coefficients(const D& d, const M& m, const 
   else return d.coefficients(m, x, nu);
 }
 
+/// The same given g_{mu nu} at x: the medium's form that takes it where it has one (see the top of this file).
+template <class D, class M>
+GRTRACE_HD MediumCoefficients medium_coefficients(const D& d, const M& m, const Vec4& x, const Vec4& k, const Vec4& u,
+                                                  double nu, const Mat4& g) {
+  if constexpr (requires { { d.coefficients(m, x, g, nu) } -> std::convertible_to<MediumCoefficients>; })
+    return d.coefficients(m, x, g, nu);
+  else return medium_coefficients(d, m, x, k, u, nu);
+}
+
+/// The fluid's velocity at x given g_{mu nu} there: the medium's form that takes it where it has one.
+template <class D, class M>
+GRTRACE_HD Vec4 medium_fluid_velocity(const D& d, const M& m, const Vec4& x, const Mat4& g) {
+  if constexpr (requires { { d.fluid_velocity(m, x, g) } -> std::convertible_to<Vec4>; }) return d.fluid_velocity(m, x, g);
+  else return d.fluid_velocity(m, x);
+}
+
 /// Whether D gives the directed coefficients of N frequencies in one call (the form at the top of this file).
 template <class D, class M, std::size_t N>
 concept MediumWithSpectrum = requires(const D d, const M m, const Vec4 x, const std::array<double, N> nu) {
   { d.coefficients(m, x, x, x, nu) } -> std::convertible_to<std::array<MediumCoefficients, N>>;
 };
 
-/// The coefficients at N frequencies: the medium's form for several where it has one, else one call each.
+/// The coefficients at N frequencies, given g_{mu nu} at x: the medium's form for several where it has one, else
+/// one call each.
 template <class D, class M, std::size_t N>
 GRTRACE_HD std::array<MediumCoefficients, N> medium_coefficients(const D& d, const M& m, const Vec4& x, const Vec4& k,
-                                                                 const Vec4& u, const std::array<double, N>& nu) {
+                                                                 const Vec4& u, const std::array<double, N>& nu,
+                                                                 const Mat4& g) {
   if constexpr (N > 1 && MediumWithSpectrum<D, M, N>) {
     return d.coefficients(m, x, k, u, nu);
   } else {
     std::array<MediumCoefficients, N> c;
-    for (std::size_t i = 0; i < N; ++i) c[i] = medium_coefficients(d, m, x, k, u, nu[i]);
+    for (std::size_t i = 0; i < N; ++i) c[i] = medium_coefficients(d, m, x, k, u, nu[i], g);
     return c;
   }
 }

@@ -111,10 +111,7 @@ class PolishDoughnut {
   /// The specific enthalpy h = exp(W_in - W) = exp(W_in) sqrt(A) at x (> 1 inside the torus, 1 on its surface;
   /// 0 where no orbit of this l is timelike). With sqrt(A) = 1 / u_t it needs neither the log of W nor an exp: at
   /// every stage of a step through the gas those two were a tenth of a torus frame's time.
-  double enthalpy(const Vec4& x) const {
-    const double a = orbit_norm(x);
-    return a > 0.0 ? exp_w_in_ * std::sqrt(a) : 0.0;  // also 0 for a NaN A (on the axis), as W = +infinity there
-  }
+  double enthalpy(const Vec4& x) const { return enthalpy_from(metric_.metric(x)); }
 
   /// rho at x: 1 at the pressure maximum, 0 outside the torus.
   double density(const Vec4& x) const {
@@ -135,16 +132,25 @@ class PolishDoughnut {
   /// j and alpha from rho continued smoothly across the surface (odd in h - 1: negative outside), as the tracer
   /// needs them within a step that ends on the surface (boundary()); it takes none outside.
   template <MetricPolicy M>
-  MediumCoefficients coefficients(const M&, const Vec4& x, double /*nu*/) const {
+  MediumCoefficients coefficients(const M& m, const Vec4& x, double nu) const {
+    return coefficients(m, x, metric_.metric(x), nu);
+  }
+  /// The same given g_{mu nu} at x (the tracer's, emitting_medium.hpp).
+  template <MetricPolicy M>
+  MediumCoefficients coefficients(const M&, const Vec4&, const Mat4& g, double /*nu*/) const {
     // h - 1 with W capped at W_in + 1 (h >= 1 / e: where no orbit of this l is timelike, h - 1 ~ -0.6).
-    const double h1 = std::max(enthalpy(x), 1.0 / std::numbers::e) - 1.0;
+    const double h1 = std::max(enthalpy_from(g), 1.0 / std::numbers::e) - 1.0;
     const double rho = signed_power(h1 / h_c_minus_1_);
     return {j0_ * rho, kappa_ * rho};
   }
 
   template <MetricPolicy M>
-  Vec4 fluid_velocity(const M&, const Vec4& x) const {
-    const Mat4 g = metric_.metric(x);
+  Vec4 fluid_velocity(const M& m, const Vec4& x) const {
+    return fluid_velocity(m, x, metric_.metric(x));
+  }
+  /// The same given g_{mu nu} at x (the tracer's, emitting_medium.hpp).
+  template <MetricPolicy M>
+  Vec4 fluid_velocity(const M&, const Vec4&, const Mat4& g) const {
     double omega = -(g(0, 3) + l_ * g(0, 0)) / (g(3, 3) + l_ * g(0, 3));
     double norm = g(0, 0) + 2.0 * omega * g(0, 3) + omega * omega * g(3, 3);
     // The gas's circles wherever they are timelike (its surface included: a ray meeting it there is shaded by this
@@ -170,11 +176,17 @@ class PolishDoughnut {
 
   static Vec4 equator(double r) { return Vec4(0.0, r, std::numbers::pi / 2.0, 0.0); }
 
-  /// A = g^tt - 2 l g^tphi + l^2 g^phiphi = 1 / u_t^2 at x (<= 0 where no orbit of this l is timelike).
-  double orbit_norm(const Vec4& x) const {
-    const Mat4 g = metric_.metric(x);
+  /// A = g^tt - 2 l g^tphi + l^2 g^phiphi = 1 / u_t^2 from g_{mu nu} at x (<= 0 where no orbit of this l is
+  /// timelike).
+  double orbit_norm(const Mat4& g) const {
     const double d = g(0, 0) * g(3, 3) - g(0, 3) * g(0, 3);
     return (g(3, 3) + 2.0 * l_ * g(0, 3) + l_ * l_ * g(0, 0)) / d;
+  }
+  double orbit_norm(const Vec4& x) const { return orbit_norm(metric_.metric(x)); }
+  /// enthalpy() from g_{mu nu} at x.
+  double enthalpy_from(const Mat4& g) const {
+    const double a = orbit_norm(g);
+    return a > 0.0 ? exp_w_in_ * std::sqrt(a) : 0.0;  // also 0 for a NaN A (on the axis), as W = +infinity there
   }
 
   /// Where W is largest on the equator between the horizon and r_in: on a geometric grid of 256 radii, then by

@@ -118,12 +118,15 @@ template <class Metric, class Medium, std::size_t Bands>
 GRTRACE_HD LocalLight<Bands> local_light(const Metric& metric, const Medium& medium, const Vec4& x, const Vec4& k,
                                          double camera_energy, const std::array<double, Bands>& nu_obs) {
   LocalLight<Bands> l;
-  const Vec4 u = medium.fluid_velocity(metric, x);
-  l.fluid_energy = std::abs(inner_product(metric, x, k, u));
+  // g_{mu nu} once, for the redshift and for a medium that takes it (emitting_medium.hpp): a torus's velocity and
+  // enthalpy asked the metric again each, three evaluations a stage where one does.
+  const Mat4 g = metric.metric(x);
+  const Vec4 u = medium_fluid_velocity(medium, metric, x, g);
+  l.fluid_energy = std::abs(k.dot(g * u));  // inner_product(metric, x, k, u)
   l.g = camera_energy / l.fluid_energy;
   std::array<double, Bands> nu_fluid;
   for (std::size_t b = 0; b < Bands; ++b) nu_fluid[b] = nu_obs[b] / l.g;
-  l.at_fluid = medium_coefficients(medium, metric, x, k, u, nu_fluid);
+  l.at_fluid = medium_coefficients(medium, metric, x, k, u, nu_fluid, g);
   return l;
 }
 

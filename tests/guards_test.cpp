@@ -39,6 +39,12 @@ TEST(Guards, FixedStepNearTheHorizonFailsWhereTheAdaptiveDefaultSucceeds) {
     const TraceResult r = fixed.trace(y0);
     EXPECT_EQ(r.status, RayStatus::non_finite) << "h = " << h;
     EXPECT_LT(r.accepted, 1000) << "the failure is found early, not after a long walk";
+    // A fixed step has no tolerance: a loose rtol in its settings leaves its guard at constraint_tolerance (an
+    // adaptive step's guard grows with rtol, TraceSettings::constraint_guard).
+    TraceSettings loose = s;
+    loose.integrator.tolerance.rtol = 1e-2;
+    const GeodesicTracer<SchwarzschildMetric, ClassicRK4, FixedStep> fixed_loose(SchwarzschildMetric{1.0}, loose);
+    EXPECT_EQ(fixed_loose.trace(y0).status, RayStatus::non_finite) << "h = " << h;
     // Without the guard the same run reports "captured" with a meaningless state.
     s.constraint_tolerance = 0.0;
     const GeodesicTracer<SchwarzschildMetric, ClassicRK4, FixedStep> unguarded(SchwarzschildMetric{1.0}, s);

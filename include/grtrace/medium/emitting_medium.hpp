@@ -99,7 +99,9 @@ GRTRACE_HD MediumCoefficients medium_coefficients(const D& d, const M& m, const 
 template <class D, class M>
 GRTRACE_HD MediumCoefficients medium_coefficients(const D& d, const M& m, const Vec4& x, const Vec4& k, const Vec4& u,
                                                   double nu, const Mat4& g) {
-  if constexpr (requires { { d.coefficients(m, x, g, nu) } -> std::convertible_to<MediumCoefficients>; })
+  if constexpr (requires {
+                  { d.coefficients(m, x, g, nu) } -> std::convertible_to<MediumCoefficients>;
+                })
     return d.coefficients(m, x, g, nu);
   else return medium_coefficients(d, m, x, k, u, nu);
 }
@@ -107,7 +109,10 @@ GRTRACE_HD MediumCoefficients medium_coefficients(const D& d, const M& m, const 
 /// The fluid's velocity at x given g_{mu nu} there: the medium's form that takes it where it has one.
 template <class D, class M>
 GRTRACE_HD Vec4 medium_fluid_velocity(const D& d, const M& m, const Vec4& x, const Mat4& g) {
-  if constexpr (requires { { d.fluid_velocity(m, x, g) } -> std::convertible_to<Vec4>; }) return d.fluid_velocity(m, x, g);
+  if constexpr (requires {
+                  { d.fluid_velocity(m, x, g) } -> std::convertible_to<Vec4>;
+                })
+    return d.fluid_velocity(m, x, g);
   else return d.fluid_velocity(m, x);
 }
 

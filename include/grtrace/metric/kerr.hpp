@@ -87,8 +87,7 @@ struct KerrBLTerms : KerrBLComponents {
   double dr_tt, dr_tph, dr_phph, dr_rr, dr_thth;       ///< d/dr
   double dth_tt, dth_tph, dth_phph, dth_rr, dth_thth;  ///< d/dtheta
 
-  GRTRACE_HD KerrBLTerms(double mass, double a, double r_in, double theta)
-      : KerrBLComponents(mass, a, r_in, theta) {
+  GRTRACE_HD KerrBLTerms(double mass, double a, double r_in, double theta) : KerrBLComponents(mass, a, r_in, theta) {
     const double m = mass, s = sin_theta, c = cos_theta;
     const double r2 = r * r, a2 = a * a, s2 = s * s, c2 = c * c, ra2 = r2 + a2;
     const double inv_sigma2 = inv_sigma * inv_sigma;

@@ -54,9 +54,10 @@ struct TraceSettings {
   /// (a Kerr torus frame of 65,536 rays in Mino time: 93 non_finite at rtol 1e-3, 19,411 at 1e-2, 2 at 1e-3 still
   /// with a guard of 300 rtol; with the guard off each of them was as accurate as the rest of its frame).
   static constexpr double kConstraintGuardPerTolerance = 1e3;
-  /// The guard's threshold (see constraint_tolerance); <= 0: off.
-  GRTRACE_HD double constraint_guard() const {
-    if (!(constraint_tolerance > 0.0)) return 0.0;
+  /// The guard's threshold (see constraint_tolerance) for an adaptive step or, adaptive false, a fixed one (no
+  /// tolerance: constraint_tolerance itself); <= 0: off.
+  GRTRACE_HD double constraint_guard(bool adaptive = true) const {
+    if (!(constraint_tolerance > 0.0) || !adaptive) return constraint_tolerance;
     const double scaled = kConstraintGuardPerTolerance * integrator.tolerance.rtol;
     return scaled > constraint_tolerance ? scaled : constraint_tolerance;
   }
@@ -410,7 +411,7 @@ class TraceLoop {
     else return e(system_.geodesic_state(z));
   }
   GRTRACE_HD bool violated(const State& z) const {
-    const double guard = settings_.constraint_guard();
+    const double guard = settings_.constraint_guard(Controller::estimate != ErrorEstimate::none);
     return guard > 0.0 && system_.constraint_violation(z) > guard;
   }
   // The result of a ray that ends at z (event: the surface that ended it, for status hit).

@@ -45,8 +45,8 @@ struct TraceSettings {
   double escape_radius = 1000.0;  ///< the ray has escaped when radius(x) >= this
   double horizon_epsilon = 1e-3;  ///< captured when r <= (1 + eps) r_h (Schwarzschild coordinates never cross r_h)
   /// Constraint guard: the ray ends as non_finite when |g(k,k) - g(k0,k0)| exceeds this fraction of the size of
-  /// g(k,k)'s terms (sum |g_mn k^m k^n|), or kConstraintGuardPerTolerance times the integrator's rtol where that
-  /// is larger. The numbers then no longer describe a geodesic (typically a fixed step too large near the horizon,
+  /// g(k,k)'s terms (sum |g_mn k^m k^n|) or, for an adaptive step, kConstraintGuardPerTolerance times the
+  /// integrator's rtol where that is larger (constraint_guard). The numbers then no longer describe a geodesic (typically a fixed step too large near the horizon,
   /// where k^t grows without bound). <= 0 switches the guard off.
   double constraint_tolerance = 1e-2;
   /// An adaptive step at rtol lets the constraint drift by up to about rtol, and a ray's drift is largest where
@@ -55,8 +55,9 @@ struct TraceSettings {
   /// with a guard of 300 rtol; with the guard off each of them was as accurate as the rest of its frame).
   static constexpr double kConstraintGuardPerTolerance = 1e3;
   /// The guard's threshold (see constraint_tolerance) for an adaptive step or, adaptive false, a fixed one (no
-  /// tolerance: constraint_tolerance itself); <= 0: off.
-  GRTRACE_HD double constraint_guard(bool adaptive = true) const {
+  /// tolerance: constraint_tolerance itself); <= 0: off. No default: a fixed step's caller must not get the
+  /// adaptive threshold by omission.
+  GRTRACE_HD double constraint_guard(bool adaptive) const {
     if (!(constraint_tolerance > 0.0) || !adaptive) return constraint_tolerance;
     const double scaled = kConstraintGuardPerTolerance * integrator.tolerance.rtol;
     return scaled > constraint_tolerance ? scaled : constraint_tolerance;

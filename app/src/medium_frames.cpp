@@ -178,13 +178,13 @@ bool in_gas(const Medium& medium, const Metric& metric, const Vec4& x, double r_
 /// j at x for light leaving radially outwards in the fluid's frame (signature + - - -: g(u, u) = 1).
 template <class Medium, class Metric>
 double radial_emission(const Medium& medium, const Metric& metric, const Vec4& x, double nu) {
-  const Vec4 u = medium.fluid_velocity(metric, x);
   const Mat4 g = metric.metric(x);
+  const Vec4 u = medium_fluid_velocity(medium, metric, x, g);
   const Vec4 e_r(0.0, 1.0, 0.0, 0.0);
   const Vec4 n = e_r - u.dot(g * e_r) * u;  // orthogonal to u, spacelike
   const double nn = -n.dot(g * n);
   const Vec4 k = nn > 0.0 ? Vec4(u + n / std::sqrt(nn)) : u;
-  return medium_coefficients(medium, metric, x, k, u, nu).emission;
+  return medium_coefficients(medium, metric, x, k, u, nu, g).emission;
 }
 
 }  // namespace

@@ -46,8 +46,8 @@ struct TraceSettings {
   double horizon_epsilon = 1e-3;  ///< captured when r <= (1 + eps) r_h (Schwarzschild coordinates never cross r_h)
   /// Constraint guard: the ray ends as non_finite when |g(k,k) - g(k0,k0)| exceeds this fraction of the size of
   /// g(k,k)'s terms (sum |g_mn k^m k^n|) or, for an adaptive step, kConstraintGuardPerTolerance times the
-  /// integrator's rtol where that is larger (constraint_guard). The numbers then no longer describe a geodesic (typically a fixed step too large near the horizon,
-  /// where k^t grows without bound). <= 0 switches the guard off.
+  /// integrator's rtol where that is larger (constraint_guard). The numbers then no longer describe a geodesic
+  /// (typically a fixed step too large near the horizon, where k^t grows without bound). <= 0 switches the guard off.
   double constraint_tolerance = 1e-2;
   /// An adaptive step at rtol lets the constraint drift by up to about rtol, and a ray's drift is largest where
   /// its terms are (a pass by the polar axis, L^2 / sin^2 theta): a fixed 1e-2 ended good rays at loose tolerances

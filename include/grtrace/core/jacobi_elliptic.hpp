@@ -19,6 +19,8 @@
 #include "grtrace/core/elliptic.hpp"
 #include "grtrace/core/host_device.hpp"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -128,6 +130,76 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
 }
 }  // namespace detail
 
+/// R_F(x, y, z) and R_J(x, y, z, p_i), i < N, of four independent argument sets (lanes) at once: carlson_rf_rj_n's
+/// duplication and series, run on the four lanes side by side (Eigen's packets: one vector square root serves four
+/// lanes on the CPU; a scalar loop on a GPU). Worth it where one ray needs several unrelated integrals at once: their
+/// square-root chains, each waiting on the last, then overlap instead of following one another. The loop runs
+/// until every lane meets its own rule (a lane that met it earlier is duplicated further: the same value, to its
+/// last bits or closer). A lane not needed can be filled with ones (met at once).
+template <std::size_t N>
+GRTRACE_HD void carlson_rf_rj_lanes(Eigen::Array4d x, Eigen::Array4d y, Eigen::Array4d z,
+                                    const Eigen::Array4d (&p_in)[N], Eigen::Array4d& rf, Eigen::Array4d (&rj)[N]) {
+  using A4 = Eigen::Array4d;
+  const A4 x0 = x, y0 = y, z0 = z;
+  A4 p[N], a0[N], a[N], delta[N], sum[N];
+  A4 q = A4::Zero();
+  for (std::size_t i = 0; i < N; ++i) {
+    p[i] = p_in[i];
+    a[i] = a0[i] = (x + y + z + 2.0 * p[i]) / 5.0;
+    delta[i] = (p[i] - x) * (p[i] - y) * (p[i] - z);
+    sum[i] = A4::Zero();
+    // Carlson's rule as in carlson_rf_rj_n, per lane.
+    q = q.max(200.0 * (a0[i] - x).abs().max((a0[i] - y).abs()).max((a0[i] - z).abs()).max((a0[i] - p[i]).abs()));
+  }
+  double scale = 1.0, cube = 1.0;
+  const auto converged = [&] {
+    for (std::size_t i = 0; i < N; ++i)
+      if (!(scale * q < a[i].abs()).all()) return false;
+    return true;
+  };
+  for (int j = 0; j < 64 && !converged(); ++j) {
+    const A4 sx = x.sqrt(), sy = y.sqrt(), sz = z.sqrt();
+    const A4 lambda = sx * (sy + sz) + sy * sz;
+    for (std::size_t i = 0; i < N; ++i) {
+      const A4 sp = p[i].sqrt();
+      const A4 inv_d = 1.0 / ((sp + sx) * (sp + sy) * (sp + sz));
+      const A4 e = cube * delta[i] * inv_d * inv_d;
+      A4 rc = 1.0 + e * (-1.0 / 3.0 +
+                         e * (1.0 / 5.0 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 + e * (-1.0 / 11.0 + e * (1.0 / 13.0))))));
+      if (!(e.abs() < 1e-3).all()) {  // beyond the series' range (carlson_rf_rj_n's): the first level or two
+        for (int l = 0; l < 4; ++l)
+          if (!(std::abs(e[l]) < 1e-3)) rc[l] = carlson_rc(1.0, 1.0 + e[l]);
+      }
+      sum[i] += scale * rc * inv_d;
+      p[i] = 0.25 * (p[i] + lambda);
+      a[i] = 0.25 * (a[i] + lambda);
+    }
+    x = 0.25 * (x + lambda);
+    y = 0.25 * (y + lambda);
+    z = 0.25 * (z + lambda);
+    scale *= 0.25;
+    cube *= 1.0 / 64.0;
+  }
+  for (std::size_t i = 0; i < N; ++i) {
+    const A4 f = scale / a[i];
+    const A4 X = (a0[i] - x0) * f, Y = (a0[i] - y0) * f, Z = (a0[i] - z0) * f, P = -0.5 * (X + Y + Z);
+    const A4 e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
+    const A4 e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P;
+    const A4 e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
+    const A4 e5 = X * Y * Z * P * P;
+    const A4 series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 -
+                      9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0 - e2 * e2 * e2 / 16.0 + 3.0 * e2 * e4 / 20.0 +
+                      3.0 * e3 * e3 / 40.0 + 45.0 * e2 * e2 * e3 / 272.0 - 9.0 * (e2 * e5 + e3 * e4) / 68.0;
+    rj[i] = scale * series / (a[i] * a[i].sqrt()) + 6.0 * sum[i];
+  }
+  const A4 mean = (x + y + z) / 3.0;
+  const A4 dx = 1.0 - x / mean, dy = 1.0 - y / mean, dz = -(dx + dy);
+  const A4 e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
+  rf = (1.0 + e2 * (-0.1 + e2 * (1.0 / 24.0 - 5.0 / 208.0 * e2 + e3 / 16.0) - 3.0 * e3 / 44.0) +
+        e3 * (1.0 / 14.0 + 3.0 / 104.0 * e3)) /
+       mean.sqrt();
+}
+
 inline GRTRACE_HD CarlsonPair carlson_rf_rj(double x, double y, double z, double p) {
   const double ps[1] = {p};
   double rj[1];
@@ -191,11 +263,18 @@ namespace detail {
 inline GRTRACE_HD bool pi_away_from_pole(double n, double s2) { return n < 1.0 || 1.0 - n * s2 > 0.25; }
 }  // namespace detail
 
+/// Pi(n; t | m) = s R_F + (n / 3) s^3 R_J from R_F(c^2, 1 - m s^2, 1) and R_J(.., 1 - n s^2) computed elsewhere
+/// (s = sin t, s2 = s^2; away from the pole: detail::pi_away_from_pole): what a caller that evaluates several
+/// integrals in one loop (carlson_rf_rj_lanes) combines them with.
+inline GRTRACE_HD double legendre_pi_of(double n, double s, double s2, double rf, double rj) {
+  return s * rf + n / 3.0 * s * s2 * rj;
+}
+
 inline GRTRACE_HD double legendre_pi_sc(double n, double s, double c, double m) {
   const double s2 = s * s;
   if (detail::pi_away_from_pole(n, s2)) {
     const CarlsonPair cp = carlson_rf_rj(c * c, 1.0 - m * s2, 1.0, 1.0 - n * s2);
-    return s * cp.rf + n / 3.0 * s * s2 * cp.rj;
+    return legendre_pi_of(n, s, s2, cp.rf, cp.rj);
   }
   // Near and beyond the pole: DLMF 19.7.9, Pi(n; t) = F(t) - Pi(m / n; t) + sqrt(cc) R_C((cc - 1)(cc - m),
   // (cc - n)(cc - m / n)), cc = 1 / sin^2 t, for 0 < |t| <= pi / 2 (odd in t).
@@ -211,6 +290,12 @@ inline GRTRACE_HD double legendre_pi_sc(double n, double s, double c, double m) 
 struct PiPair {
   double first, second;
 };
+/// The pair from R_F and the two R_J computed elsewhere (legendre_pi_of's pair).
+inline GRTRACE_HD PiPair legendre_pi_pair_of(double n1, double n2, double s, double s2, double rf, double rj1,
+                                             double rj2) {
+  return {legendre_pi_of(n1, s, s2, rf, rj1), legendre_pi_of(n2, s, s2, rf, rj2)};
+}
+
 inline GRTRACE_HD PiPair legendre_pi_pair_sc(double n1, double n2, double s, double c, double m) {
   const double s2 = s * s;
   if (!(detail::pi_away_from_pole(n1, s2) && detail::pi_away_from_pole(n2, s2)))
@@ -218,7 +303,7 @@ inline GRTRACE_HD PiPair legendre_pi_pair_sc(double n1, double n2, double s, dou
   const double ps[2] = {1.0 - n1 * s2, 1.0 - n2 * s2};
   double rj[2];
   const double rf = detail::carlson_rf_rj_n<2>(c * c, 1.0 - m * s2, 1.0, ps, rj);
-  return {s * rf + n1 / 3.0 * s * s2 * rj[0], s * rf + n2 / 3.0 * s * s2 * rj[1]};
+  return legendre_pi_pair_of(n1, n2, s, s2, rf, rj[0], rj[1]);
 }
 
 /// Legendre's Pi(n; phi | m) = int_0^phi dt / ((1 - n sin^2 t) sqrt(1 - m sin^2 t)) for any real phi, m < 1, n < 1
@@ -237,57 +322,92 @@ inline GRTRACE_HD double legendre_pi(double n, double phi, double m) {
   return legendre_pi(n, phi, m, half_turns(phi) != 0.0 ? complete_pi(n, m) : 0.0);
 }
 
-/// sn, cn, dn of u for the parameter m < 1 (negative included), and the amplitude am(u) (continuous in u:
-/// am(u + 2K) = am(u) + pi).
+/// sn, cn, dn of u for the parameter m < 1 (negative included), the amplitude am(u) (continuous in u: am(u + 2K) =
+/// am(u) + pi), and its half turns: am = turns pi + t with |t| <= pi / 2, sin t = (-1)^turns sn and cos t =
+/// (-1)^turns cn (what legendre_pi_turns takes in place of am).
 struct JacobiValues {
-  double sn, cn, dn, am;
+  double sn, cn, dn, am, turns;
 };
 
-/// The Jacobi elliptic functions by Gauss's transformation (the arithmetic-geometric mean of 1 and sqrt(1 - m),
-/// DLMF 22.7.1-22.7.5; R. Bulirsch, Numer. Math. 7 (1965) 78-90): one sine and cosine of a_N u, the mean's limit
-/// times u (sn vanishes where that is a multiple of pi, as K = pi / (2 a_N)), then back up the means with one
-/// division a level; am(u) = j pi + atan2 of sn and cn turned to the half-turn j's sign (NaN where jacobi<false>
-/// is called: a caller that needs sn, cn and dn alone spares the arctangent).
+/// The Jacobi functions of one parameter m < 1 by Gauss's transformation (the arithmetic-geometric mean of 1 and
+/// sqrt(1 - m), DLMF 22.7.1-22.7.5; R. Bulirsch, Numer. Math. 7 (1965) 78-90). The means depend on m alone, so
+/// they are computed once here: a caller that evaluates many arguments of one parameter (a ray's polar phase at its
+/// crossings, its end and infinity) keeps this object and pays, per argument, one sine and cosine and a division a
+/// level. K(m) comes with the means (K = pi / (2 M)).
+class JacobiParameter {
+ public:
+  /// m = 0: sn = sin, cn = cos, dn = 1, K = pi / 2.
+  JacobiParameter() = default;
+  GRTRACE_HD explicit JacobiParameter(double m) {
+    // The mean converges quadratically: a relative gap of 1e-9 leaves the next mean within 1e-19; 8 levels reach
+    // it from m = 1 - 1e-16, 6 from m = -1e4.
+    double kc = 1.0 - m, a = 1.0;
+    while (levels_ < kLevels) {
+      mean_[levels_] = a;
+      root_[levels_] = kc = std::sqrt(kc);
+      ++levels_;
+      limit_ = 0.5 * (a + kc);
+      if (std::abs(a - kc) <= 1e-9 * a) break;
+      kc *= a;
+      a = limit_;
+    }
+  }
+
+  /// K(m) = F(pi/2 | m) = pi / (2 M), M the means' limit (DLMF 19.8.5).
+  GRTRACE_HD double complete_f() const { return std::numbers::pi / (2.0 * limit_); }
+
+  /// sn, cn, dn of u: one sine and cosine of M u (sn vanishes where that is a multiple of pi, as K = pi / (2 M)),
+  /// then back up the means with one division a level; am(u) = turns pi + atan2 of sn and cn turned to the half
+  /// turn's sign (NaN where kAmplitude is false: a caller that needs sn, cn, dn and the half turns spares the
+  /// arctangent).
+  template <bool kAmplitude = true>
+  GRTRACE_HD JacobiValues operator()(double u) const {
+    double c = limit_;
+    const double phase = u * c;
+    double sn = std::sin(phase), cn = std::cos(phase), dn = 1.0;
+    if (sn != 0.0) {
+      // The ratio cn / sn of each level from the last one's (Bulirsch's recursion), then sn from it.
+      double ratio = cn / sn;
+      c *= ratio;
+      for (int i = levels_ - 1; i >= 0; --i) {
+        const double b = mean_[i];
+        ratio *= c;
+        c *= dn;
+        dn = (root_[i] + ratio) / (b + ratio);
+        ratio = c / b;
+      }
+      const double s = 1.0 / std::sqrt(c * c + 1.0);
+      sn = sn >= 0.0 ? s : -s;
+      cn = c * sn;
+    }
+    // am = j pi + t, |t| <= pi / 2: j counts the half-turns of the phase (am passes (j + 1/2) pi where u = (2 j + 1)
+    // K), and (sin t, cos t) = (-1)^j (sn, cn).
+    const double j = half_turns(phase);
+    if constexpr (!kAmplitude) return {sn, cn, dn, std::numeric_limits<double>::quiet_NaN(), j};
+    const double turn = std::fmod(j, 2.0) == 0.0 ? 1.0 : -1.0;
+    return {sn, cn, dn, j * std::numbers::pi + std::atan2(turn * sn, turn * cn), j};
+  }
+
+ private:
+  static constexpr int kLevels = 12;
+  double mean_[kLevels] = {}, root_[kLevels] = {}, limit_ = 1.0;
+  int levels_ = 0;
+};
+
+/// sn, cn, dn and am of u for the parameter m < 1 (JacobiParameter's, for one argument).
 template <bool kAmplitude = true>
 inline GRTRACE_HD JacobiValues jacobi(double u, double m) {
-  // The mean converges quadratically: a relative gap of 1e-9 leaves the next mean within 1e-19; 8 levels reach it
-  // from m = 1 - 1e-16, 6 from m = -1e4.
-  constexpr int kLevels = 12;
-  double mean[kLevels], root[kLevels];
-  double kc = 1.0 - m, a = 1.0, c = 1.0;
-  int levels = 0;
-  while (levels < kLevels) {
-    mean[levels] = a;
-    root[levels] = kc = std::sqrt(kc);
-    ++levels;
-    c = 0.5 * (a + kc);
-    if (std::abs(a - kc) <= 1e-9 * a) break;
-    kc *= a;
-    a = c;
-  }
-  const double phase = u * c;
-  double sn = std::sin(phase), cn = std::cos(phase), dn = 1.0;
-  if (sn != 0.0) {
-    // The ratio cn / sn of each level from the last one's (Bulirsch's recursion), then sn from it.
-    double ratio = cn / sn;
-    c *= ratio;
-    for (int i = levels - 1; i >= 0; --i) {
-      const double b = mean[i];
-      ratio *= c;
-      c *= dn;
-      dn = (root[i] + ratio) / (b + ratio);
-      ratio = c / b;
-    }
-    const double s = 1.0 / std::sqrt(c * c + 1.0);
-    sn = sn >= 0.0 ? s : -s;
-    cn = c * sn;
-  }
-  if constexpr (!kAmplitude) return {sn, cn, dn, std::numeric_limits<double>::quiet_NaN()};
-  // am = j pi + t, |t| <= pi / 2: j counts the half-turns of the phase (am passes (j + 1/2) pi where u = (2 j + 1)
-  // K), and (sin t, cos t) = (-1)^j (sn, cn).
-  const double j = half_turns(phase);
-  const double turn = std::fmod(j, 2.0) == 0.0 ? 1.0 : -1.0;
-  return {sn, cn, dn, j * std::numbers::pi + std::atan2(turn * sn, turn * cn)};
+  return JacobiParameter(m).template operator()<kAmplitude>(u);
+}
+
+/// Pi(n; am | m) for am = turns pi + t, |t| <= pi / 2, from the half turns and sin t, cos t (JacobiValues' turns
+/// and (-1)^turns (sn, cn)): what a caller holding the Jacobi functions calls instead of legendre_pi(n, am, m, ..),
+/// sparing the arctangent that makes am and the sine and cosine that take it back. `complete` as there.
+inline GRTRACE_HD double legendre_pi_turns_of(double turns, double pi_t, double complete) {
+  return turns == 0.0 ? pi_t : pi_t + 2.0 * turns * complete;
+}
+inline GRTRACE_HD double legendre_pi_turns(double n, double turns, double s, double c, double m, double complete) {
+  return legendre_pi_turns_of(turns, legendre_pi_sc(n, s, c, m), complete);
 }
 
 /// R1(alpha; u | m) = int_0^u dv / (1 + alpha cn(v | m)) for 0 <= m < 1 and any alpha with 1 + alpha cn != 0 on
@@ -297,8 +417,9 @@ inline GRTRACE_HD JacobiValues jacobi(double u, double m) {
 ///   int cn dv / (c0 (1 - n sn^2)) = int dw / (c0 + D w^2), D = m + (1 - m) alpha^2;
 /// so R1 = Pi(n; am u | m) / c0 - alpha * (arctan or log form of int dw / (c0 + D w^2)). For alpha^2 > 1, Pi is the
 /// principal value: its logarithm at cn = 1 / alpha (no pole of the integrand) cancels the second term's.
-inline GRTRACE_HD double jacobi_r1(double alpha, double u, double m) {
-  const JacobiValues j = jacobi(u, m);
+/// j: the Jacobi functions of u for m (JacobiValues; its amplitude is not read): what a caller that needs R1 of
+/// several alpha at one u (the two horizon roots) computes once.
+inline GRTRACE_HD double jacobi_r1(double alpha, const JacobiValues& j, double m) {
   const double c0 = 1.0 - alpha * alpha, d = m + (1.0 - m) * alpha * alpha, w = j.sn / j.dn;
   double second = 0.0;
   if (c0 > 0.0) {
@@ -307,7 +428,12 @@ inline GRTRACE_HD double jacobi_r1(double alpha, double u, double m) {
     const double sc = std::sqrt(-c0), sd = std::sqrt(d);
     second = std::log(std::abs((sd * w - sc) / (sd * w + sc))) / (2.0 * sc * sd);
   }
-  return (legendre_pi(alpha * alpha / (alpha * alpha - 1.0), j.am, m) / c0) - alpha * second;
+  const double n = alpha * alpha / (alpha * alpha - 1.0), turn = std::fmod(j.turns, 2.0) == 0.0 ? 1.0 : -1.0;
+  const double pi = legendre_pi_turns(n, j.turns, turn * j.sn, turn * j.cn, m, j.turns != 0.0 ? complete_pi(n, m) : 0.0);
+  return pi / c0 - alpha * second;
 }
+
+/// The same at u, whose Jacobi functions of m it computes.
+inline GRTRACE_HD double jacobi_r1(double alpha, double u, double m) { return jacobi_r1(alpha, jacobi<false>(u, m), m); }
 
 }  // namespace grtrace

@@ -119,9 +119,9 @@ class KerrNullGeodesic {
   /// The state at Mino time tau: (NaN, r, theta, phi, k) with k in y0's scale.
   GRTRACE_HD GeodesicState state_at(double tau) const {
     const double y = y_o_ + nu_ * sqrt_a_ * tau;
-    const JacobiValues j = jacobi(y, m_theta_);
-    const double polar[2] = {y, j.am};
-    return make_state(tau, j.sn, j.cn, j.dn, polar);
+    const JacobiValues j = polar_jacobi_.operator()<false>(y);
+    const PolarPhase polar = polar_phase(y, j);
+    return make_state(tau, j.sn, j.cn, j.dn, &polar);
   }
 
   /// The state at the n-th equatorial crossing (theta = pi / 2 exactly; no Jacobi function needed there).
@@ -143,7 +143,8 @@ class KerrNullGeodesic {
   GRTRACE_HD double crossing_phi(int n, double r) const {
     const double tau = crossing_mino_time(n);
     const int j = n + j0_;
-    return phi_at(tau, nu_ * 2.0 * j * k_theta_, nu_ * j * std::numbers::pi,
+    // am Y = nu j pi exactly: j half turns and t = 0.
+    return phi_at(tau, PolarPhase{nu_ * 2.0 * j * k_theta_, nu_ * j, 0.0, 1.0},
                   radial_amplitude(r, x_of_t(t_o_ - s_r_ * tau)));
   }
   GRTRACE_HD double crossing_phi(int n) const { return crossing_phi(n, radius_at(crossing_mino_time(n))); }
@@ -151,28 +152,61 @@ class KerrNullGeodesic {
   /// The direction at infinity (theta, phi; phi continuous) of an escaping ray.
   GRTRACE_HD void direction_at_infinity(double& theta, double& phi) const {
     const double y = y_o_ + nu_ * sqrt_a_ * tau_infinity_;
-    const JacobiValues j = jacobi(y, m_theta_);
+    const JacobiValues j = polar_jacobi_.operator()<false>(y);
     theta = std::acos(std::clamp(sqrt_u_plus_ * j.sn, -1.0, 1.0));
-    // At infinity X = -+F(asin sqrt(r31 / r41)): its amplitude is that asin.
-    const double x = x_of_t(t_o_ - s_r_ * tau_infinity_);
-    Amplitude am_r;
-    if (case_ != KerrRadialCase::complex_pair) {
-      const double s2 = (r3_ - r1_) / (r4_ - r1_);
-      am_r = {(x < 0.0 ? -1.0 : 1.0) * std::sqrt(s2), std::sqrt(std::max(0.0, 1.0 - s2))};
+    const PolarPhase phase = polar_phase(y, j);
+    if (case_ != KerrRadialCase::complex_pair && a_ != 0.0 && !through_axis_) {
+      // The three integrals phi needs here, H(F_inf), the leg's change D (radial_phi_to_infinity) and the polar Pi at
+      // infinity, are unrelated: one duplication loop runs them side by side (carlson_rf_rj_lanes), where one after
+      // another each waited on its own chain of square roots (a third less time for the three).
+      const LegToInfinity leg = leg_to_infinity();
+      const double s2 = leg.r31 / leg.r41, s = std::sqrt(s2), c2 = leg.r43 / leg.r41;  // am_inf's sine and cosine
+      const double n_plus = leg.q * (r3_ - r_plus_) / leg.r4p, n_minus = leg.q * (r3_ - r_minus_) / leg.r4m;
+      const double polar_s2 = phase.sin * phase.sin;
+      if (detail::pi_away_from_pole(n_plus, s2) && detail::pi_away_from_pole(n_minus, s2) &&
+          detail::pi_away_from_pole(u_plus_, polar_s2)) {
+        using A4 = Eigen::Array4d;
+        const A4 x(c2, leg.bx + leg.mu, phase.cos * phase.cos, 1.0);
+        const A4 yy(1.0 - k_r_ * s2, leg.by + leg.mu, 1.0 - m_theta_ * polar_s2, 1.0);
+        const A4 z(1.0, leg.bz + leg.mu, 1.0, 1.0);
+        const double p_polar = 1.0 - u_plus_ * polar_s2;
+        const A4 p[2] = {A4(1.0 - n_plus * s2, leg.p_plus + leg.mu, p_polar, 1.0),
+                         A4(1.0 - n_minus * s2, leg.p_minus + leg.mu, p_polar, 1.0)};
+        A4 rf, rj[2];
+        carlson_rf_rj_lanes<2>(x, yy, z, p, rf, rj);
+        const double h_inf =
+            radial_h(f_inf_, legendre_pi_pair_of(n_plus, n_minus, s, s2, rf[0], rj[0][0], rj[1][0]));
+        const double d = leg_change(leg, rf[1], rj[0][1], rj[1][1]);
+        const double pi_polar = legendre_pi_of(u_plus_, phase.sin, polar_s2, rf[2], rj[0][2]);
+        phi = phi_from(lambda_ * polar_phi_integral_of(phase.turns, pi_polar), s_r_ > 0.0 ? -d : 2.0 * h_inf - d);
+        return;
+      }
     }
-    phi = phi_at(tau_infinity_, y, j.am, am_r);
+    phi = phi_of(phase, radial_phi_to_infinity());
   }
 
-  /// theta at Mino time tau (one Jacobi function: what the sky sphere's redshift needs of the state there).
-  GRTRACE_HD double theta_at(double tau) const {
-    return std::acos(std::clamp(sqrt_u_plus_ * jacobi<false>(y_o_ + nu_ * sqrt_a_ * tau, m_theta_).sn, -1.0, 1.0));
+  /// cos(theta) at Mino time tau (one Jacobi function: what the sky sphere's redshift needs of the state there).
+  GRTRACE_HD double cos_theta_at(double tau) const {
+    return std::clamp(sqrt_u_plus_ * polar_jacobi_.operator()<false>(y_o_ + nu_ * sqrt_a_ * tau).sn, -1.0, 1.0);
   }
+  /// theta at Mino time tau.
+  GRTRACE_HD double theta_at(double tau) const { return std::acos(cos_theta_at(tau)); }
 
  private:
   /// An amplitude in [-pi/2, pi/2] by its sine and cosine (cos >= 0).
   struct Amplitude {
     double sin = 0.0, cos = 1.0;
   };
+
+  /// The polar phase Y and its amplitude am Y = turns pi + t by the half turns and sin t, cos t (|t| <= pi / 2):
+  /// what phi's polar Pi takes, straight from the Jacobi functions (no arctangent, no sine and cosine of am).
+  struct PolarPhase {
+    double y, turns, sin, cos;
+  };
+  GRTRACE_HD static PolarPhase polar_phase(double y, const JacobiValues& j) {
+    const double turn = std::fmod(j.turns, 2.0) == 0.0 ? 1.0 : -1.0;
+    return {y, j.turns, turn * j.sn, turn * j.cn};
+  }
 
   // ---- polar motion ----------------------------------------------------------------------------------------
   GRTRACE_HD bool setup_polar(double k_theta) {
@@ -187,7 +221,8 @@ class KerrNullGeodesic {
     sqrt_u_plus_ = std::sqrt(u_plus_);
     m_theta_ = -a2 * eta_ / (big_a * big_a);
     sqrt_a_ = std::sqrt(big_a);
-    k_theta_ = complete_f(m_theta_);
+    polar_jacobi_ = JacobiParameter(m_theta_);
+    k_theta_ = polar_jacobi_.complete_f();
     // The start's phase: sn = cos(theta_o) / sqrt(u+), and cn from the start's own polar speed, (d cos / dtau)^2 =
     // (u+ - cos^2)(a^2 cos^2 + A): near the ray's polar turning point u+ - cos^2 from eta and lambda is a difference
     // of nearly equal numbers (a camera looking along a parallel), and asin(sn) would magnify its rounding there.
@@ -196,10 +231,20 @@ class KerrNullGeodesic {
     const double x = std::clamp(c / sqrt_u_plus_, -1.0, 1.0);
     const double cn = through_axis_ ? std::sqrt(std::max(0.0, 1.0 - x * x))
                                     : std::sqrt(dcos * dcos / ((a2 * c * c + big_a) * u_plus_));
-    const double norm = std::hypot(x, cn);
+    const double norm = std::sqrt(x * x + cn * cn);  // both of order one: hypot's guard against overflow not needed
     sin_o_ = norm > 0.0 ? x / norm : 0.0;
     cos_o_ = norm > 0.0 ? cn / norm : 1.0;
-    y_o_ = legendre_f_sc(sin_o_, cos_o_, m_theta_, k_theta_);
+    // F(am Y_o) = s R_F(c^2, 1 - m s^2, 1) (cos_o_ >= 0), and phi's polar start Pi(u+; am Y_o) = s R_F + (u+ / 3)
+    // s^3 R_J with the same three arguments: one duplication for both.
+    const double s2 = sin_o_ * sin_o_;
+    if (!through_axis_ && detail::pi_away_from_pole(u_plus_, s2)) {
+      const CarlsonPair start = carlson_rf_rj(cos_o_ * cos_o_, 1.0 - m_theta_ * s2, 1.0, 1.0 - u_plus_ * s2);
+      y_o_ = sin_o_ * start.rf;
+      polar_start_ = y_o_ + u_plus_ / 3.0 * sin_o_ * s2 * start.rj;
+    } else {
+      y_o_ = legendre_f_sc(sin_o_, cos_o_, m_theta_, k_theta_);
+      if (!through_axis_) polar_start_ = legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_);
+    }
     // d cos(theta)/dtau = -sin(theta) dtheta/dtau = sqrt(u+ A) cn dn nu: nu = -sign(k^theta); at a turning point
     // (k^theta = 0) the ray heads for the equator.
     nu_ = k_theta != 0.0 ? (k_theta > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
@@ -210,10 +255,13 @@ class KerrNullGeodesic {
 
   // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A); Pi(u+; am Y_o) is the start's
   // (phi_at), the complete Pi(u+) computed once a ray, where a crossing first needs it.
-  GRTRACE_HD double polar_phi_integral(double am) const {
-    const bool wraps = half_turns(am) != 0.0;
-    if (wraps && std::isnan(pi_complete_)) pi_complete_ = complete_pi(u_plus_, m_theta_);
-    return nu_ * (legendre_pi(u_plus_, am, m_theta_, wraps ? pi_complete_ : 0.0) - polar_start_) / sqrt_a_;
+  GRTRACE_HD double polar_phi_integral(const PolarPhase& am) const {
+    return polar_phi_integral_of(am.turns, legendre_pi_sc(u_plus_, am.sin, am.cos, m_theta_));
+  }
+  // The same from Pi(u+; t) of am = turns pi + t, |t| <= pi / 2.
+  GRTRACE_HD double polar_phi_integral_of(double turns, double pi_t) const {
+    if (turns != 0.0 && std::isnan(pi_complete_)) pi_complete_ = complete_pi(u_plus_, m_theta_);
+    return nu_ * (legendre_pi_turns_of(turns, pi_t, pi_complete_) - polar_start_) / sqrt_a_;
   }
 
   // Passes by the axis (sn = +-1: Y = (2 j + 1) K) between Y_o and Y, for a ray through it: each adds pi to phi.
@@ -267,7 +315,10 @@ class KerrNullGeodesic {
       const double r21 = r2_ - r1_;
       k_r_ = ((ca3_ + cb3_) * (ca3_ + cb3_) - r21 * r21) / (4.0 * ca3_ * cb3_);
       g_r_ = 1.0 / std::sqrt(ca3_ * cb3_);
-      k_complete_r_ = complete_f(k_r_);
+      if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
+      radial_jacobi_ = JacobiParameter(k_r_);
+      radial_jacobi_ready_ = true;
+      k_complete_r_ = radial_jacobi_.complete_f();
       f_inf_ = legendre_f_sc(2.0 * std::sqrt(ca3_ * cb3_) / (ca3_ + cb3_), (ca3_ - cb3_) / (ca3_ + cb3_), k_r_,
                              k_complete_r_);
       if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
@@ -324,11 +375,19 @@ class KerrNullGeodesic {
     return 2.0 * carlson_rf(u12 * u12, u13 * u13, u14 * u14);
   }
 
+  GRTRACE_HD const JacobiParameter& radial_jacobi() const {
+    if (!radial_jacobi_ready_) {
+      radial_jacobi_ = JacobiParameter(k_r_);
+      radial_jacobi_ready_ = true;
+    }
+    return radial_jacobi_;
+  }
+
   GRTRACE_HD double x_of_t(double t) const { return t / g_r_ - f_inf_; }
 
   GRTRACE_HD double radius_at_t(double t) const {
     const double x = x_of_t(t);
-    const JacobiValues j = jacobi<false>(x, k_r_);
+    const JacobiValues j = radial_jacobi().operator()<false>(x);
     return radius_at_x(j.sn, j.cn);
   }
 
@@ -345,23 +404,29 @@ class KerrNullGeodesic {
   // am: the amplitude of X for four real roots (|X| < K there: am = asin(sn X), known from r at the ends).
   GRTRACE_HD double radial_phi_primitive(double x, Amplitude am) const {
     if (a_ == 0.0) return 0.0;
-    double h = 0.0;
     if (case_ == KerrRadialCase::complex_pair) {
+      double h = 0.0;
       const double b0 = cb3_ - ca3_, b1 = cb3_ + ca3_;
       const double a0 = cb3_ * r2_ - ca3_ * r1_, a1 = cb3_ * r2_ + ca3_ * r1_;
+      const JacobiValues j = radial_jacobi().operator()<false>(x);  // one for both roots
       for (const auto& [c, rh] : {Pair{c_plus_, r_plus_}, Pair{c_minus_, r_minus_}}) {
         const double g0 = a0 - rh * b0, g1 = a1 - rh * b1;
-        h += c * (b1 / g1 * x + (b0 * g1 - b1 * g0) / (g0 * g1) * jacobi_r1(g1 / g0, x, k_r_));
+        h += c * (b1 / g1 * x + (b0 * g1 - b1 * g0) / (g0 * g1) * jacobi_r1(g1 / g0, j, k_r_));
       }
       return h;
     }
-    const double r31 = r3_ - r1_, r41 = r4_ - r1_, q = r41 / r31;
+    const double q = (r4_ - r1_) / (r3_ - r1_);
+    const double n_plus = q * (r3_ - r_plus_) / (r4_ - r_plus_), n_minus = q * (r3_ - r_minus_) / (r4_ - r_minus_);
+    return radial_h(x, legendre_pi_pair_sc(n_plus, n_minus, am.sin, am.cos, k_r_));
+  }
+
+  // H(X) for four real roots from Pi(n_+; am X) and Pi(n_-; am X).
+  GRTRACE_HD double radial_h(double x, const PiPair& pi) const {
+    const double q = (r4_ - r1_) / (r3_ - r1_);
     const double r4p = r4_ - r_plus_, r4m = r4_ - r_minus_;
     const double n_plus = q * (r3_ - r_plus_) / r4p, n_minus = q * (r3_ - r_minus_) / r4m;
-    const PiPair pi = legendre_pi_pair_sc(n_plus, n_minus, am.sin, am.cos, k_r_);
-    h += c_plus_ / r4p * (q / n_plus * x + (1.0 - q / n_plus) * pi.first);
-    h += c_minus_ / r4m * (q / n_minus * x + (1.0 - q / n_minus) * pi.second);
-    return h;
+    return c_plus_ / r4p * (q / n_plus * x + (1.0 - q / n_plus) * pi.first) +
+           c_minus_ / r4m * (q / n_minus * x + (1.0 - q / n_minus) * pi.second);
   }
 
   struct Pair {
@@ -379,25 +444,107 @@ class KerrNullGeodesic {
 
   // phi at Mino time tau, the polar phase being Y there with amplitude am, the radial phase X with amplitude am_r
   // (read only for four real roots).
-  GRTRACE_HD double phi_at(double tau, double y, double am, Amplitude am_r) const {
-    if (!phi_start_ready_) {
-      // The start's terms, once a ray and only for one whose phi is asked for (a disk drawn by its light is not).
-      const double x_o = x_of_t(t_o_);
-      radial_start_ = radial_phi_primitive(x_o, radial_amplitude(r_o_, x_o));
-      if (!through_axis_) polar_start_ = legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_);
-      phi_start_ready_ = true;
-    }
-    const double radial = -s_r_ * g_r_ * (radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau), am_r) - radial_start_);
-    const double polar =
-        through_axis_ ? std::numbers::pi * axis_passes(y) * (nu_ > 0.0 ? 1.0 : -1.0) : lambda_ * polar_phi_integral(am);
+  GRTRACE_HD double phi_at(double tau, const PolarPhase& phase, Amplitude am_r) const {
+    return phi_of(phase, radial_phi_primitive(x_of_t(t_o_ - s_r_ * tau), am_r) - radial_start());
+  }
+
+  // phi where the polar phase is `phase` and the radial primitive has moved by h_change = H(X) - H(X_o) since the
+  // camera.
+  GRTRACE_HD double phi_of(const PolarPhase& phase, double h_change) const {
+    return phi_from(through_axis_ ? std::numbers::pi * axis_passes(phase.y) * (nu_ > 0.0 ? 1.0 : -1.0)
+                                  : lambda_ * polar_phi_integral(phase),
+                    h_change);
+  }
+  // phi from its polar term (lambda int dtau / sin^2, or the axis passes' pi) and the radial primitive's change.
+  GRTRACE_HD double phi_from(double polar, double h_change) const {
+    const double radial = -s_r_ * g_r_ * h_change;
     // d phi / dtau = sign(E) (a (2 M r - a lambda) / Delta + lambda / sin^2 theta) (k = dx / d(affine), E = p_t).
     return phi_o_ + (energy_ > 0.0 ? 1.0 : -1.0) * (radial + polar);
   }
 
+  // H(X_o), the radial primitive at the camera: once a ray, and only for one whose phi at a finite radius is asked
+  // for (a disk drawn by its light asks for none; the direction at infinity needs it only through
+  // radial_phi_to_infinity's difference).
+  GRTRACE_HD double radial_start() const {
+    if (!phi_start_ready_) {
+      const double x_o = x_of_t(t_o_);
+      radial_start_ = radial_phi_primitive(x_o, radial_amplitude(r_o_, x_o));
+      phi_start_ready_ = true;
+    }
+    return radial_start_;
+  }
+
+  // H(X_inf) - H(X_o): the radial primitive's change from the camera to infinity (X_inf = -+F_inf, whose amplitude
+  // is asin sqrt(r31 / r41)).
+  // Four real roots: X_o = -F(am_o) < 0 (T is measured on the ingoing leg), so with D = H(F_inf) - H(F(am_o)) the
+  // change is -D for a ray that starts outwards (X_inf = -F_inf) and 2 H(F_inf) - D for one that turns at r4 (X_inf =
+  // +F_inf; H is odd). D is the integral between the camera and infinity on one leg, which Carlson's addition
+  // theorem (DLMF 19.26.9-19.26.12, tested here against the two primitives) gives as one Pi of a small amplitude:
+  // with the amplitude's csc^2 written c, Pi(n; am) = R_F(c - 1, c - m, c) + (n / 3) R_J(.., c - n) (DLMF 19.25.5,
+  // 19.25.14); B = (c_inf - 1, c_inf - m, c_inf), lambda = c_o - c_inf, and mu the larger root of (lambda mu - e2)^2
+  // = 4 e3 (lambda + mu + e1) (e_k B's elementary symmetric functions):
+  //   F_inf - F(am_o) = R_F(B + mu),
+  //   Pi(n; am_inf) - Pi(n; am_o) = R_F(B + mu) + (n / 3) R_J(B + mu, p + mu) + n R_C(gamma - delta, gamma),
+  //   p = c_inf - n, delta = (p - B_x)(p - B_y)(p - B_z), gamma = p (p + lambda)(p + mu).
+  // mu grows as the camera recedes (~ 4 e3 / lambda^2, lambda ~ 1 / r_o): B + mu's arguments agree to ~1 / mu and
+  // the duplication that took three or four levels takes one or none.
+  GRTRACE_HD double radial_phi_to_infinity() const {
+    const double x_inf = x_of_t(t_o_ - s_r_ * tau_infinity_);
+    if (case_ == KerrRadialCase::complex_pair || a_ == 0.0) {
+      return radial_phi_primitive(x_inf, Amplitude{}) - radial_start();
+    }
+    const LegToInfinity leg = leg_to_infinity();
+    const double ps[2] = {leg.p_plus + leg.mu, leg.p_minus + leg.mu};
+    double rj[2];
+    const double rf = detail::carlson_rf_rj_n<2>(leg.bx + leg.mu, leg.by + leg.mu, leg.bz + leg.mu, ps, rj);
+    const double d = leg_change(leg, rf, rj[0], rj[1]);
+    const double h_inf =
+        radial_phi_primitive(f_inf_, Amplitude{std::sqrt(leg.r31 / leg.r41), std::sqrt(leg.r43 / leg.r41)});
+    return s_r_ > 0.0 ? -d : 2.0 * h_inf - d;
+  }
+
+  // The addition theorem's arguments for D (above); every one a product or quotient of the roots' positive
+  // differences: no cancellation.
+  struct LegToInfinity {
+    double r31, r41, r43, q, bx, by, bz, lambda, mu, r4p, r4m, p_plus, p_minus;
+  };
+  GRTRACE_HD LegToInfinity leg_to_infinity() const {
+    LegToInfinity g;
+    g.r31 = r3_ - r1_;
+    g.r41 = r4_ - r1_;
+    g.r43 = r4_ - r3_;
+    const double r42 = r4_ - r2_;
+    g.q = g.r41 / g.r31;
+    g.bx = g.r43 / g.r31;  // c_inf - 1
+    g.by = g.r41 * g.r43 / (g.r31 * r42);  // c_inf - m
+    g.bz = g.q;  // c_inf
+    g.lambda = g.q * g.r43 / (r_o_ - r4_);  // c_o - c_inf
+    const double e2 = g.bx * g.by + g.by * g.bz + g.bz * g.bx, e3 = g.bx * g.by * g.bz;
+    // The larger root, written without a difference: (lambda mu - e2)^2 - 4 e3 (lambda + mu + e1) = 0 has
+    // discriminant 4 e3 (lambda + B_x)(lambda + B_y)(lambda + B_z).
+    g.mu = (g.lambda * e2 + 2.0 * e3 + 2.0 * std::sqrt(e3 * (g.lambda + g.bx) * (g.lambda + g.by) * (g.lambda + g.bz))) /
+           (g.lambda * g.lambda);
+    g.r4p = r4_ - r_plus_;
+    g.r4m = r4_ - r_minus_;
+    g.p_plus = g.q * g.r43 / g.r4p;  // c_inf - n, n = q (r3 - r_+-) / (r4 - r_+-)
+    g.p_minus = g.q * g.r43 / g.r4m;
+    return g;
+  }
+
+  // D from R_F(B + mu) and the two R_J(B + mu, p_+- + mu). Each root's term of H is c / (r4 - r_h) (q / n X + (1 -
+  // q / n) Pi(n)); its change over the leg, with n - q = -p, is c / (r4 - r_h) (R_F - p (R_J / 3 + R_C)).
+  GRTRACE_HD double leg_change(const LegToInfinity& g, double rf, double rj_plus, double rj_minus) const {
+    const auto term = [&](double p, double rj_p) {
+      const double delta = (p - g.bx) * (p - g.by) * (p - g.bz), gamma = p * (p + g.lambda) * (p + g.mu);
+      return rf - p * (rj_p / 3.0 + carlson_rc(gamma - delta, gamma));
+    };
+    return c_plus_ / g.r4p * term(g.p_plus, rj_plus) + c_minus_ / g.r4m * term(g.p_minus, rj_minus);
+  }
+
   // The state at Mino time tau from the polar phase's sn, cn, dn; polar = {Y, am Y} for phi, or null for phi NaN.
-  GRTRACE_HD GeodesicState make_state(double tau, double sn, double cn, double dn, const double* polar) const {
+  GRTRACE_HD GeodesicState make_state(double tau, double sn, double cn, double dn, const PolarPhase* polar) const {
     const double t = t_o_ - s_r_ * tau, x = x_of_t(t);
-    const JacobiValues jr = jacobi<false>(x, k_r_);
+    const JacobiValues jr = radial_jacobi().operator()<false>(x);
     const double r = radius_at_x(jr.sn, jr.cn);
     const double cos_t = std::clamp(sqrt_u_plus_ * sn, -1.0, 1.0), theta = std::acos(cos_t);
     const double sin2 = 1.0 - cos_t * cos_t, sin_t = std::sqrt(sin2);
@@ -412,7 +559,7 @@ class KerrNullGeodesic {
     out[0] = nan;
     out[1] = r;
     out[2] = theta;
-    out[3] = polar ? phi_at(tau, polar[0], polar[1], radial_amplitude(r, x)) : nan;
+    out[3] = polar ? phi_at(tau, *polar, radial_amplitude(r, x)) : nan;
     out[4] = e * ((r * r + a2) * w / delta - a_ * (a_ * sin2 - lambda_)) / sigma;
     out[5] = radial_sign * abs_e * std::sqrt(rr) / sigma;
     out[6] = -dcos / sin_t * abs_e / sigma;
@@ -426,6 +573,7 @@ class KerrNullGeodesic {
   KerrRadialCase case_ = KerrRadialCase::unsupported;
   // polar
   double u_plus_ = 0.0, sqrt_u_plus_ = 0.0, m_theta_ = 0.0, sqrt_a_ = 1.0, k_theta_ = 1.0;
+  JacobiParameter polar_jacobi_;  ///< the means of m_theta, computed once for every Jacobi function of the polar phase
   double sin_o_ = 0.0, cos_o_ = 1.0, y_o_ = 0.0, nu_ = 1.0, y_sign_ = 0.0;
   // phi's terms of the start (Pi(u+; am Y_o | m) and the radial primitive at the camera) and the complete Pi(u+ | m):
   // computed where a ray's phi is first asked for.
@@ -436,6 +584,10 @@ class KerrNullGeodesic {
   double ca_ = 0.0, cb_ = 0.0;  ///< R's r^2 and r coefficients
   double r1_ = 0.0, r2_ = 0.0, r3_ = 0.0, r4_ = 0.0, ca3_ = 0.0, cb3_ = 0.0;
   double r_plus_ = 0.0, r_minus_ = 0.0, k_r_ = 0.0, k_complete_r_ = 0.0, g_r_ = 1.0, f_inf_ = 0.0, j_r_ = 0.0;
+  // The means of k_r, for every Jacobi function of the radial phase: computed where one is first needed (a ray
+  // that escapes without crossing the plane needs none).
+  mutable JacobiParameter radial_jacobi_;
+  mutable bool radial_jacobi_ready_ = false;
   double t_o_ = 0.0;
   double tau_end_ = nan, tau_infinity_ = nan, c_plus_ = 0.0, c_minus_ = 0.0;
 };

@@ -52,11 +52,14 @@ struct KerrBLComponents {
   double inv_sigma, inv_delta, inv_tphi_det;  ///< 1/Sigma, 1/Delta, 1/(g_tt g_phph - g_tph^2) = -1/(Delta sin^2)
   double g_tt, g_tph, g_phph, g_rr, g_thth;
 
-  GRTRACE_HD KerrBLComponents(double mass, double a, double r_in, double theta) : r(r_in) {
-    // The inline sincos (core/sin_cos.hpp), not libm's: the same bits on a GPU as on the CPU (the device's sin and
-    // cos differ from glibc's in the last bit), so a ray's constants of motion, and the reduced Kerr tracer's path
-    // that they steer, are the CPU's.
-    const SinCos sin_cos_theta = polar_sin_cos(theta);
+  // The inline sincos (core/sin_cos.hpp), not libm's: the same bits on a GPU as on the CPU (the device's sin and
+  // cos differ from glibc's in the last bit), so a ray's constants of motion, and the reduced Kerr tracer's path
+  // that they steer, are the CPU's.
+  GRTRACE_HD KerrBLComponents(double mass, double a, double r_in, double theta)
+      : KerrBLComponents(mass, a, r_in, polar_sin_cos(theta)) {}
+
+  /// From theta's sine and cosine, where a caller has them without theta (a closed-form ray's cos theta).
+  GRTRACE_HD KerrBLComponents(double mass, double a, double r_in, SinCos sin_cos_theta) : r(r_in) {
     const double m = mass, s = sin_cos_theta.sin, c = sin_cos_theta.cos;
     sin_theta = s;
     cos_theta = c;

@@ -126,9 +126,12 @@ class KerrClosedFormTracer {
     ray.direction_at_infinity(theta, phi);
     out.where = SkyDirection{theta, azimuth_in_range(phi)};
     out.radius = escape_radius_;
-    const double theta_end = ray.theta_at(end);
-    out.order += crossed_beyond_sphere(0.5 * std::numbers::pi - theta_end, out.where);  // up to where it is seen
-    const double g_tt = metric_.components(Vec4(0.0, escape_radius_, theta_end, 0.0)).g_tt;
+    // cos(theta) there is the sine of the latitude: crossed_beyond_sphere reads its sign and whether it is beyond
+    // kOnEquatorialPlane (1e-9, where the two agree to 1e-27), and g_tt reads it as it is: no acos, no sincos.
+    const double cos_end = ray.cos_theta_at(end);
+    out.order += crossed_beyond_sphere(cos_end, out.where);  // up to where it is seen
+    const SinCos end_angle{std::sqrt((1.0 - cos_end) * (1.0 + cos_end)), cos_end};
+    const double g_tt = KerrBLComponents(metric_.mass, metric_.spin, escape_radius_, end_angle).g_tt;
     out.redshift = -std::sqrt(g_tt) / ray.energy();
     return out;
   }

@@ -69,12 +69,13 @@ class KerrNullGeodesic {
     r_o_ = y0[1];
     theta_o_ = y0[2];
     phi_o_ = y0[3];
-    const double sr = y0[5], st = y0[6];
+    const double sr = y0[5];
+    k_theta_o_ = y0[6];
     if (!(eta_ > 0.0) || !(energy_ != 0.0) || sr == 0.0 || !(r_o_ < r_escape_) || !(r_o_ > r_guard_) ||
         !(std::sin(theta_o_) > 1e-6))
       return;
     s_r_ = sr > 0.0 ? 1.0 : -1.0;
-    if (!setup_polar(st) || !setup_radial()) return;
+    if (!setup_polar() || !setup_radial() || !setup_integrals()) return;
     supported_ = true;
   }
 
@@ -209,7 +210,8 @@ class KerrNullGeodesic {
   }
 
   // ---- polar motion ----------------------------------------------------------------------------------------
-  GRTRACE_HD bool setup_polar(double k_theta) {
+  // The polar motion's constants and the start's phase (sin_o_, cos_o_), from the start's polar speed k_theta.
+  GRTRACE_HD bool setup_polar() {
     const double a2 = a_ * a_, l2 = lambda_ * lambda_;
     // u+- = Delta_theta +- sqrt(Delta_theta^2 + eta / a^2), Delta_theta = (1 - (eta + lambda^2) / a^2) / 2, written
     // without dividing by a: A = -a^2 u- = (s + sqrt(s^2 + 4 a^2 eta)) / 2, s = eta + lambda^2 - a^2; u+ = eta / A.
@@ -227,30 +229,59 @@ class KerrNullGeodesic {
     // (u+ - cos^2)(a^2 cos^2 + A): near the ray's polar turning point u+ - cos^2 from eta and lambda is a difference
     // of nearly equal numbers (a camera looking along a parallel), and asin(sn) would magnify its rounding there.
     const double c = std::cos(theta_o_), s_o = std::sin(theta_o_), sigma = r_o_ * r_o_ + a2 * c * c;
-    const double dcos = s_o * sigma * k_theta / std::abs(energy_);
+    const double dcos = s_o * sigma * k_theta_o_ / std::abs(energy_);
     const double x = std::clamp(c / sqrt_u_plus_, -1.0, 1.0);
     const double cn = through_axis_ ? std::sqrt(std::max(0.0, 1.0 - x * x))
                                     : std::sqrt(dcos * dcos / ((a2 * c * c + big_a) * u_plus_));
     const double norm = std::sqrt(x * x + cn * cn);  // both of order one: hypot's guard against overflow not needed
     sin_o_ = norm > 0.0 ? x / norm : 0.0;
     cos_o_ = norm > 0.0 ? cn / norm : 1.0;
-    // F(am Y_o) = s R_F(c^2, 1 - m s^2, 1) (cos_o_ >= 0), and phi's polar start Pi(u+; am Y_o) = s R_F + (u+ / 3)
-    // s^3 R_J with the same three arguments: one duplication for both.
+    return std::isfinite(k_theta_);
+  }
+
+  // The ray's elliptic integrals that the setup needs, in one duplication loop of four lanes
+  // (carlson_rf_rj_lanes): the start's polar phase F(am Y_o) = s R_F(c^2, 1 - m s^2, 1) (cos_o_ >= 0) with phi's
+  // polar start Pi(u+; am Y_o) = s R_F + (u+ / 3) s^3 R_J of the same three arguments; the radial phase's F_inf; the
+  // Mino times from infinity to the camera and to the end (the sky sphere, or the horizon guard for a ray that falls
+  // in). Four unrelated chains of square roots, each of which waited on the last, overlap. Then the ends.
+  GRTRACE_HD bool setup_integrals() {
+    using A4 = Eigen::Array4d;
     const double s2 = sin_o_ * sin_o_;
-    if (!through_axis_ && detail::pi_away_from_pole(u_plus_, s2)) {
-      const CarlsonPair start = carlson_rf_rj(cos_o_ * cos_o_, 1.0 - m_theta_ * s2, 1.0, 1.0 - u_plus_ * s2);
-      y_o_ = sin_o_ * start.rf;
-      polar_start_ = y_o_ + u_plus_ / 3.0 * sin_o_ * s2 * start.rj;
-    } else {
-      y_o_ = legendre_f_sc(sin_o_, cos_o_, m_theta_, k_theta_);
-      if (!through_axis_) polar_start_ = legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_);
-    }
+    const bool polar_pi = !through_axis_ && detail::pi_away_from_pole(u_plus_, s2);
+    escapes_ = s_r_ > 0.0 || case_ == KerrRadialCase::turning;
+    const RadialFArgs f_inf = f_inf_args(), t_o = t_of_radius_args(r_o_),
+                      t_end = t_of_radius_args(escapes_ ? r_escape_ : r_guard_);
+    const A4 x(cos_o_ * cos_o_, f_inf.x, t_o.x, t_end.x), y(1.0 - m_theta_ * s2, f_inf.y, t_o.y, t_end.y),
+        z(1.0, f_inf.z, t_o.z, t_end.z);
+    // The R_F lanes' p is their z (an R_J not read, which meets its rule with theirs).
+    const A4 p[1] = {A4(polar_pi ? 1.0 - u_plus_ * s2 : 1.0, f_inf.z, t_o.z, t_end.z)};
+    A4 rf, rj[1];
+    carlson_rf_rj_lanes<1>(x, y, z, p, rf, rj);
+    y_o_ = sin_o_ * rf[0];
+    if (polar_pi) polar_start_ = legendre_pi_of(u_plus_, sin_o_, s2, rf[0], rj[0][0]);
+    else if (!through_axis_) polar_start_ = legendre_pi_sc(u_plus_, sin_o_, cos_o_, m_theta_);
     // d cos(theta)/dtau = -sin(theta) dtheta/dtau = sqrt(u+ A) cn dn nu: nu = -sign(k^theta); at a turning point
     // (k^theta = 0) the ray heads for the equator.
-    nu_ = k_theta != 0.0 ? (k_theta > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
+    nu_ = k_theta_o_ != 0.0 ? (k_theta_o_ > 0.0 ? -1.0 : 1.0) : (y_o_ > 0.0 ? -1.0 : 1.0);
     y_sign_ = nu_ * y_o_;
     j0_ = static_cast<int>(std::floor(y_sign_ / (2.0 * k_theta_))) + 1;
-    return std::isfinite(y_o_) && std::isfinite(k_theta_);
+    f_inf_ = legendre_f_of(f_inf, rf[1]);
+    j_r_ = g_r_ * f_inf_;
+    t_o_ = t_of_radius_from(t_o, rf[2]);
+    const double t_end_radius = t_of_radius_from(t_end, rf[3]);
+    // The end: an inward ray turns at r4 (T = J) and leaves through the sky sphere at T = 2 J - T(R); without a
+    // turning point it reaches the guard. An outward ray leaves at T = T(R).
+    if (s_r_ > 0.0) {
+      tau_end_ = t_o_ - t_end_radius;
+      tau_infinity_ = t_o_;
+    } else if (case_ == KerrRadialCase::turning) {
+      tau_end_ = 2.0 * j_r_ - t_end_radius - t_o_;
+      tau_infinity_ = 2.0 * j_r_ - t_o_;
+    } else {
+      tau_end_ = t_end_radius - t_o_;
+      tau_infinity_ = nan;
+    }
+    return std::isfinite(y_o_) && std::isfinite(t_o_) && std::isfinite(tau_end_) && tau_end_ > 0.0;
   }
 
   // int_0^tau dtau' / sin^2(theta) = nu (Pi(u+; am Y) - Pi(u+; am Y_o)) / sqrt(A); Pi(u+; am Y_o) is the start's
@@ -305,7 +336,6 @@ class KerrNullGeodesic {
       const double r31 = r3_ - r1_, r41 = r4_ - r1_, r32 = r3_ - r2_, r42 = r4_ - r2_;
       k_r_ = r32 * r41 / (r31 * r42);
       g_r_ = 2.0 / std::sqrt(r31 * r42);
-      f_inf_ = legendre_f_sc(std::sqrt(r31 / r41), std::sqrt((r4_ - r3_) / r41), k_r_, 0.0);
       if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
     } else {
       case_ = KerrRadialCase::complex_pair;
@@ -319,33 +349,12 @@ class KerrNullGeodesic {
       radial_jacobi_ = JacobiParameter(k_r_);
       radial_jacobi_ready_ = true;
       k_complete_r_ = radial_jacobi_.complete_f();
-      f_inf_ = legendre_f_sc(2.0 * std::sqrt(ca3_ * cb3_) / (ca3_ + cb3_), (ca3_ - cb3_) / (ca3_ + cb3_), k_r_,
-                             k_complete_r_);
-      if (!(k_r_ >= 0.0 && k_r_ < 1.0)) return false;
-    }
-    j_r_ = g_r_ * f_inf_;
-    t_o_ = t_of_radius(r_o_);
-    // The end: an inward ray turns at r4 (T = J) and leaves through the sky sphere at T = 2 J - T(R); without a
-    // turning point it reaches the guard. An outward ray leaves at T = T(R).
-    const double t_sky = t_of_radius(r_escape_);
-    if (s_r_ > 0.0) {
-      escapes_ = true;
-      tau_end_ = t_o_ - t_sky;
-      tau_infinity_ = t_o_;
-    } else if (case_ == KerrRadialCase::turning) {
-      escapes_ = true;
-      tau_end_ = 2.0 * j_r_ - t_sky - t_o_;
-      tau_infinity_ = 2.0 * j_r_ - t_o_;
-    } else {
-      escapes_ = false;
-      tau_end_ = t_of_radius(r_guard_) - t_o_;
-      tau_infinity_ = nan;
     }
     // phi's radial part: int a (2 M r - a lambda) / Delta dtau = sum c_+- int dtau / (r - r_+-).
     const double dr = r_plus_ - r_minus_;
     c_plus_ = dr > 0.0 ? a_ * (2.0 * m * r_plus_ - a_ * lambda_) / dr : 0.0;
     c_minus_ = dr > 0.0 ? -a_ * (2.0 * m * r_minus_ - a_ * lambda_) / dr : 0.0;
-    return std::isfinite(t_o_) && std::isfinite(tau_end_) && tau_end_ > 0.0;
+    return true;
   }
 
   // One Newton step towards a real root of R where it helps (the closed form loses digits near a double root).
@@ -365,14 +374,42 @@ class KerrNullGeodesic {
   // differ by O(r_i / r), so far from the hole R_F needs one or two duplications where g (F_inf - F(am(r))) needed
   // four and then lost digits in the difference (two at the camera of 50 M, three at a sky sphere of 1000 M).
   GRTRACE_HD double t_of_radius(double r) const {
+    const RadialFArgs args = t_of_radius_args(r);
+    return t_of_radius_from(args, carlson_rf(args.x, args.y, args.z));
+  }
+
+  // The R_F whose value gives T(r) (above) or F_inf, and how: Legendre's F(am) = s R_F(c^2, 1 - k s^2, 1) (2K less
+  // it beyond pi / 2, c < 0) where `legendre`, else T = 2 R_F (Carlson's form).
+  struct RadialFArgs {
+    double x, y, z, s, c;
+    bool legendre;
+  };
+  GRTRACE_HD RadialFArgs legendre_f_args(double s, double c) const {
+    return {c * c, 1.0 - k_r_ * s * s, 1.0, s, c, true};
+  }
+  GRTRACE_HD double legendre_f_of(const RadialFArgs& args, double rf) const {
+    const double f = args.s * rf;
+    return args.c >= 0.0 ? f : 2.0 * k_complete_r_ - f;  // k_complete_r_ is read only for a complex pair (c < 0)
+  }
+  // F_inf = F(asin sqrt(r31 / r41)) for four real roots; for a complex pair the amplitude of cn = (A - B) / (A + B).
+  GRTRACE_HD RadialFArgs f_inf_args() const {
+    if (case_ == KerrRadialCase::complex_pair)
+      return legendre_f_args(2.0 * std::sqrt(ca3_ * cb3_) / (ca3_ + cb3_), (ca3_ - cb3_) / (ca3_ + cb3_));
+    const double r41 = r4_ - r1_;
+    return legendre_f_args(std::sqrt((r3_ - r1_) / r41), std::sqrt((r4_ - r3_) / r41));
+  }
+  GRTRACE_HD RadialFArgs t_of_radius_args(double r) const {
     if (case_ == KerrRadialCase::complex_pair) {
       const double u = ca3_ * (r - r1_), v = cb3_ * (r - r2_);
-      return g_r_ * (f_inf_ - legendre_f_sc(2.0 * std::sqrt(u * v) / (u + v), (u - v) / (u + v), k_r_, k_complete_r_));
+      return legendre_f_args(2.0 * std::sqrt(u * v) / (u + v), (u - v) / (u + v));
     }
     const double y1 = std::sqrt(r - r1_), y2 = std::sqrt(r - r2_), y3 = std::sqrt(r - r3_);
     const double y4 = std::sqrt(std::max(0.0, r - r4_));
     const double u12 = y1 * y2 + y3 * y4, u13 = y1 * y3 + y2 * y4, u14 = y1 * y4 + y2 * y3;
-    return 2.0 * carlson_rf(u12 * u12, u13 * u13, u14 * u14);
+    return {u12 * u12, u13 * u13, u14 * u14, 0.0, 0.0, false};
+  }
+  GRTRACE_HD double t_of_radius_from(const RadialFArgs& args, double rf) const {
+    return args.legendre ? g_r_ * (f_inf_ - legendre_f_of(args, rf)) : 2.0 * rf;
   }
 
   GRTRACE_HD const JacobiParameter& radial_jacobi() const {
@@ -569,6 +606,7 @@ class KerrNullGeodesic {
 
   double mass_, a_, r_escape_, r_guard_;
   double energy_ = 0.0, lambda_ = 0.0, eta_ = 0.0, r_o_ = 0.0, theta_o_ = 0.0, phi_o_ = 0.0, s_r_ = 1.0;
+  double k_theta_o_ = 0.0;  ///< the start's k^theta
   bool supported_ = false, escapes_ = false, through_axis_ = false;
   KerrRadialCase case_ = KerrRadialCase::unsupported;
   // polar

@@ -3,7 +3,8 @@
 //  (a) the special functions (core/jacobi_elliptic.hpp) against their defining integrals by Gauss-Legendre
 //      quadrature (F, Pi with n < 1 and the principal value beyond the pole, R1 across the spurious pole) and
 //      against their definitions (F(am(u)) = u; sn^2 + cn^2 = 1; dn^2 + m sn^2 = 1; R_C and R_J by their
-//      integrals), for negative parameters too; R_C and R_J against 40-digit values to 1e-15;
+//      integrals), for negative parameters too; R_C and R_J against 40-digit values to 1e-15; the four-lane loop
+//      against each integral alone; the kept Jacobi means against jacobi();
 //  (b) the n = 0, 1, 2 equatorial crossings against the reduced Kerr tracer (trace/kerr_mino_tracer.hpp, rkf78 at
 //      rtol 1e-12), which is made to accept exactly that crossing (a disk a hair wide around the closed form's
 //      radius, counting the crossings it is offered): the same order n, radius and redshift within 1e-9, for
@@ -11,6 +12,8 @@
 //      rays that pass within a few degrees of the polar axis;
 //  (c) the state at any Mino time against a direct integration of the separated equations (tested here, not the
 //      library's system: its time is slowed near the axis);
+//  (c') the direction at infinity of inward and outward rays (the leg to infinity by Carlson's addition theorem)
+//      against the reduced Kerr tracer continued to u = 0;
 //  (d) whole disk frames equal to the reduced Kerr tracer's: the same object at every pixel but silhouettes
 //      (counted), hit radius and redshift within 1e-8 relative, sky directions within 1e-8 rad (rtol 1e-12), and
 //      the same order (crossings before the end) at every pixel, the sky's and the horizon's too;

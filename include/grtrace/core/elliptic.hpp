@@ -39,12 +39,9 @@ inline GRTRACE_HD double carlson_rf(double x, double y, double z) {
   // Duplication: R_F(x, y, z) = R_F((x + l)/4, (y + l)/4, (z + l)/4), l = sqrt(xy) + sqrt(yz) + sqrt(zx), which
   // draws the three arguments together; then the seventh-order Taylor series about their mean A.
   for (int i = 0; i < 64; ++i) {
-    // Every argument within 1e-2 of their mean A = s / 3, tested as |s - 3 v| <= 1e-2 s: the test waits on no
-    // division (a third of this loop's time when it did). The series' first neglected term ~ deviation^8 / 10 <
-    // 1e-17.
-    const double s = x + y + z;
-    const double deviation = std::max(std::abs(s - 3.0 * x), std::max(std::abs(s - 3.0 * y), std::abs(s - 3.0 * z)));
-    if (deviation <= 1e-2 * s) break;
+    const double a = (x + y + z) / 3.0;
+    const double deviation = std::max(std::abs(a - x), std::max(std::abs(a - y), std::abs(a - z)));
+    if (deviation <= 1e-2 * a) break;  // the series' first neglected term ~ deviation^8 / 10 < 1e-17
     const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z);
     const double l = sx * (sy + sz) + sy * sz;
     x = 0.25 * (x + l);

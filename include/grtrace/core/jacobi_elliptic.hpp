@@ -12,7 +12,9 @@
 //          (n/3) s^3 R_J(c^2, 1 - m s^2, 1, 1 - n s^2) (DLMF 19.25.5 and 19.25.14, s = sin phi, c = cos phi) on [-pi/2,
 //          pi/2], extended by F(phi + j pi) = F(phi) + 2 j K. Pi with n > 1 is the Cauchy principal value (DLMF 19.7.9
 //          with R_C's value for a negative second argument, DLMF 19.2.20). sn, cn, dn by Gauss's transformation (the
-//          arithmetic-geometric mean, DLMF 22.7 and 22.20(ii), in Bulirsch's recursion), one sin and cos for all three.
+//          arithmetic-geometric mean, DLMF 22.7 and 22.20(ii), in Bulirsch's recursion), one sin and cos for all three;
+//          the means of one parameter kept for many arguments (JacobiParameter). Several unrelated R_F and R_J in one
+//          duplication loop of four lanes (carlson_rf_rj_lanes), where a caller needs them together.
 // One source for the CPU and the GPU (no recursion, no library special functions).
 #pragma once
 

@@ -25,10 +25,14 @@
 //           T - J). The radial part of phi, int a (2 M r - a lambda) / Delta dtau, splits in 1 / (r - r_+-), which
 //           are Pi(n; am | k) (four real roots: a Moebius function of sn^2) and R1 (complex roots: of cn;
 //           core/jacobi_elliptic.hpp).
-// Cost:    the constructor's polar K (by the arithmetic-geometric mean), four R_F (the start's polar phase, the radial
-//          half-period, the Mino times from infinity to the camera and to the sky sphere) and the potential's
-//          roots; phi's terms at the camera (three Pi) are computed the first time the ray's phi is asked for and
-//          kept, so an object is one ray's, read by one thread at a time (its const functions fill that cache).
+// Cost:    the constructor's polar means (the arithmetic-geometric mean of the polar parameter, kept: K and every
+//          Jacobi function of the polar phase read them), the potential's roots, and four integrals in one loop of
+//          four lanes (carlson_rf_rj_lanes: the start's polar phase with phi's polar start Pi, the radial half-period,
+//          the Mino times from infinity to the camera and to the end). The direction at infinity: three more in one
+//          such loop (the radial primitive at infinity, the leg from the camera to infinity by Carlson's addition
+//          theorem, the polar Pi there). phi at a finite radius computes the radial primitive at the camera the first
+//          time it is asked for and keeps it (as it keeps the radial means, built at the first radius asked for), so
+//          an object is one ray's, read by one thread at a time (its const functions fill that cache).
 // Not covered (supported() false: a tracer integrates these): eta <= 0 (vortical rays, which never cross the
 //          equator, and the rays along it), all four roots complex (only for eta < 0), a camera inside the
 //          potential's barrier (four real roots, r_o < r4) or on the axis, a radial or polar speed of exactly zero at

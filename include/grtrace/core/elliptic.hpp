@@ -20,17 +20,22 @@
 namespace grtrace {
 
 namespace detail {
+/// R_F's Taylor series about the arguments' mean A times sqrt(A), from their relative deviations dx = 1 - x / A,
+/// dy = 1 - y / A (dz = -(dx + dy)): for one value or a packet of lanes (core/jacobi_elliptic.hpp).
+template <class T>
+GRTRACE_HD T carlson_rf_polynomial(const T& dx, const T& dy) {
+  const T dz = -(dx + dy);
+  const T e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
+  // DLMF 19.36.1 to seventh order: 1 - E2/10 + E3/14 + E2^2/24 - 3 E2 E3/44 - 5 E2^3/208 + 3 E3^2/104 +
+  // E2^2 E3/16: two more terms than the fifth order's spare one or two duplications (four square roots each).
+  return 1.0 + e2 * (-0.1 + e2 * (1.0 / 24.0 - 5.0 / 208.0 * e2 + e3 / 16.0) - 3.0 * e3 / 44.0) +
+         e3 * (1.0 / 14.0 + 3.0 / 104.0 * e3);
+}
+
 /// R_F(x, y, z) by its Taylor series about the arguments' mean A, once duplication has drawn them within 1e-2 of A.
 inline GRTRACE_HD double carlson_rf_series(double x, double y, double z) {
   const double a = (x + y + z) / 3.0;
-  const double dx = 1.0 - x / a, dy = 1.0 - y / a, dz = -(dx + dy);
-  const double e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
-  // DLMF 19.36.1 to seventh order: 1 - E2/10 + E3/14 + E2^2/24 - 3 E2 E3/44 - 5 E2^3/208 + 3 E3^2/104 +
-  // E2^2 E3/16, divided by sqrt(A): two more terms than the fifth order's spare one or two duplications (four square
-  // roots each).
-  return (1.0 + e2 * (-0.1 + e2 * (1.0 / 24.0 - 5.0 / 208.0 * e2 + e3 / 16.0) - 3.0 * e3 / 44.0) +
-          e3 * (1.0 / 14.0 + 3.0 / 104.0 * e3)) /
-         std::sqrt(a);
+  return carlson_rf_polynomial(1.0 - x / a, 1.0 - y / a) / std::sqrt(a);
 }
 }  // namespace detail
 

@@ -63,6 +63,21 @@ struct CarlsonPair {
 };
 
 namespace detail {
+/// R_J's series about A (DLMF 19.36.2 to seventh order; E_k the elementary symmetric functions of X, Y, Z, P, P with
+/// P = -(X + Y + Z) / 2) from the original arguments' deviations from A0 scaled by 4^-j / A_j (Carlson 1995 eq.
+/// 2.17-2.18): for one value or a packet of lanes.
+template <class T>
+GRTRACE_HD T carlson_rj_polynomial(const T& X, const T& Y, const T& Z) {
+  const T P = -0.5 * (X + Y + Z);
+  const T e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
+  const T e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P;
+  const T e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
+  const T e5 = X * Y * Z * P * P;
+  return 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 - 9.0 * e2 * e3 / 52.0 +
+         3.0 * e5 / 26.0 - e2 * e2 * e2 / 16.0 + 3.0 * e2 * e4 / 20.0 + 3.0 * e3 * e3 / 40.0 +
+         45.0 * e2 * e2 * e3 / 272.0 - 9.0 * (e2 * e5 + e3 * e4) / 68.0;
+}
+
 /// R_F(x, y, z) and R_J(x, y, z, p_i) for N values p_i at once: one duplication of x, y and z for all (the i-th R_J
 /// into rj[i]; returns R_F).
 template <std::size_t N>
@@ -116,14 +131,7 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
     // The original arguments' deviations from A0 scaled by 4^-j / A_j (Carlson 1995 eq. 2.17-2.18), and the series
     // to seventh order (DLMF 19.36.2; E_k the elementary symmetric functions of X, Y, Z, P, P).
     const double f = scale / a[i];
-    const double X = (a0[i] - x0) * f, Y = (a0[i] - y0) * f, Z = (a0[i] - z0) * f, P = -0.5 * (X + Y + Z);
-    const double e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
-    const double e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P;
-    const double e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
-    const double e5 = X * Y * Z * P * P;
-    const double series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 -
-                          9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0 - e2 * e2 * e2 / 16.0 + 3.0 * e2 * e4 / 20.0 +
-                          3.0 * e3 * e3 / 40.0 + 45.0 * e2 * e2 * e3 / 272.0 - 9.0 * (e2 * e5 + e3 * e4) / 68.0;
+    const double series = carlson_rj_polynomial((a0[i] - x0) * f, (a0[i] - y0) * f, (a0[i] - z0) * f);
     rj[i] = scale * series / (a[i] * std::sqrt(a[i])) + 6.0 * sum[i];
   }
   // R_F from the same duplicated x, y, z: its own series about their mean; the loop above ran at least until R_F's
@@ -184,22 +192,11 @@ GRTRACE_HD void carlson_rf_rj_lanes(Eigen::Array4d x, Eigen::Array4d y, Eigen::A
   }
   for (std::size_t i = 0; i < N; ++i) {
     const A4 f = scale / a[i];
-    const A4 X = (a0[i] - x0) * f, Y = (a0[i] - y0) * f, Z = (a0[i] - z0) * f, P = -0.5 * (X + Y + Z);
-    const A4 e2 = X * Y + X * Z + Y * Z - 3.0 * P * P;
-    const A4 e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P;
-    const A4 e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P;
-    const A4 e5 = X * Y * Z * P * P;
-    const A4 series = 1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0 -
-                      9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0 - e2 * e2 * e2 / 16.0 + 3.0 * e2 * e4 / 20.0 +
-                      3.0 * e3 * e3 / 40.0 + 45.0 * e2 * e2 * e3 / 272.0 - 9.0 * (e2 * e5 + e3 * e4) / 68.0;
+    const A4 series = detail::carlson_rj_polynomial<A4>((a0[i] - x0) * f, (a0[i] - y0) * f, (a0[i] - z0) * f);
     rj[i] = scale * series / (a[i] * a[i].sqrt()) + 6.0 * sum[i];
   }
   const A4 mean = (x + y + z) / 3.0;
-  const A4 dx = 1.0 - x / mean, dy = 1.0 - y / mean, dz = -(dx + dy);
-  const A4 e2 = dx * dy - dz * dz, e3 = dx * dy * dz;
-  rf = (1.0 + e2 * (-0.1 + e2 * (1.0 / 24.0 - 5.0 / 208.0 * e2 + e3 / 16.0) - 3.0 * e3 / 44.0) +
-        e3 * (1.0 / 14.0 + 3.0 / 104.0 * e3)) /
-       mean.sqrt();
+  rf = detail::carlson_rf_polynomial<A4>(1.0 - x / mean, 1.0 - y / mean) / mean.sqrt();
 }
 
 inline GRTRACE_HD CarlsonPair carlson_rf_rj(double x, double y, double z, double p) {

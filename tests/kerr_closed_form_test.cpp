@@ -205,8 +205,7 @@ TEST(JacobiElliptic, OneParameterServesManyArguments) {
       EXPECT_EQ(kept.am, alone.am);
       const double turn = std::fmod(kept.turns, 2.0) == 0.0 ? 1.0 : -1.0;
       for (const double n : {-2.0, 0.4, 0.93}) {
-        const double by_turns =
-            legendre_pi_turns(n, kept.turns, turn * kept.sn, turn * kept.cn, m, complete_pi(n, m));
+        const double by_turns = legendre_pi_turns(n, kept.turns, turn * kept.sn, turn * kept.cn, m, complete_pi(n, m));
         EXPECT_NEAR(by_turns, legendre_pi(n, kept.am, m), 1e-14 * std::max(1.0, std::abs(by_turns)))
             << "m " << m << " u " << u << " n " << n;
       }
@@ -438,8 +437,8 @@ TEST(KerrClosedForm, DirectionAtInfinityEqualsTheIntegratedContinuation) {
   const TraceSettings s = test_settings::settings_at(1e-12, 2000.0);
   for (const Case& c : {Case{0.9, 50.0, 1.3}, Case{-0.7, 8.0, 0.6}, Case{0.998, 300.0, 1.5}, Case{0.3, 4.0, 2.2}}) {
     const KerrMetric metric(1.0, c.spin);
-    const auto mino =
-        make_kerr_mino_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact, make_scene(StarFieldSky{}, HorizonPaint{}));
+    const auto mino = make_kerr_mino_tracer<Fehlberg78, IController>(metric, s, AngleCorrection::exact,
+                                                                     make_scene(StarFieldSky{}, HorizonPaint{}));
     const Camera cam = camera_of(metric, CameraCase{c.spin, c.r, c.theta, 70.0}, 24);
     int compared[2] = {0, 0};
     double worst[2] = {0.0, 0.0};

@@ -428,11 +428,14 @@ inline GRTRACE_HD double jacobi_r1(double alpha, const JacobiValues& j, double m
     second = std::log(std::abs((sd * w - sc) / (sd * w + sc))) / (2.0 * sc * sd);
   }
   const double n = alpha * alpha / (alpha * alpha - 1.0), turn = std::fmod(j.turns, 2.0) == 0.0 ? 1.0 : -1.0;
-  const double pi = legendre_pi_turns(n, j.turns, turn * j.sn, turn * j.cn, m, j.turns != 0.0 ? complete_pi(n, m) : 0.0);
+  const double pi =
+      legendre_pi_turns(n, j.turns, turn * j.sn, turn * j.cn, m, j.turns != 0.0 ? complete_pi(n, m) : 0.0);
   return pi / c0 - alpha * second;
 }
 
 /// The same at u, whose Jacobi functions of m it computes.
-inline GRTRACE_HD double jacobi_r1(double alpha, double u, double m) { return jacobi_r1(alpha, jacobi<false>(u, m), m); }
+inline GRTRACE_HD double jacobi_r1(double alpha, double u, double m) {
+  return jacobi_r1(alpha, jacobi<false>(u, m), m);
+}
 
 }  // namespace grtrace

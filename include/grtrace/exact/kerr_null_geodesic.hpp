@@ -179,8 +179,7 @@ class KerrNullGeodesic {
                          A4(1.0 - n_minus * s2, leg.p_minus + leg.mu, p_polar, 1.0)};
         A4 rf, rj[2];
         carlson_rf_rj_lanes<2>(x, yy, z, p, rf, rj);
-        const double h_inf =
-            radial_h(f_inf_, legendre_pi_pair_of(n_plus, n_minus, s, s2, rf[0], rj[0][0], rj[1][0]));
+        const double h_inf = radial_h(f_inf_, legendre_pi_pair_of(n_plus, n_minus, s, s2, rf[0], rj[0][0], rj[1][0]));
         const double d = leg_change(leg, rf[1], rj[0][1], rj[1][1]);
         const double pi_polar = legendre_pi_of(u_plus_, phase.sin, polar_s2, rf[2], rj[0][2]);
         phi = phi_from(lambda_ * polar_phi_integral_of(phase.turns, pi_polar), s_r_ > 0.0 ? -d : 2.0 * h_inf - d);
@@ -556,15 +555,16 @@ class KerrNullGeodesic {
     g.r43 = r4_ - r3_;
     const double r42 = r4_ - r2_;
     g.q = g.r41 / g.r31;
-    g.bx = g.r43 / g.r31;  // c_inf - 1
-    g.by = g.r41 * g.r43 / (g.r31 * r42);  // c_inf - m
-    g.bz = g.q;  // c_inf
+    g.bx = g.r43 / g.r31;                   // c_inf - 1
+    g.by = g.r41 * g.r43 / (g.r31 * r42);   // c_inf - m
+    g.bz = g.q;                             // c_inf
     g.lambda = g.q * g.r43 / (r_o_ - r4_);  // c_o - c_inf
     const double e2 = g.bx * g.by + g.by * g.bz + g.bz * g.bx, e3 = g.bx * g.by * g.bz;
     // The larger root, written without a difference: (lambda mu - e2)^2 - 4 e3 (lambda + mu + e1) = 0 has
     // discriminant 4 e3 (lambda + B_x)(lambda + B_y)(lambda + B_z).
-    g.mu = (g.lambda * e2 + 2.0 * e3 + 2.0 * std::sqrt(e3 * (g.lambda + g.bx) * (g.lambda + g.by) * (g.lambda + g.bz))) /
-           (g.lambda * g.lambda);
+    g.mu =
+        (g.lambda * e2 + 2.0 * e3 + 2.0 * std::sqrt(e3 * (g.lambda + g.bx) * (g.lambda + g.by) * (g.lambda + g.bz))) /
+        (g.lambda * g.lambda);
     g.r4p = r4_ - r_plus_;
     g.r4m = r4_ - r_minus_;
     g.p_plus = g.q * g.r43 / g.r4p;  // c_inf - n, n = q (r3 - r_+-) / (r4 - r_+-)

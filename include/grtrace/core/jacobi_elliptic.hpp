@@ -28,6 +28,7 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
 namespace grtrace {
 
@@ -78,46 +79,73 @@ GRTRACE_HD T carlson_rj_polynomial(const T& X, const T& Y, const T& Z) {
          45.0 * e2 * e2 * e3 / 272.0 - 9.0 * (e2 * e5 + e3 * e4) / 68.0;
 }
 
+// One value or a packet of four lanes (Eigen::Array4d): what carlson_rf_rj_duplication reads its arguments as.
+inline GRTRACE_HD double lane_sqrt(double v) { return std::sqrt(v); }
+inline GRTRACE_HD double lane_abs(double v) { return std::abs(v); }
+inline GRTRACE_HD double lane_max(double a, double b) { return std::max(a, b); }
+inline GRTRACE_HD Eigen::Array4d lane_sqrt(const Eigen::Array4d& v) { return v.sqrt(); }
+inline GRTRACE_HD Eigen::Array4d lane_abs(const Eigen::Array4d& v) { return v.abs(); }
+inline GRTRACE_HD Eigen::Array4d lane_max(const Eigen::Array4d& a, const Eigen::Array4d& b) { return a.max(b); }
+template <class Condition>
+GRTRACE_HD bool every_lane(const Condition& c) {
+  if constexpr (std::is_same_v<Condition, bool>) return c;
+  else return c.all();
+}
+
+// R_C(1, 1 + e) = arctan(sqrt(e)) / sqrt(e): e falls by 64 a level, so after the first one or two it is small and
+// its own series (1 - e/3 + e^2/5 - ..., six terms to 1e-19 at |e| = 1e-3) spares R_C's root and division.
+template <class T>
+GRTRACE_HD T rc_series(const T& e) {
+  return 1.0 + e * (-1.0 / 3.0 + e * (1.0 / 5.0 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 + e * (-1.0 / 11.0 + e / 13.0)))));
+}
+inline GRTRACE_HD double rc_one_plus(double e) {
+  return std::abs(e) < 1e-3 ? rc_series(e) : carlson_rc(1.0, 1.0 + e);
+}
+inline GRTRACE_HD Eigen::Array4d rc_one_plus(const Eigen::Array4d& e) {
+  Eigen::Array4d rc = rc_series<Eigen::Array4d>(e);
+  if (!(e.abs() < 1e-3).all()) {  // beyond the series' range: the first level or two
+    for (int l = 0; l < 4; ++l)
+      if (!(std::abs(e[l]) < 1e-3)) rc[l] = carlson_rc(1.0, 1.0 + e[l]);
+  }
+  return rc;
+}
+
 /// R_F(x, y, z) and R_J(x, y, z, p_i) for N values p_i at once: one duplication of x, y and z for all (the i-th R_J
-/// into rj[i]; returns R_F).
-template <std::size_t N>
-GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p_in)[N], double (&rj)[N]) {
-  const double x0 = x, y0 = y, z0 = z;
-  double p[N], a0[N], a[N], delta[N], sum[N], q = 0.0;
+/// into rj[i]; returns R_F). T: double, or Eigen::Array4d for four independent argument sets side by side
+/// (carlson_rf_rj_lanes), each lane's values as the double loop gives them (a lane that met its rule before the
+/// slowest one is duplicated further: the same value, to its last bits or closer).
+template <class T, std::size_t N>
+GRTRACE_HD T carlson_rf_rj_duplication(T x, T y, T z, const T (&p_in)[N], T (&rj)[N]) {
+  const T x0 = x, y0 = y, z0 = z;
+  T p[N], a0[N], a[N], delta[N], sum[N];
+  T q = 0.0 * x;  // x, y, z are finite
   for (std::size_t i = 0; i < N; ++i) {
     p[i] = p_in[i];
     a[i] = a0[i] = (x + y + z + 2.0 * p[i]) / 5.0;
     delta[i] = (p[i] - x) * (p[i] - y) * (p[i] - z);
-    sum[i] = 0.0;
+    sum[i] = 0.0 * x;
     // Carlson's stopping rule: 4^-j Q < |A_j| with Q = c max |A0 - v|, i.e. every argument within A_j / c of the
     // mean. For the fifth-order series Carlson takes c = (4 / eps)^(1/6) = 860 (eps = 1e-17); the seventh-order
     // series below would allow (4 / eps)^(1/8) = 159, but c = 200 is taken so that x, y, z also meet R_F's own rule
     // (within 1e-2 of their mean: within 2 / c of each other): the same loop serves both. One Q for all (the
     // largest): each R_J is duplicated at least as far as its own rule asks.
-    q = std::max(q, 200.0 * std::max(std::max(std::abs(a0[i] - x), std::abs(a0[i] - y)),
-                                     std::max(std::abs(a0[i] - z), std::abs(a0[i] - p[i]))));
+    q = lane_max(q, 200.0 * lane_max(lane_max(lane_abs(a0[i] - x), lane_abs(a0[i] - y)),
+                                     lane_max(lane_abs(a0[i] - z), lane_abs(a0[i] - p[i]))));
   }
   double scale = 1.0, cube = 1.0;  // scale = 4^-j, cube = 4^-3j
   auto converged = [&] {
     for (std::size_t i = 0; i < N; ++i)
-      if (!(scale * q < std::abs(a[i]))) return false;
+      if (!every_lane(scale * q < lane_abs(a[i]))) return false;
     return true;
   };
   for (int j = 0; j < 64 && !converged(); ++j) {
-    const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z);
-    const double lambda = sx * (sy + sz) + sy * sz;
+    const T sx = lane_sqrt(x), sy = lane_sqrt(y), sz = lane_sqrt(z);
+    const T lambda = sx * (sy + sz) + sy * sz;
     for (std::size_t i = 0; i < N; ++i) {
-      const double sp = std::sqrt(p[i]);
-      const double inv_d = 1.0 / ((sp + sx) * (sp + sy) * (sp + sz));
-      // R_C(1, 1 + e) = arctan(sqrt(e)) / sqrt(e): e falls by 64 a level, so after the first one or two it is small
-      // and its own series (1 - e/3 + e^2/5 - ..., six terms to 1e-19 at |e| = 1e-3) spares R_C's root and division.
-      const double e = cube * delta[i] * inv_d * inv_d;
-      const double rc =
-          std::abs(e) < 1e-3
-              ? 1.0 + e * (-1.0 / 3.0 +
-                           e * (1.0 / 5.0 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 + e * (-1.0 / 11.0 + e / 13.0)))))
-              : carlson_rc(1.0, 1.0 + e);
-      sum[i] += scale * rc * inv_d;
+      const T sp = lane_sqrt(p[i]);
+      const T inv_d = 1.0 / ((sp + sx) * (sp + sy) * (sp + sz));
+      const T e = cube * delta[i] * inv_d * inv_d;
+      sum[i] += scale * rc_one_plus(e) * inv_d;
       p[i] = 0.25 * (p[i] + lambda);
       a[i] = 0.25 * (a[i] + lambda);
     }
@@ -128,15 +156,21 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
     cube *= 1.0 / 64.0;
   }
   for (std::size_t i = 0; i < N; ++i) {
-    // The original arguments' deviations from A0 scaled by 4^-j / A_j (Carlson 1995 eq. 2.17-2.18), and the series
-    // to seventh order (DLMF 19.36.2; E_k the elementary symmetric functions of X, Y, Z, P, P).
-    const double f = scale / a[i];
-    const double series = carlson_rj_polynomial((a0[i] - x0) * f, (a0[i] - y0) * f, (a0[i] - z0) * f);
-    rj[i] = scale * series / (a[i] * std::sqrt(a[i])) + 6.0 * sum[i];
+    // The original arguments' deviations from A0 scaled by 4^-j / A_j (Carlson 1995 eq. 2.17-2.18), and the series.
+    const T f = scale / a[i];
+    const T series = carlson_rj_polynomial<T>((a0[i] - x0) * f, (a0[i] - y0) * f, (a0[i] - z0) * f);
+    rj[i] = scale * series / (a[i] * lane_sqrt(a[i])) + 6.0 * sum[i];
   }
   // R_F from the same duplicated x, y, z: its own series about their mean; the loop above ran at least until R_F's
   // own rule (deviations below 1e-2 of the mean) was met, R_J's being the stricter.
-  return carlson_rf_series(x, y, z);
+  const T mean = (x + y + z) / 3.0;
+  return carlson_rf_polynomial<T>(1.0 - x / mean, 1.0 - y / mean) / lane_sqrt(mean);
+}
+
+/// R_F(x, y, z) and R_J(x, y, z, p_i) for N values p_i at once (one duplication of x, y and z for all).
+template <std::size_t N>
+GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p_in)[N], double (&rj)[N]) {
+  return carlson_rf_rj_duplication<double, N>(x, y, z, p_in, rj);
 }
 }  // namespace detail
 
@@ -144,59 +178,11 @@ GRTRACE_HD double carlson_rf_rj_n(double x, double y, double z, const double (&p
 /// duplication and series, run on the four lanes side by side (Eigen's packets: one vector square root serves four
 /// lanes on the CPU; a scalar loop on a GPU). Worth it where one ray needs several unrelated integrals at once: their
 /// square-root chains, each waiting on the last, then overlap instead of following one another. The loop runs
-/// until every lane meets its own rule (a lane that met it earlier is duplicated further: the same value, to its
-/// last bits or closer). A lane not needed can be filled with ones (met at once).
+/// until every lane meets its own rule. A lane not needed can be filled with ones (met at once).
 template <std::size_t N>
-GRTRACE_HD void carlson_rf_rj_lanes(Eigen::Array4d x, Eigen::Array4d y, Eigen::Array4d z,
-                                    const Eigen::Array4d (&p_in)[N], Eigen::Array4d& rf, Eigen::Array4d (&rj)[N]) {
-  using A4 = Eigen::Array4d;
-  const A4 x0 = x, y0 = y, z0 = z;
-  A4 p[N], a0[N], a[N], delta[N], sum[N];
-  A4 q = A4::Zero();
-  for (std::size_t i = 0; i < N; ++i) {
-    p[i] = p_in[i];
-    a[i] = a0[i] = (x + y + z + 2.0 * p[i]) / 5.0;
-    delta[i] = (p[i] - x) * (p[i] - y) * (p[i] - z);
-    sum[i] = A4::Zero();
-    // Carlson's rule as in carlson_rf_rj_n, per lane.
-    q = q.max(200.0 * (a0[i] - x).abs().max((a0[i] - y).abs()).max((a0[i] - z).abs()).max((a0[i] - p[i]).abs()));
-  }
-  double scale = 1.0, cube = 1.0;
-  const auto converged = [&] {
-    for (std::size_t i = 0; i < N; ++i)
-      if (!(scale * q < a[i].abs()).all()) return false;
-    return true;
-  };
-  for (int j = 0; j < 64 && !converged(); ++j) {
-    const A4 sx = x.sqrt(), sy = y.sqrt(), sz = z.sqrt();
-    const A4 lambda = sx * (sy + sz) + sy * sz;
-    for (std::size_t i = 0; i < N; ++i) {
-      const A4 sp = p[i].sqrt();
-      const A4 inv_d = 1.0 / ((sp + sx) * (sp + sy) * (sp + sz));
-      const A4 e = cube * delta[i] * inv_d * inv_d;
-      A4 rc = 1.0 + e * (-1.0 / 3.0 +
-                         e * (1.0 / 5.0 + e * (-1.0 / 7.0 + e * (1.0 / 9.0 + e * (-1.0 / 11.0 + e * (1.0 / 13.0))))));
-      if (!(e.abs() < 1e-3).all()) {  // beyond the series' range (carlson_rf_rj_n's): the first level or two
-        for (int l = 0; l < 4; ++l)
-          if (!(std::abs(e[l]) < 1e-3)) rc[l] = carlson_rc(1.0, 1.0 + e[l]);
-      }
-      sum[i] += scale * rc * inv_d;
-      p[i] = 0.25 * (p[i] + lambda);
-      a[i] = 0.25 * (a[i] + lambda);
-    }
-    x = 0.25 * (x + lambda);
-    y = 0.25 * (y + lambda);
-    z = 0.25 * (z + lambda);
-    scale *= 0.25;
-    cube *= 1.0 / 64.0;
-  }
-  for (std::size_t i = 0; i < N; ++i) {
-    const A4 f = scale / a[i];
-    const A4 series = detail::carlson_rj_polynomial<A4>((a0[i] - x0) * f, (a0[i] - y0) * f, (a0[i] - z0) * f);
-    rj[i] = scale * series / (a[i] * a[i].sqrt()) + 6.0 * sum[i];
-  }
-  const A4 mean = (x + y + z) / 3.0;
-  rf = detail::carlson_rf_polynomial<A4>(1.0 - x / mean, 1.0 - y / mean) / mean.sqrt();
+GRTRACE_HD void carlson_rf_rj_lanes(const Eigen::Array4d& x, const Eigen::Array4d& y, const Eigen::Array4d& z,
+                                    const Eigen::Array4d (&p)[N], Eigen::Array4d& rf, Eigen::Array4d (&rj)[N]) {
+  rf = detail::carlson_rf_rj_duplication<Eigen::Array4d, N>(x, y, z, p, rj);
 }
 
 inline GRTRACE_HD CarlsonPair carlson_rf_rj(double x, double y, double z, double p) {

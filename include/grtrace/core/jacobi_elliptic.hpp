@@ -114,8 +114,10 @@ inline GRTRACE_HD Eigen::Array4d rc_one_plus(const Eigen::Array4d& e) {
 /// into rj[i]; returns R_F). T: double, or Eigen::Array4d for four independent argument sets side by side
 /// (carlson_rf_rj_lanes), each lane's values as the double loop gives them (a lane that met its rule before the
 /// slowest one is duplicated further: the same value, to its last bits or closer).
+/// Flattened on the CPU: the lane helpers and R_C's series are called at every level (left out of line, the packet
+/// series alone took a tenth of a closed-form ray).
 template <class T, std::size_t N>
-GRTRACE_HD T carlson_rf_rj_duplication(T x, T y, T z, const T (&p_in)[N], T (&rj)[N]) {
+GRTRACE_FLATTEN_CPU GRTRACE_HD T carlson_rf_rj_duplication(T x, T y, T z, const T (&p_in)[N], T (&rj)[N]) {
   const T x0 = x, y0 = y, z0 = z;
   T p[N], a0[N], a[N], delta[N], sum[N];
   T q = 0.0 * x;  // x, y, z are finite
